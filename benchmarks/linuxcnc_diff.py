@@ -25,10 +25,19 @@ without the offsets (saicanon.cc ``GET_EXTERNAL_POSITION_Z``: ``_program_positio
 them (emccanon.cc ``GET_EXTERNAL_POSITION``: ``unoffset_and_unrotate_pos``); so rs274 moves Z by a tool length
 offset taken with or after the M6 on the next move without a Z word ("T1 M6 G43 H1" then "G0 X1 Y1"), where
 LinuxCNC and vcnc keep the tool still. Also: user M codes (M100-M199) beside a program are not run by rs274, whose
-standalone canon knows none; vcnc's ``linuxcnc`` dialect looks for them in the program's folder.
+standalone canon knows none; vcnc's ``linuxcnc`` dialect looks for them in the program's folder. M61 does not put
+the tool into the spindle's entry of rs274's tool table (saicanon.cc ``CHANGE_TOOL_NUMBER`` sets the slot only, where
+LinuxCNC's task loads it, task/taskclass.cc ``emcToolSetNumber``), so G43 without H and G41/G42 without D after M61
+take the tool before it in rs274. A tool length offset in force at G20/G21 is read back unconverted
+(saicanon.cc ``GET_EXTERNAL_TOOL_LENGTH_ZOFFSET``; emccanon.cc converts it, ``TO_PROG_LEN``), so rs274 takes a length
+set in mm as inch (or back) at the next G43.2, G53 or change of offset under G91. The generated programs
+(``--generate``) avoid these three.
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
-(a directory: its ``.ngc .nc .gcode .tap`` files, recursively). Runs only when ``rs274`` is on PATH (LinuxCNC's
+(a directory: its ``.ngc .nc .gcode .tap`` files, recursively), or with generated programs instead
+(``benchmarks/linuxcnc_fuzz.py``): ``--generate N --seed S [--features arcs,cycles,...] [--out DIR]``, programs of
+seeds S to S+N-1, each program that does not match written to DIR as ``fuzz-<seed>.ngc`` to inspect, and a table of
+outcomes per feature group (a program counts in each group it draws). Runs only when ``rs274`` is on PATH (LinuxCNC's
 ``linuxcnc-uspace`` package); otherwise it says so and exits 0. rs274 runs with its own ``HOME`` in a temporary
 folder, so it leaves no tool table file (``.tool.mmap``) in the user's home.
 """
@@ -52,6 +61,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from benchmarks.linuxcnc_fuzz import FEATURES, generate  # noqa: E402
 from interpolators import load_program  # noqa: E402
 from interpolators.context import DIALECTS, MachineContext, read_tool_table  # noqa: E402
 from vcnc.errors import GCodeError  # noqa: E402
@@ -74,9 +84,13 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Bad character '*' used": "outside [ ]", "Bad character '/' used": "outside [ ]",
          "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
          "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
-         "Unknown word where unary operation could be": "macro B"}
+         "Unknown word where unary operation could be": "macro B",
+         "Cannot restore context from invalid stack frame": "M72 with no modal state saved",
+         "no matching while/do label": "in a repeat loop"}
 #: rs274's refusal of a reused O-word label, which vcnc notes (its message begins with the line number).
 DUPLICATE_LABEL = re.compile(r"\d+: duplicate O-word label")
+#: The line number before rs274's O-word messages ("4: no matching while/do label").
+LINE_PREFIX = re.compile(r"^\d+: ")
 #: A G5/G5.1 spline block or a G5.2 .. G5.3 NURBS (vcnc reads them as chords; a NURBS's chords are the G5.3
 #: block's) and a block that names another motion mode.
 SPLINE = re.compile(r"G0*5(?:\.[123])?(?![\d.])", re.I)
@@ -111,8 +125,10 @@ class Move:
         Program line (vcnc's moves; 0 for rs274's).
     unit : float
         Length of one printed unit [mm] (rs274's moves: 1 or 25.4; vcnc's: 1).
-    rounded : int
-        How many printed (rounded) numbers are summed in each coordinate: the end point and the offsets in force.
+    slack : float
+        How far the printed (rounded to 4 decimals) offsets in force may be from the interpreter's [mm]: half a
+        printed digit of each, in the units in force when it was printed (a G52 set in mm and printed again in
+        inch after G20 is rounded to 0.00005 inch).
     """
 
     kind: str
@@ -123,7 +139,7 @@ class Move:
     rotation: int = 0
     line: int = 0
     unit: float = 1.0
-    rounded: int = 1
+    slack: float = 0.0
 
 
 @dataclasses.dataclass(frozen=True, kw_only=True)
@@ -141,14 +157,17 @@ def _canon_state_update(name: str, args: str, nums: list[float], state: dict) ->
         state["unit"] = INCH if "INCHES" in args else 10.0 if "_CM" in args else 1.0
     elif name == "SET_G5X_OFFSET":
         state["g5x"] = np.array(nums[1:4]) * state["unit"]
+        state["g5x_slack"] = 0.5e-4 * state["unit"]
         state["g5x_abc"] = np.array(nums[4:7])
     elif name == "SET_G92_OFFSET":
         state["g92"] = np.array(nums[:3]) * state["unit"]
+        state["g92_slack"] = 0.5e-4 * state["unit"]
         state["g92_abc"] = np.array(nums[3:6])
     elif name == "SET_XY_ROTATION":
         state["rotation"] = math.radians(nums[0])
     elif name == "USE_TOOL_LENGTH_OFFSET":
         state["tool"] = np.array(nums[:3]) * state["unit"]
+        state["tool_slack"] = 0.5e-4 * state["unit"]
         state["tool_abc"] = np.array(nums[3:6])
     elif name == "SELECT_PLANE":
         state["plane"] = args.rsplit("_", 1)[-1].strip()
@@ -168,7 +187,8 @@ def canonical_moves(output: str) -> list[Move]:
     centre in the plane's axes: XY (x, y; z), YZ (y, z; x), XZ (z, x; y) (``saicanon.cc``).
     """
     state = {"unit": 1.0, "g5x": np.zeros(3), "g92": np.zeros(3), "tool": np.zeros(3), "rotation": 0.0,
-             "plane": "XY", "g5x_abc": np.zeros(3), "g92_abc": np.zeros(3), "tool_abc": np.zeros(3)}
+             "plane": "XY", "g5x_abc": np.zeros(3), "g92_abc": np.zeros(3), "tool_abc": np.zeros(3), "g5x_slack": 0.0,
+             "g92_slack": 0.0, "tool_slack": 0.0}
     order = {"XY": (0, 1, 2), "YZ": (1, 2, 0), "XZ": (2, 0, 1)}  # plane axes -> (first, second, normal)
     moves: list[Move] = []
     for line in output.splitlines():
@@ -194,12 +214,14 @@ def canonical_moves(output: str) -> list[Move]:
             rotation, abc = int(nums[4]), np.array(nums[6:9])
             center = _to_machine(cen, state)
         else:
-            end, abc = np.array(nums[:3]), np.array(nums[3:6]) if name != "RIGID_TAP" else np.zeros(3)
+            end, abc = np.array(nums[:3]), np.array(nums[3:6])
         kind = {"STRAIGHT_TRAVERSE": "rapid", "ARC_FEED": "arc"}.get(name, "line")
         start = moves[-1] if moves else None
-        rounded = 1 + sum(bool(np.any(state[k])) for k in ("g5x", "g92", "tool"))
+        if name == "RIGID_TAP":  # prints no A B C: they stay where they are
+            abc = (start.abc if start else np.zeros(3)) - abc_offset
+        slack = sum(state[f"{k}_slack"] for k in ("g5x", "g92", "tool") if np.any(state[k]))
         moves.append(Move(kind=kind, xyz=_to_machine(end, state), abc=abc + abc_offset, center=center,
-                          normal=normal, rotation=rotation, unit=state["unit"], rounded=rounded))
+                          normal=normal, rotation=rotation, unit=state["unit"], slack=slack))
         if name == "RIGID_TAP":  # taps to x, y, z and returns to its start (emccanon.cc)
             moves.append(dataclasses.replace(start, kind="line") if start else Move(
                 kind="line", xyz=np.zeros(3), abc=np.zeros(3)))
@@ -265,6 +287,9 @@ def vcnc_moves(program: Path, context: MachineContext, timeout: int) -> tuple[li
             moves.append(Move(kind="arc", xyz=np.asarray(b.target, dtype=float), abc=abc, line=b.line))
             continue
         center, normal, rotation = None, 2, 0
+        if b.kind.startswith("arc") and moves and moves[-1].line == b.line and moves[-1].kind == "arc" \
+                and moves[-1].center is None:  # a straight bridge before the arc (cutter compensation: the
+            moves.pop()  # tool's offset point to the arc's, which LinuxCNC joins by a spiral arc)
         if b.kind.startswith("arc"):
             seg = b.segment
             center, normal = np.asarray(seg.center, dtype=float), seg.plane
@@ -280,7 +305,7 @@ def without_repeats(moves: list[Move], *, printed: bool = True) -> list[Move]:
     out: list[Move] = []
     last = Move(kind="rapid", xyz=np.zeros(3), abc=np.zeros(3))
     for m in moves:
-        tol = 6e-5 * m.unit + 1e-6 if printed else 1e-9
+        tol = 6e-5 * m.unit + 1e-6 + m.slack + last.slack if printed else 1e-9
         same = np.allclose(last.xyz, m.xyz, atol=tol, rtol=0.0) and np.allclose(last.abc, m.abc, atol=1e-3, rtol=0.0)
         if m.kind in ("rapid", "line") and same:
             continue
@@ -319,7 +344,7 @@ def _same_centre(w: Move, g: Move, before: Move | None) -> bool:
 
 def _move_difference(w: Move, g: Move, before: Move | None) -> str:
     """How vcnc's move ``g`` differs from rs274's ``w`` ("" if it does not)."""
-    tol = (0.5e-4 * w.rounded + 1e-5) * w.unit  # 4 printed decimals: 0.5e-4 for each rounded term
+    tol = (0.5e-4 + 1e-5) * w.unit + w.slack  # 4 printed decimals: 0.5e-4 for the end point, the offsets' slack
     if w.kind != g.kind:
         return f"kind {g.kind}, rs274 {w.kind} at {np.round(w.xyz, 4).tolist()}"
     if w.kind == "spline":  # rs274 prints no end point: the moves after it tell
@@ -370,6 +395,16 @@ def _merged(want: list[Move], i: int, g: Move, tolerance: float) -> bool:
     return bool(np.linalg.norm(a + t * d - g.xyz) <= tolerance + 1e-4 * want[i].unit)
 
 
+def _at_spline_end(want: list[Move], i: int, got: list[Move], k: int) -> bool:
+    """Whether rs274's straight move ``want[i]`` right after a spline run ends where vcnc's spline run before
+    ``got[k]`` ends: a zero-length move (``G1`` without axis words prints STRAIGHT_FEED to the current point) that
+    :func:`without_repeats` cannot drop, rs274 printing no spline end."""
+    return (i > 0 and k > 0 and want[i - 1].kind == "spline" and got[k - 1].kind == "spline"
+            and want[i].kind in ("rapid", "line") and bool(np.allclose(want[i].xyz, got[k - 1].xyz,
+                                                                       atol=1.5e-4 * want[i].unit + want[i].slack,
+                                                                       rtol=0.0)))
+
+
 def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False, merge: float = 0.0) -> str:
     """"" if vcnc's moves (``got``) are rs274's (``want``), else the first that differs and how. A straight move
     shorter than a printed digit on one side only is passed over (rs274 rounds it to a zero-length call, dropped).
@@ -390,8 +425,12 @@ def first_difference(want: list[Move], got: list[Move], *, prefix: bool = False,
             i += 1
         elif _merged(want, i, got[k], merge):
             k += 1
+        elif _at_spline_end(want, i, got, k):
+            i += 1
         else:
             return f"move {i + 1} (vcnc line {got[k].line}): {diff}"
+    while i < len(want) and _at_spline_end(want, i, got, k):
+        i += 1
     if (i < len(want) or k < len(got)) and not (prefix and i == len(want)):
         return f"{len(got)} moves, rs274 {len(want)}"
     return ""
@@ -422,7 +461,7 @@ def compare(program: Path, *, context: MachineContext, tool_table: Path, subrout
     if rs.error:
         before = f"; before it: {diff}" if diff else "; the moves before it match"
         key = "O-word label" if DUPLICATE_LABEL.match(rs.error) else \
-            next((v for k, v in NOTED.items() if rs.error.startswith(k)), None)
+            next((v for k, v in NOTED.items() if LINE_PREFIX.sub("", rs.error).startswith(k)), None)
         noted = [n for n in notes if "LinuxCNC refuses" in n and key is not None and key in n]
         if noted:
             return {"outcome": "vcnc noted", "detail": f"{rs.error}{before}; vcnc notes: {' | '.join(noted)}"}
@@ -446,6 +485,39 @@ def program_paths(args: list[str], files_from: str | None) -> list[Path]:
     return out
 
 
+OUTCOMES = ("match", "differ", "rs274 only", "vcnc noted", "vcnc only", "both refuse")
+
+
+def run_generated(args: argparse.Namespace, compare_one) -> int:
+    """``--generate``: programs of seeds ``args.seed`` on, compared one by one (``compare_one(path)``); those that
+    do not match are kept in ``args.out``; prints the outcomes per feature group."""
+    features = tuple(s for s in args.features.split(",") if s) if args.features else tuple(FEATURES)
+    out = Path(args.out) if args.out else None
+    if out:
+        out.mkdir(parents=True, exist_ok=True)
+    counts: collections.Counter[str] = collections.Counter()
+    per_group: dict[str, collections.Counter[str]] = collections.defaultdict(collections.Counter)
+    with tempfile.TemporaryDirectory(prefix="linuxcnc_fuzz-") as tmp:
+        for seed in range(args.seed, args.seed + args.generate):
+            text, used = generate(seed, features=features)
+            path = Path(tmp) / f"fuzz-{seed}.ngc"
+            path.write_text(text)
+            res = compare_one(path)
+            counts[res["outcome"]] += 1
+            for group in set(used):
+                per_group[group][res["outcome"]] += 1
+            if args.list or res["outcome"] != "match":
+                print(f"{res['outcome']}\t{seed}\t{res['detail']}", flush=True)
+                if out:
+                    (out / path.name).write_text(text)
+    print(f"\n{args.generate} programs, seeds {args.seed}..{args.seed + args.generate - 1}")
+    print(f"{'group':14s}" + "".join(f"{o:>12s}" for o in OUTCOMES))
+    for group in sorted(per_group):
+        print(f"{group:14s}" + "".join(f"{per_group[group][o]:12d}" for o in OUTCOMES))
+    print(f"{'all':14s}" + "".join(f"{counts[o]:12d}" for o in OUTCOMES))
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("programs", nargs="*", help="program files or directories")
@@ -454,12 +526,16 @@ def main() -> int:
     ap.add_argument("--subroutine-path", default="", help="folders searched for o<name> files, ':'-separated")
     ap.add_argument("--timeout", type=float, default=30.0, help="time limit per program and side [s]")
     ap.add_argument("--list", action="store_true", help="print every program, not only the differing ones")
+    ap.add_argument("--generate", type=int, default=0, help="compare N generated programs instead")
+    ap.add_argument("--seed", type=int, default=0, help="first seed of the generated programs")
+    ap.add_argument("--features", default="", help=f"feature groups to draw from, ','-separated: {','.join(FEATURES)}")
+    ap.add_argument("--out", help="folder for the generated programs that do not match")
     args = ap.parse_args()
     if shutil.which("rs274") is None:
         print("rs274 (LinuxCNC's standalone interpreter, package linuxcnc-uspace) is not on PATH: nothing to run")
         return 0
     programs = program_paths(args.programs, args.files_from)
-    if not programs:
+    if not programs and not args.generate:
         print("no programs given")
         return 0
     sub_path = tuple(s for s in args.subroutine_path.split(":") if s)
@@ -469,6 +545,9 @@ def main() -> int:
         table = Path(args.tool_table) if args.tool_table else default_tool_table(workdir / "tools.tbl")
         context = MachineContext(tools=read_tool_table(str(table), units="inch"), extra_axes=("a", "b", "c"),
                                  dialect=DIALECTS["linuxcnc"], linear_units="inch")
+        if args.generate:
+            return run_generated(args, lambda p: compare(p, context=context, tool_table=table, subroutine_path=sub_path,
+                                                         workdir=workdir, timeout=args.timeout))
         for p in programs:
             res = compare(p, context=context, tool_table=table, subroutine_path=sub_path, workdir=workdir,
                           timeout=args.timeout)
@@ -476,7 +555,7 @@ def main() -> int:
             if args.list or res["outcome"] != "match":
                 print(f"{res['outcome']}\t{p}\t{res['detail']}", flush=True)
     print(f"\n{len(programs)} programs")
-    for outcome in ("match", "differ", "rs274 only", "vcnc noted", "vcnc only", "both refuse"):
+    for outcome in OUTCOMES:
         print(f"{outcome:12s} {counts[outcome]:5d}")
     return 0
 

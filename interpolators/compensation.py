@@ -547,11 +547,19 @@ def _concave_point(el_a: _Offset, el_b: _Offset, corner: np.ndarray, theta: floa
     messages where the tool cannot reach the corner."""
     fail = f"without gouging (tool radius {radius:g} mm)"
     if el_b.kind == "line" and el_a.kind == "line":
+        # back from the tool's offset end along the programmed direction of el_a by r / tan(half the corner),
+        # the meeting of the offset lines; where el_a starts at the tool after a corner of at most small (a line
+        # a little off its programmed direction) on the programmed offset line, not on the line the tool runs
+        d, normal = el_a.b0 - el_a.a0, el_a.b0 - corner
         cands = _intersections(el_a, el_b)
-        if not cands:
+        if cands and abs(float(d @ normal)) <= 1e-12 * math.hypot(*d) * math.hypot(*normal):
+            return cands[0]  # el_a runs on its programmed offset line: the meeting, exact on axis-parallel lines
+        half = (beta + math.pi) / 2.0
+        if abs(math.sin(half)) <= _EPS:
             raise CompensationError(f"Zero degree inside corner is invalid for cutter compensation {fail}",
                                     el_b.index)
-        return cands[0]
+        back = theta + (math.pi / 2.0 if s > 0.0 else -math.pi / 2.0)
+        return el_a.b0 + radius * math.cos(half) / math.sin(half) * np.array([math.cos(back), math.sin(back)])
     if el_b.kind == "line":  # arc -> line
         oldrad = el_a.radius
         th = _angle(el_b.b0 - el_b.a0) + (math.pi / 2.0 if el_a.ccw else -math.pi / 2.0)

@@ -234,8 +234,8 @@ class Dialect:
         most 0.5 mm; no excess of an R arc's chord over the diameter). Fanuc and Haas check against
         a machine parameter (Fanuc No. 3410) and use LinuxCNC's rule here.
     tap_out_to_r : bool
-        G84 tapping feeds out to the R plane and rapids on to the clear level (Fanuc, Haas: True);
-        LinuxCNC feeds out to the clear level (False).
+        G84 tapping and G89 boring feed out to the R plane and rapid on to the clear level (Fanuc, Haas:
+        True); LinuxCNC feeds out to the clear level (False).
     subroutine_path : tuple of str
         Folders searched for ``<name>.ngc`` of an ``o<name> call`` after the program's own folder
         (LinuxCNC INI ``[RS274NGC] SUBROUTINE_PATH``); a relative folder starts at the program's.

@@ -1029,7 +1029,7 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
             _linuxcnc_cycle_p_q(seen, gcodes, motion, where, mcodes)
     else:
         cycle = "motion" in gcodes and gcodes["motion"][0] >= 730 or (st.motion is not None and st.motion >= 730)
-    if "P" in seen and motion in (20, 30) and linuxcnc and not (st.rotation and st.plane != 2 or off_plane(st)):
+    if "P" in seen and motion in (20, 30) and linuxcnc and not off_plane(st):
         return _check_q_l(seen, gcodes, cycle, where)  # G2/G3 P: the number of turns (arc_turns)
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]

@@ -39,11 +39,14 @@ def rotated_arc_chords(seen, arc_words, target, st: State, blocks, where: Where,
                         mcol: int, mtok: str) -> None:
     """A G18/G19 arc in a coordinate system rotated about Z (G10 R): built in program coordinates,
     where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
-    machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc)."""
+    machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc); LinuxCNC's P turns
+    (:func:`arc_turns`) too."""
     start_p, end_p = st.to_program(st.pos), st.to_program(target)
     shadow = dataclasses.replace(st, pos=start_p, rotations={}, frame=None, offsets={st.wcs: np.zeros(3)},
                                  g92=np.zeros(3), tool_length=0.0, tool_xy=np.zeros(2))
     arc = read_arc(seen, arc_words, end_p, shadow, where, code, mcol, mtok)
+    if "P" in seen and st.context.dialect.name == "linuxcnc":
+        arc = arc_turns(arc, seen["P"], st, where, code)
     step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
     n = max(1, math.ceil(abs(arc.sweep) / step))
     speed = arc.length * st.block_f / 60.0 if st.inverse_time else st.feed  # the arc's feed on each chord

@@ -13,7 +13,7 @@ import numpy as np
 
 from interpolators._words import Where
 from interpolators.arcs import arc_from_center
-from interpolators.iso_codes import DIALECT_G, G_CODES, G_UNSUPPORTED
+from interpolators.iso_codes import DIALECT_G, G_CODES, G_UNSUPPORTED, PLANE_CODES
 from interpolators.iso_cycles import cycle_moves, tap_spindle_error
 from interpolators.iso_frames import framed_initial
 from interpolators.iso_haas import PATTERN_CODES, bolt_holes, circular_pocket
@@ -168,6 +168,11 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if notes is not None and st.cycle.r is None and "R" not in seen and st.context.dialect.name in ("fanuc", "haas"):
         notes.add(f"{name} without R in the first block of the series: the R plane is the initial level "
                   "(Fanuc/Haas reading; LinuxCNC refuses it)")
+    if notes is not None and st.motion in (740, 840) and st.plane != 2 and st.context.dialect.name == "linuxcnc":
+        # interp_cycles.cc convert_cycle_g74_g84 passes the plane's coordinates to cycle_feed in another order
+        # for YZ and XZ than every other cycle (LinuxCNC 2.9 and master)
+        notes.add(f"{name} in {PLANE_CODES[st.plane]}: tapped along the plane's drilling axis at the hole, as "
+                  "g-code.adoc describes (LinuxCNC's interpreter feeds to the hole's coordinates in another order)")
     mw = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
@@ -180,8 +185,10 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
     if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
         where.fail(f"{name} {tap[0]}", column=mw.column, text=mw.text, expected=tap[1])
-    # under G68 the cycle runs in the rotated program coordinates, its moves mapped to the machine's
-    pos, off = (st.pos, st.offset()) if st.frame is None else (st.to_program(st.pos), np.zeros(3))
+    # under G68 or G10 R the cycle runs in the rotated program coordinates, its moves mapped to the machine's
+    # (LinuxCNC: interp_cycles.cc works in program coordinates, emccanon.cc rotate_and_offset_pos turns each move)
+    turned = st.frame is not None or bool(st.rotation)
+    pos, off = (st.to_program(st.pos), np.zeros(3)) if turned else (st.pos, st.offset())
     factors = (1.0, 1.0, 1.0) if st.frame is None else st.frame.factors
     if st.cycle.initial is not None and st.cycle.factors != factors:  # where is the initial level now?
         where.fail(f"{name}: the G51 scaling changed within the series of cycles (the initial level of a "
@@ -202,7 +209,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)
     framed_initial(st, to_program=False)
-    if st.frame is not None:
+    if turned:
         moves = [dataclasses.replace(mv, target=st.to_machine(mv.target)) for mv in moves]
     for mv in moves:
         used.update(i for i in range(3) if mv.target[i] != st.pos[i])

@@ -15,11 +15,13 @@ XY plane (G17) and run in G18 / G19 on the axes permuted (:data:`CYCLE_AXES`: dr
   contiguous cycles (the "initial level").
 * **Holes**: G81 feed to Z, rapid out; G82 also dwells P; G83 pecks Q, rapid to R after each
   peck and back down to 0.010 in (0.254 mm) above the last depth; G73 pecks Q with a chip-break
-  retract of 0.010 in; G85 feeds in and out; G89 dwells, then feeds out; G86 dwells and rapids
-  out (spindle stopped); G84 (tapping) feeds in, dwells P, and feeds out: to the clear level in
-  LinuxCNC (interp_cycles.cc ``convert_cycle_g74_g84``), to R and then rapid to the clear level in
-  Fanuc and Haas (Haas "G84 Tapping Canned Cycle": feed to the R plane, rapid to the starting
-  plane), as the dialect says (:attr:`interpolators.context.Dialect.tap_out_to_r`).
+  retract of 0.010 in; G85 feeds in and out to R, then rapids to the clear level; G89 dwells, then
+  feeds out; G86 dwells and rapids out (spindle stopped); G84 (tapping) feeds in, dwells P, and feeds
+  out. G84's and G89's feed out goes to the clear level in LinuxCNC (interp_cycles.cc
+  ``convert_cycle_g74_g84``, ``convert_cycle_g89``; g-code.adoc G89: "Retract the Z-axis at the current
+  feed rate to clear Z"), to R and then rapid to the clear level in Fanuc and Haas (Haas "G84 Tapping
+  Canned Cycle": feed to the R plane, rapid to the starting plane), as the dialect says
+  (:attr:`interpolators.context.Dialect.tap_out_to_r`).
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
 
@@ -279,7 +281,7 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
             go("rapid", x + dx, y + dy, clear)
             go("rapid", x, y, clear)
             continue
-        if g in (74, 84) and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84: feed out to the clear level
+        if g in (74, 84, 89) and not tap_out_to_r:  # LinuxCNC convert_cycle_g74_g84, _g89: feed out to clear
             go("line", x, y, clear, feed)
         elif g in (74, 84, 85, 89):
             go("line", x, y, r, feed)

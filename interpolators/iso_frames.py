@@ -28,13 +28,19 @@ __all__ = ["check_rotated", "g68", "g68_2_g53_1", "set_frame", "scaling_mirror",
 
 def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) -> None:
     """Moves a rotated coordinate system (G10 R, G68) supports: G0-G3 (arcs out of the plane of rotation
-    as chords); under G68 alone canned cycles too, under G51 scaling those without a peck or shift Q
-    (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled)."""
-    cycle_ok = st.frame is not None and not st.rotation and st.motion is not None and st.motion >= 730 and not (
+    as chords); canned cycles (run in program coordinates, :func:`framed_initial`), under G51 scaling those
+    without a peck or shift Q (iso_cycles.UNSCALED_Q_CYCLES: Q is not scaled); under G10 R alone the G5 /
+    G5.1 splines (LinuxCNC builds them in program coordinates and turns the arcs it makes of them, emccanon.cc
+    ``NURBS_FEED``) and G33 / G33.1, straight moves to a rotated point (emccanon.cc ``STRAIGHT_FEED``,
+    ``RIGID_TAP``: ``rotate_and_offset_pos``) and polar ``@ ^`` (interp_find.cc ``find_ends``: in program
+    coordinates)."""
+    cycle_ok = st.motion is not None and st.motion >= 730 and (st.frame is None or not (
         st.frame.scaled and st.motion // 10 in UNSCALED_Q_CYCLES
-        or any(st.frame.mirror) and st.motion in (760, 870, 770))
-    what = ("polar coordinates @ ^" if polar else G_CODES[st.motion][1] if st.motion is not None and st.motion >= 50
-            and st.motion not in (800,) and not cycle_ok else None)
+        or any(st.frame.mirror) and st.motion in (760, 870, 770))) or (
+        st.frame is None and st.motion in (50, 51, 330, 331))
+    polar_ok = st.frame is None and st.motion in (0, 10, 20, 30)
+    what = ("polar coordinates @ ^" if polar and not polar_ok else G_CODES[st.motion][1] if st.motion is not None
+            and st.motion >= 50 and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
         w = words[0]
         how = f"G10 R {st.rotation:g}" if st.rotation else "G51 scaling" if st.frame.scaled else \
@@ -136,7 +142,8 @@ def framed_initial(st: State, *, to_program: bool) -> None:
     """Under G68/G51/G51.1 the cycle runs in program coordinates: its initial level (a machine position
     between blocks, so that it stays where the tool was when the series began while the transformation
     changes between holes: Fanuc's initial level is a tool position) goes to the program's drilling axis
-    and back."""
+    and back. Under G10 R alone it stays in program coordinates, as LinuxCNC keeps it (interp_cycles.cc
+    ``cycle_il``, a program coordinate; on a G18/G19 drilling axis X or Y a machine level would mix both)."""
     if st.frame is None or st.cycle.initial is None:
         return
     axis = CYCLE_AXES[st.plane][2]

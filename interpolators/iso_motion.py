@@ -7,6 +7,7 @@ G4, G93-G95), Fanuc 0i-MF operator's manual where the dialects differ (each func
 from __future__ import annotations
 
 import dataclasses
+import math
 import re
 from typing import TYPE_CHECKING
 
@@ -42,10 +43,16 @@ def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
     if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
         prog = st.to_program(st.pos)
         for letter in axis_words:
+            if letter in POLAR_LETTERS:
+                continue
             i = "XYZ".index(letter)
             prog[i] = prog[i] + seen[letter].value * st.scale if st.incremental else seen[letter].value * st.scale
+        if "@" in seen or "^" in seen:  # LinuxCNC find_ends: polar in the (rotated) program coordinates
+            prog[0], prog[1] = polar_xy(prog[0], prog[1], incremental=st.incremental,
+                                        distance=seen["@"].value * st.scale if "@" in seen else None,
+                                        angle_deg=seen["^"].value if "^" in seen else None)
         target = st.pos.copy()  # axes without words stay exactly where they are
-        if "X" in axis_words or "Y" in axis_words:
+        if any(a in seen for a in ("X", "Y", *POLAR_LETTERS)):
             target[:2] = st.to_machine(prog)[:2]
         if "Z" in axis_words:
             target[2] = st.to_machine(prog)[2]
@@ -335,8 +342,11 @@ def per_rev_spindle(st: State, where: Where, code: str, mcol: int, mtok: str) ->
 
 def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: int, mtok: str) -> None:
     """G5 / G5.1 (LinuxCNC G-code reference): a Bezier curve in XY as chord blocks
-    (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental."""
+    (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental, turned with the
+    coordinate system under G10 R."""
     code = "G5" if st.motion == 50 else "G5.1"
+    a = math.radians(st.rotation)
+    turn = np.array([[math.cos(a), -math.sin(a), 0.0], [math.sin(a), math.cos(a), 0.0], [0.0, 0.0, 1.0]])
     if st.plane != 2:
         where.fail(f"{code} spline: only in the XY plane (G17)", column=mcol, text=mtok, expected="G17")
     if "Z" in seen:
@@ -349,7 +359,7 @@ def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: i
         if not ij.any():
             where.fail("G5.1 spline: I and J both unspecified or zero", column=mcol, text=mtok,
                        expected="I and/or J: the control point's offset from the start")
-        control = [p0, p0 + ij * s, target]
+        control = [p0, p0 + turn @ ij * s, target]
     else:
         if "P" not in seen or "Q" not in seen:
             where.fail("G5 spline: P and Q must both be given", column=mcol, text=mtok,
@@ -357,13 +367,13 @@ def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: i
         if ("I" in seen) != ("J" in seen):
             where.fail("G5 spline: I and J must be given together", column=mcol, text=mtok, expected="I and J")
         if "I" in seen:
-            ij = np.array([seen["I"].value, seen["J"].value, 0.0]) * s
+            ij = turn @ np.array([seen["I"].value, seen["J"].value, 0.0]) * s
         elif st.spline_pq is not None:
             ij = -st.spline_pq  # the tangent of the previous G5 continues
         else:
             where.fail("G5 spline: I and J are needed on the first G5 of a series", column=mcol, text=mtok,
                        expected="I and J")
-        pq = np.array([seen["P"].value, seen["Q"].value, 0.0]) * s
+        pq = turn @ np.array([seen["P"].value, seen["Q"].value, 0.0]) * s
         control = [p0, p0 + ij, target + pq, target]
         st.spline_pq = pq
     if st.motion == 51:

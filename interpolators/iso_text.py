@@ -133,6 +133,9 @@ def note_comment(keyword: str, text: str, where: Where, *, messages: list[Messag
 
 #: A Haas M97 word (a local subprogram call, :func:`interpolators.iso_flow.run`), which LinuxCNC does not have (rs274:
 #: "Unknown m code used: M97").
+#: A loop O-word line: its label and keyword (the loop's opening, a break or continue, a do loop's closing while).
+_LOOP_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
+                         r"(WHILE|DO|REPEAT|BREAK|CONTINUE)\b", re.M | re.I)
 _M97 = re.compile(r"(?<![A-Z\d.])M0*97(?![\d.])", re.I)
 #: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
 _OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)
@@ -188,6 +191,35 @@ def _in_code(text: str, at: int) -> bool:
     return ";" not in before and before.count("(") <= before.count(")")
 
 
+def _loop_notes(text: str, notes: Notes) -> None:
+    """Notes of loops LinuxCNC runs otherwise than vcnc (interp_o_word.cc ``convert_control_functions``):
+    ``break`` or ``continue`` on a ``repeat`` loop's label, which LinuxCNC refuses (o-code.adoc, errors: "a label
+    on break or continue which does not point to a matching while or do"), and a ``do`` loop after a ``break``
+    out of a ``while`` loop: LinuxCNC clears the flag a break sets (``doing_break``) only at a do loop's closing
+    while, so that the first do loop to close after the break leaves after one pass, where vcnc runs it as
+    o-code.adoc describes ("do ... while: the loop runs while the condition is true")."""
+    loops: dict[str, str] = {}
+    broken_while = False
+    for m in _LOOP_OWORD.finditer(text):
+        label, keyword = m.group(1).lower().replace(" ", ""), m.group(2).lower()
+        if keyword in ("break", "continue"):
+            kind = loops.get(label)
+            if kind == "repeat":
+                notes.add(f"O-word o{label} {keyword} in a repeat loop, run as in a while loop (LinuxCNC refuses "
+                          "it: \"no matching while/do label\")")
+            broken_while = broken_while or (keyword == "break" and kind == "while")
+        elif keyword == "while" and loops.get(label) == "do":
+            loops.pop(label)
+        elif keyword == "do" and broken_while:
+            notes.add(f"O-word o{label} do loop after a break out of a while loop: LinuxCNC leaves the first do loop "
+                      "that closes after such a break after one pass (its break flag stays set), vcnc runs it to "
+                      "its condition")
+            broken_while = False
+            loops[label] = keyword
+        else:
+            loops[label] = keyword
+
+
 def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
     """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
     a '(' inside, and parameter assignments with an operation outside [ ]
@@ -212,6 +244,7 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
             notes.add(f"O-word label o{label} opens {count} {keyword} blocks in one program or subroutine, each run in "
                       "its place (LinuxCNC refuses the second when it runs: \"duplicate O-word label\"; FluidNC "
                       "reuses labels)")
+    _loop_notes(text, notes)
     if any(_in_code(text, m.start()) for m in _M97.finditer(text)):
         notes.add("M97 local subprogram calls run as Haas runs them (LinuxCNC refuses them: \"Unknown m code used\"; "
                   "--dialect haas)")
