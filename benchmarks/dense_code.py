@@ -143,7 +143,7 @@ def _utilisation(sp, Ts: float) -> tuple[float, float, float]:
     return uv, ua, uj
 
 
-def _fillet_square(radius: float = 0.1, chords: int = 10) -> str:
+def fillet_square(radius: float = 0.1, chords: int = 10) -> str:
     """A 3 mm square of 0.25 mm chords at F600, each corner a fillet of ``radius`` written as ``chords`` chords
     with 3 decimals (as FreeCAD writes a tool-compensated profile's fillets)."""
     out = ["G21 G90 G17 G64 P0.01", "G0 X0 Y0"]
@@ -160,7 +160,7 @@ def _fillet_square(radius: float = 0.1, chords: int = 10) -> str:
     return "\n".join([*out, "M2"]) + "\n"
 
 
-def _alternating_circle(turns: tuple[float, float] = (0.1, 0.22), laps: int = 2) -> tuple[str, str]:
+def alternating_circle(turns: tuple[float, float] = (0.1, 0.22), laps: int = 2) -> tuple[str, str]:
     """Two laps of a circle of 30 um chords whose turns alternate (rounded points of short chords) from a tangent
     entry line at F600, and the same laps as G3 arcs of the mean turn's radius."""
     chord = 0.03
@@ -178,8 +178,8 @@ def _alternating_circle(turns: tuple[float, float] = (0.1, 0.22), laps: int = 2)
 def _fillet_cases(Ts: float) -> None:
     """Tight fillets of CAM chords: the square of 0.1 mm fillets in 10 chords, and the circle of alternating turns
     (with its G3 reference); S-curve / trapezoid time of the same chords, measured in this run."""
-    circle, circle_arcs = _alternating_circle()
-    for name, text, ref in (("fillets", _fillet_square(), None), ("alternating circle", circle, circle_arcs)):
+    circle, circle_arcs = alternating_circle()
+    for name, text, ref in (("fillets", fillet_square(), None), ("alternating circle", circle, circle_arcs)):
         took = {}
         for profile in ("trapezoid", "scurve"):
             sp = interpolate(parse_program(text), profile=profile)

@@ -70,10 +70,11 @@ import scipy.linalg
 
 from identification.kernels import run_exact, run_split
 from identification.reduced_model import ReducedAxisModel, discretize
+from identification.substeps import SubstepReference, substep_count, substep_reference
 from vcnc.core.errors import InputError
 
 __all__ = ["AugmentedAxisModel", "SimSpec", "SUBSTEPS", "simulate_augmented", "two_mass_matrices", "augment",
-           "from_model"]
+           "from_model", "predict_record"]
 
 #: Integration steps per sample of the split (element) form.
 SUBSTEPS = 10
@@ -199,8 +200,15 @@ def simulate_augmented(
     *,
     return_velocity: bool = False,
     substeps: int = SUBSTEPS,
+    held: SubstepReference | None = None,
 ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
     """Predicted measurement [mm] of the augmented model (module docstring) for ``reference`` [mm].
+
+    ``held``, the record's reference on its sub-step grid (:mod:`identification.substeps`, of which
+    ``reference`` is the first samples), predicts a model without an element as the fit predicts a
+    record slower than 1 ms: the exact loop run at the sub-steps on the spline between the samples,
+    the known disturbance ``spec.wext`` held over each sample, the output taken at the samples. The
+    split form keeps the record's step (its controller is a sampled law at it).
 
     Returns NaN from the sample where the simulation diverges (an unstable candidate), never raises
     for that, so that searches can score it.
@@ -225,6 +233,15 @@ def simulate_augmented(
                   int(spec.delay), float(spec.saturation), bool(spec.anti_windup),
                   float(spec.integral_lead), float(spec.backlash), res, tm,
                   pos, vel)
+    elif held is not None and held.substeps > 1:
+        m = held.substeps
+        fine = held.fine[:(xr.size - 1) * m + 1]
+        dm = discretize(p, T / m)
+        fpos, fvel = np.empty_like(fine), np.empty_like(fine)
+        run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, fine,
+                  np.ascontiguousarray(np.repeat(wext, m)[:fine.size]), st, float(spec.asym), float(spec.pp_period),
+                  pp_coef, fpos, fvel)
+        pos, vel = fpos[::m].copy(), fvel[::m].copy()
     else:
         dm = discretize(p, T)
         run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,
@@ -333,6 +350,28 @@ def augment(
     base.update(changes)
     vr = viscous_rate if viscous_rate is not None else getattr(model, "viscous_rate", 0.0)
     return AugmentedAxisModel(**base, elements=tuple(elements), viscous_rate=float(vr))
+
+
+def predict_record(model: ReducedAxisModel, reference: np.ndarray, *, held: SubstepReference | None = None
+                   ) -> np.ndarray:
+    """``model``'s prediction [mm] of a record of ``reference`` [mm] logged at its sample time, as the fit predicted
+    it: a record slower than 1 ms at sub-steps (:mod:`identification.substeps`; the reference delayed and filtered
+    on the sub-step grid), a model with an element (the split form) and a faster record by ``model.simulate``.
+
+    ``held`` is the record's reference on the sub-step grid when already built (the diagnosis keeps it; its model
+    has no dead time or setpoint filter of its own then), of which ``reference`` is the first samples.
+    """
+    xr = np.asarray(reference, dtype=float)
+    T = model.sample_time
+    m = model if isinstance(model, AugmentedAxisModel) else augment(model, [])
+    if substep_count(T) == 1 or m.structured:
+        return model.simulate(xr)
+    if held is None:
+        held = substep_reference(xr, T).delayed(model.delay_s / T).filtered(model.setpoint_filter_s / T)
+    elif model.delay_s or model.setpoint_filter_s:
+        raise InputError("predict_record: a model with a dead time or setpoint filter takes the recorded reference, "
+                         "not a sub-step reference built without them")
+    return simulate_augmented(m.parameters, xr, m.spec(xr.size), held=held)
 
 
 def from_model(model: ReducedAxisModel) -> ReducedAxisModel:

@@ -15,13 +15,14 @@ from identification.bounds import WIDE_P_MIN_HZ
 from identification.dead_time import LAG_STEP_S, follow_lag
 from identification.poles import poles_from_denominator
 from identification.regressor import RegressorOptions
+from vcnc.core.axes import axis_unit
 from vcnc.core.capture import Capture, check_sampling
 from vcnc.core.errors import CaptureError, IdentificationError
 
 __all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
            "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
            "check_jumps", "JUMP_FACTOR", "REFERENCE_JUMP_FACTOR", "JUMP_SHARE", "JUMP_WINDOW",
-           "check_swapped", "polynomial_share", "INTERPOLATED_SHARE", "RESPONSE_SHARE"]
+           "check_swapped", "polynomial_share", "INTERPOLATED_SHARE", "RESPONSE_SHARE", "through_changes"]
 
 #: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms).
 MIN_SAMPLES = 500
@@ -141,21 +142,24 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     check_sampling(t, src or "<capture>")
     T = capture.sample_time  # the nominal period (time stamps as decimals give 0.0010000000000000009)
     span = float(np.ptp(xr))
+    u = axis_unit(axis)  # mm, or deg on a rotary axis
     if span == 0.0 and float(np.ptp(x)) == 0.0:
         raise IdentificationError(
-            f"no motion on axis {axis!r}: reference and measurement stay at {float(xr[0])!r} mm", file=src
+            f"no motion on axis {axis!r}: reference and measurement stay at {float(xr[0])!r} {u}", file=src
         )
     if span == 0.0:
         raise IdentificationError(
-            f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} mm", file=src
+            f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} {u}", file=src
         )
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
     if span < 1.0 and vmax < 2.0:
+        look = ("radians, not deg" if u == "deg" else
+                "metres, not mm (or radians of a rotary joint, not deg)")
+        how = ("deg (radians: --unit rad" if u == "deg" else
+               "mm (a logger's metres: --unit m; radians: --unit rad with the axis named a, b or c")
         raise IdentificationError(
-            f"positions on axis {axis!r} look like metres, not mm (or radians of a rotary joint, not deg): the "
-            f"reference spans {span:.4g} mm at a peak speed of {vmax:.4g} mm/s; convert the capture to mm (a "
-            "logger's metres: --unit m; radians: --unit rad with the axis named a, b or c; a test this small could "
-            "not be identified anyway)",
+            f"positions on axis {axis!r} look like {look}: the reference spans {span:.4g} {u} at a peak speed of "
+            f"{vmax:.4g} {u}/s; convert the capture to {how}; a test this small could not be identified anyway)",
             file=src,
         )
     if np.array_equal(xr, x):
@@ -234,7 +238,7 @@ def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: flo
     x = np.asarray(measured, float)
     corr = follow_lag(xr, x, sample_time)[1]
     if corr < MIN_FOLLOW_CORRELATION:
-        message = _not_following(xr, x, sample_time, axis, corr, others or {})
+        message = _barely_moves(xr, x, axis, corr) or _not_following(xr, x, sample_time, axis, corr, others or {})
         if message or corr < UNRELATED_CORRELATION:
             raise IdentificationError(message or _unrelated(xr, sample_time, axis, corr), file=src)
     span_r = float(np.subtract(*np.percentile(xr, [99.9, 0.1])))
@@ -331,6 +335,29 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
     return ""
 
 
+#: A commanded span within this many of the measured position's resolution (its smallest step) is too small a
+#: motion to tell whether the measured channel follows [-]: the exact model of Table 3.4 moved over 7 um and recorded
+#: with a 1 um encoder and 0.5 um noise correlates 0.20 (our reading of a "barely moving" axis; 10 mm: 0.99). The
+#: noise is no such unit: a measured channel of 1 mm white noise beside an 18 mm move is another signal.
+BARELY_MOVES_STEPS = 50
+
+
+def _barely_moves(xr: np.ndarray, x: np.ndarray, axis: str, corr: float) -> str:
+    """The message for an axis whose commanded motion spans fewer than :data:`BARELY_MOVES_STEPS` of the measured
+    position's resolution, "" otherwise: its velocity is the encoder's steps and the noise, and the "does not follow"
+    of :func:`_unrelated` (another axis', a velocity?) would send the user to the wrong remedy."""
+    dx = np.abs(np.diff(x))
+    step = float(np.min(dx[dx > 0])) if np.any(dx > 0) else 0.0
+    span = float(np.ptp(xr))
+    if step <= 0 or span >= BARELY_MOVES_STEPS * step:
+        return ""
+    u = axis_unit(axis, small=True)
+    return (f"{_head(axis, corr)}: the axis barely moves: its commanded position spans {span * 1e3:.4g} {u}, "
+            f"{span / step:.3g} times the measured position's resolution ({step * 1e3:.3g} {u}), which its velocity "
+            f"is made of; record a test that moves it over at least {BARELY_MOVES_STEPS} steps "
+            "(`vcnc toolpath identification` writes one)")
+
+
 def _head(axis: str, corr: float) -> str:
     return (f"axis {axis!r}: the measured channel does not follow the commanded position (its velocity "
             f"correlates at most {corr:.2f} with the commanded one at any lag up to a third of the record; a "
@@ -408,10 +435,10 @@ def check_jumps(reference: np.ndarray, measured: np.ndarray, sample_time: float,
     as such, since the fit is made for interpolated motion (the exact model ``FADAL_PID_X``, Table 3.4,
     answering steps of 0.05-0.2 mm, was fitted at 37.7 Hz / 0.54 / p 6.9 Hz for 33.0 Hz / 0.45 / 1.17 Hz).
     """
-    xr = np.asarray(reference, float)
     x = np.asarray(measured, float)
-    if xr.size < 8:
+    if x.size < 8:
         return
+    xr = through_changes(reference)  # a reference held in steps jumps at every change
     jr = _velocity_steps(xr)
     dr = np.abs(np.diff(xr))
     alone = np.abs(jr) > 0.5 * dr  # a step unlike its neighbours'
@@ -450,6 +477,30 @@ def check_jumps(reference: np.ndarray, measured: np.ndarray, sample_time: float,
             f"{spike + 1} (t = {(spike + 1) * sample_time:.6g} s from the record's start) and is back at the next "
             "sample, its neighbours quiet: a glitch of the trace (a corrupted or misplaced sample), which no loop "
             "model explains; replace that sample by its neighbours' mean, or cut the record there", file=src)
+
+
+def through_changes(reference: np.ndarray) -> np.ndarray:
+    """The commanded position [mm] linear between the samples where it changes, when it is held in steps while it
+    moves (IPO setpoints logged faster than the interpolator updates them: the median number of samples between
+    changes is 2 or more), else as recorded.
+
+    A value holds from its first sample; a rest (a value held over more than twice the median) also keeps its last
+    sample, so the line does not move through it. Our reading: a 4 ms interpolation cycle logged at 1 ms moves the
+    reference 0.4 mm every fourth sample at 100 mm/s, and the jump check took each step for a step command
+    (:func:`check_jumps`); through its changes it is the interpolator's path.
+    """
+    xr = np.asarray(reference, float)
+    first = np.flatnonzero(np.diff(xr) != 0.0) + 1
+    if first.size < 10:
+        return xr
+    hold = float(np.median(np.diff(first)))
+    if hold < 2:
+        return xr
+    starts = np.concatenate(([0], first))
+    runs = np.diff(np.concatenate((starts, [xr.size])))  # samples each value holds
+    rest_ends = (starts + runs - 1)[runs > 2 * hold]
+    knots = np.unique(np.concatenate((starts, rest_ends, [xr.size - 1])))
+    return np.interp(np.arange(xr.size), knots, xr[knots])
 
 
 def _quiet(d2: np.ndarray, lo: int, hi: int, level: float) -> bool:

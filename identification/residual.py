@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from identification.augmented import predict_record
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, regressor
 from vcnc.core.metrics import error_metrics
@@ -262,7 +263,9 @@ def analyse(model: ReducedAxisModel, reference: np.ndarray, measured: np.ndarray
     """Residual analysis of ``measured`` [mm] against ``model`` driven by ``reference`` [mm]."""
     xr = np.asarray(reference, float)
     x = np.asarray(measured, float)
-    pred = model.simulate(xr, sample_time=sample_time)
+    # at the model's own sample time, as the fit and the diagnosis predict the record (sub-steps below 1 ms)
+    pred = (predict_record(model, xr) if sample_time == model.sample_time
+            else model.simulate(xr, sample_time=sample_time))
     rows, eq = equation_error(model, xr, x, sample_time)
     v = np.gradient(xr, sample_time)
     a = np.gradient(v, sample_time)

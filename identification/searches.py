@@ -29,7 +29,7 @@ import numpy as np
 import scipy.linalg
 import scipy.signal
 
-from identification.augmented import AugmentedAxisModel, augment, simulate_augmented
+from identification.augmented import AugmentedAxisModel, augment, predict_record, simulate_augmented
 from identification.effects import (
     Backlash,
     Delay,
@@ -45,8 +45,10 @@ from identification.effects import (
 from identification.kernels import fourier_gram, sinusoid_moments, windowed_fourier_moments
 from identification.least_squares import solve_gram, solve_qr, solve_scaled
 from identification.parallel import thread_map
+from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
+from identification.substeps import SubstepReference
 
 log = logging.getLogger(__name__)
 
@@ -63,6 +65,9 @@ class Data:
     ``train`` marks the samples the searches fit on; ``valid`` those that check a search's own
     choices (harmonic counts); both are boolean over the samples. Idle stretches are in neither
     (:mod:`identification.segments`). ``active`` marks every sample that identifies or validates.
+    ``held``, the reference on the sub-step grid of a record slower than 1 ms
+    (:func:`identification.substeps.substep_reference`), makes the diagnosis predict a model as the
+    fit did (:meth:`predict`); None at 1 ms or faster.
     """
 
     xr: np.ndarray
@@ -72,6 +77,7 @@ class Data:
     valid: np.ndarray
     bounds: object
     active: np.ndarray | None = None
+    held: SubstepReference | None = None
 
     def __post_init__(self) -> None:
         self.n = self.x.size
@@ -99,6 +105,15 @@ class Data:
     @property
     def span(self) -> float:
         return float(np.ptp(self.x))
+
+    def predict(self, model: ReducedAxisModel, samples: int | None = None) -> np.ndarray:
+        """``model``'s prediction [mm] of the first ``samples`` (all by default), simulated as the fit
+        simulated it (:func:`identification.augmented.predict_record` with :attr:`held`): one model,
+        one error, whether the fit or the diagnosis states it."""
+        xr = self.xr[:samples]
+        if self.held is None or model.delay_s or model.setpoint_filter_s:
+            return model.simulate(xr)
+        return predict_record(model, xr, held=self.held)
 
 
 @dataclasses.dataclass(eq=False)
@@ -143,7 +158,7 @@ class SearchContext:
         self.data = data
         self.model = model
         d = data
-        self.yhat = model.simulate(d.xr)
+        self.yhat = d.predict(model)
         self.r = d.x - self.yhat
         self.train_rms_um = _rms(self.r[d.train]) * 1e3
         # the searches score on the training rows only, so their simulations stop at the last one:
@@ -355,14 +370,14 @@ class SearchContext:
     # ---------------------------------------------------------------- simulation screen
     def fit_output(self, model: AugmentedAxisModel) -> np.ndarray:
         """Simulated output [mm] of ``model`` up to the last training sample (``horizon``)."""
-        return model.simulate(self.xr_fit)
+        return self.data.predict(model, self.horizon)
 
     @property
     def J(self) -> np.ndarray:
         """Sensitivity of the simulated output to the 8 reduced parameters (samples to ``horizon``)."""
         with self._lock:  # the searches run side by side: compute it once
             if self._J is None:
-                self._J = sensitivity(self.model, self.xr_fit)
+                self._J = sensitivity(self.model, self.xr_fit, held=self.data.held)
         return self._J
 
     def _screen_q(self) -> np.ndarray:
@@ -399,7 +414,7 @@ class SearchContext:
         keys = ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1")
         for _ in range(iterations):
             r = (x - y)[train]
-            J = sensitivity(model, self.xr_fit, one_sided=True, y0=y)[train]
+            J = sensitivity(model, self.xr_fit, one_sided=True, y0=y, held=self.data.held)[train]
             sc = np.linalg.norm(J, axis=0)
             sc[sc == 0] = 1.0
             beta = np.linalg.lstsq(J / sc, r, rcond=None)[0] / sc
@@ -462,13 +477,15 @@ def _with_basis_coef(e: Effect, coef: np.ndarray) -> Effect:
 
 
 def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = False,
-                y0: np.ndarray | None = None) -> np.ndarray:
+                y0: np.ndarray | None = None, held: SubstepReference | None = None) -> np.ndarray:
     """d(simulated output)/d(parameter) for a1..d1 by central (or forward) differences (N x 8);
-    ``y0``, the model's own output, saves a simulation for forward differences."""
+    ``y0``, the model's own output, saves a simulation for forward differences; ``held`` as for
+    :meth:`Data.predict`."""
     p0 = dict(model.parameters)
     spec = model.spec(xr.size)
+    sim = functools.partial(simulate_augmented, held=held)
     if one_sided and y0 is None:
-        y0 = simulate_augmented(p0, xr, spec)
+        y0 = sim(p0, xr, spec)
 
     def column(k):
         step = 1e-4 * max(abs(p0[k]), 1e-3 * max(abs(p0["b1"]), 1.0))
@@ -478,14 +495,14 @@ def sensitivity(model: AugmentedAxisModel, xr: np.ndarray, *, one_sided: bool = 
         pp[k] += step
         pm[k] -= step
         if one_sided:
-            return (simulate_augmented(pp, xr, spec) - y0) / step
+            return (sim(pp, xr, spec) - y0) / step
         if pm["a3"] <= 0:
             pm[k] = p0[k]
             s = step
         else:
             s = 2 * step
-        yp = simulate_augmented(pp, xr, spec)
-        ym = simulate_augmented(pm, xr, spec)
+        yp = sim(pp, xr, spec)
+        ym = sim(pm, xr, spec)
         return (yp - ym) / s
 
     cols = thread_map(column, ("a1", "a2", "a3", "b0", "b1", "b2", "d0", "d1"))

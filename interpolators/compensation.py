@@ -19,7 +19,8 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
 * **Corners** are classified as LinuxCNC does (``convert_straight_comp2`` into a line,
   ``convert_arc_comp2`` into an arc): ``beta`` is the turn away from the tool side, from the
   direction of the programmed corner to the tool to the new element's programmed tangent. A turn
-  of more than ``small`` (:data:`CONVEX_TOLERANCE`, LinuxCNC's TOLERANCE_CONCAVE_CORNER) and at most
+  of more than ``small`` (``compensate``'s ``convex_tolerance``: by default :data:`CONVEX_TOLERANCE`,
+  LinuxCNC's TOLERANCE_CONCAVE_CORNER; the TNC reader's a turn no larger than rounding) and at most
   ``pi + small`` is an **outside corner**: with ``corner="linuxcnc"`` an arc of radius ``r`` about
   the programmed corner point joins the two offset elements (into a G0, which has no arc traverse, a
   straight rapid instead); it carries the ``line``/``text`` and the feed of the block it leads into
@@ -224,7 +225,7 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
 def compensate(
     blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
     centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
-    corner: str = "linuxcnc", rounded: Collection[int] = (),
+    corner: str = "linuxcnc", rounded: Collection[int] = (), convex_tolerance: float = CONVEX_TOLERANCE,
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -272,6 +273,11 @@ def compensate(
         Fanuc's G39 (corner circular interpolation): indices into ``blocks`` before which it came; the
         outside corner before the next motion in the plane gets the arc about the corner, as under
         ``corner="linuxcnc"``.
+    convex_tolerance : float
+        The turn [rad] up to which a corner has neither a corner arc nor an intersection (``small`` in the
+        module notes): LinuxCNC's TOLERANCE_CONCAVE_CORNER (:data:`CONVEX_TOLERANCE`, the ISO readers), or a
+        dialect's own (the TNC's transition arc at every outside corner:
+        :data:`interpolators.heidenhain_compensation.TANGENT_TOLERANCE`). Must be > 0 and < pi / 2.
 
     Returns
     -------
@@ -289,6 +295,8 @@ def compensate(
     _check_arguments(side, entry, plane, radius)
     if corner not in CORNER_RULES:
         raise InputError(f"compensation corner rule must be one of {CORNER_RULES}, got {corner!r}")
+    if not 0.0 < convex_tolerance < math.pi / 2.0:
+        raise InputError(f"compensation convex_tolerance must be > 0 and < pi/2 rad, got {convex_tolerance!r}")
     blocks = list(blocks)
     if radius == 0.0:
         return blocks
@@ -315,7 +323,8 @@ def compensate(
     else:
         ent = _entry_element(blocks[first], first, offsets, entry=entry, s=s, radius=radius, plane=plane)
     chain = [ent, *offsets]
-    corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner, rounded=rounded)
+    corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner, rounded=rounded,
+                            small=convex_tolerance)
     _check_gouges(chain, ent, blocks, radius, inch=inch)
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
@@ -417,7 +426,7 @@ def _entry_arc(eb: Block, first: int, *, s: float, radius: float, plane: int,
 
 
 def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius: float, plane: int,
-                  rule: str, rounded: Collection[int]) -> dict[int, list[tuple]]:
+                  rule: str, rounded: Collection[int], small: float) -> dict[int, list[tuple]]:
     """Trim the elements at inside corners and return the outside corners' arcs (or straight pieces): index
     of the following block -> [(centre or None, from, to), ...]. LinuxCNC's ``convert_straight_comp2`` /
     ``convert_arc_comp2`` decide the corner (:func:`_corner_kind`) and :func:`_concave_point` where the
@@ -429,13 +438,14 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius
             el_b.a = el_a.b.copy()
             continue
         corner = _flat(blocks[el_a.index].target, plane)
-        kind, theta, beta = _corner_kind(el_a, el_b, corner, s)
+        kind, theta, beta = _corner_kind(el_a, el_b, corner, s, small)
         if kind == "concave":
             x = _concave_point(el_a, el_b, corner, theta, beta, s=s, radius=radius)
             el_a.b, el_b.a = x.copy(), x.copy()
             continue
         g39 = any(el_a.index < k <= el_b.index for k in rounded)
-        pieces = _fanuc_corner(el_a, el_b, corner, beta, radius=radius) if rule == "fanuc" and not g39 else None
+        fanuc = rule == "fanuc" and not g39
+        pieces = _fanuc_corner(el_a, el_b, corner, beta, radius=radius, small=small) if fanuc else None
         if pieces is not None:
             if pieces:
                 corners[el_b.index] = pieces
@@ -450,14 +460,14 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius
 
 
 def _fanuc_corner(el_a: _Offset, el_b: _Offset, corner: np.ndarray, beta: float, *,
-                  radius: float) -> list[tuple] | None:
+                  radius: float, small: float) -> list[tuple] | None:
     """An outside corner under Fanuc's cutter compensation C ("Tool movement in offset mode"): for a turn
     ``beta`` of at most 90 degrees (the corner's angle ``alpha = 180 - beta`` on the workpiece side at least
     90) both elements end at the intersection of their offsets, the one nearest the corner; for a sharper
     turn the tool goes on ``r`` along the first element's end tangent, straight to ``r`` before the second
     element's start along its tangent, and on (a line is lengthened, an arc keeps its end and a straight
     piece is added). Returns the pieces to insert before ``el_b`` ([] for none), or None for a turn of at
-    most :data:`CONVEX_TOLERANCE` whose offsets do not meet (parallel lines, a tangent arc), left to the
+    most ``small`` (:data:`CONVEX_TOLERANCE`) whose offsets do not meet (parallel lines, a tangent arc), left to the
     LinuxCNC rule."""
     if beta <= math.pi / 2.0:
         cands = _intersections(el_a, el_b)
@@ -468,7 +478,7 @@ def _fanuc_corner(el_a: _Offset, el_b: _Offset, corner: np.ndarray, beta: float,
                     el.grown += abs((_angle(x - el.c) - _angle(old - el.c) + math.pi) % (2.0 * math.pi) - math.pi)
             el_a.b, el_b.a = x.copy(), x.copy()
             return []
-        if beta <= CONVEX_TOLERANCE:
+        if beta <= small:
             return None
     p1 = el_a.b + radius * el_a.tangent(el_a.b)
     p2 = el_b.a - radius * el_b.tangent(el_b.a)
@@ -494,7 +504,8 @@ def _tool_inside(el: _Offset, s: float) -> bool:
     return (s > 0.0) == el.ccw
 
 
-def _corner_kind(el_a: _Offset, el_b: _Offset, corner: np.ndarray, s: float) -> tuple[str, float, float]:
+def _corner_kind(el_a: _Offset, el_b: _Offset, corner: np.ndarray, s: float,
+                 small: float) -> tuple[str, float, float]:
     """The corner between two elements as LinuxCNC classifies it: ("concave" | "arc" | "straight", theta,
     beta) [rad].
 
@@ -503,10 +514,9 @@ def _corner_kind(el_a: _Offset, el_b: _Offset, corner: np.ndarray, s: float) -> 
     when ``beta < -small`` or ``beta > pi + small``, or ``beta > pi - small`` after an arc the tool is
     outside of (the "h" shape); into an arc (``convert_arc_comp2``, ``beta`` normalised to
     [-pi/2, 3 pi/2]) when ``beta < -small``, ``beta > pi + small`` or ``|beta - pi| < small`` with the
-    tool outside the new arc (the "m" shape). Otherwise a turn over ``small`` (TOLERANCE_CONCAVE_CORNER)
-    gets a corner arc, a smaller one none ("straight").
+    tool outside the new arc (the "m" shape). Otherwise a turn over ``small`` (the run's
+    ``convex_tolerance``) gets a corner arc, a smaller one none ("straight").
     """
-    small = CONVEX_TOLERANCE
     theta = _angle(el_a.b0 - corner)
     left = s > 0.0
     if el_b.kind == "line":

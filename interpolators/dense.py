@@ -373,7 +373,8 @@ def _bound_breaks(spl: BSpline, knots: np.ndarray, approx: np.ndarray) -> np.nda
     """The knots where a piece's speed bound would change by more than :data:`BOUND_STEP`: the jerk-limited
     speed ``|(k^2, dk/ds)|^(-1/3)`` (:func:`interpolators.kinematics.curved_speed_bound`, up to the limits) of
     each knot interval, from :data:`_BOUND_SAMPLES` points of it, is compared with the range of the piece so
-    far; a piece also ends once it holds :data:`PIECE_LENGTH` (the fixed cuts of :func:`_pieces`).
+    far, which starts afresh once it spans :data:`PIECE_LENGTH` since its last cut (counted from these cuts, not
+    from the fixed ones of :func:`_pieces`, which the union keeps too).
 
     A piece's bound is its largest curvature and curvature derivative (:meth:`SplineCurve.bounds`), so a 0.5 mm
     piece holding a tight fillet of CAM code (radius 0.1 mm between straight chords) ran wholly at the fillet's

@@ -286,7 +286,8 @@ class Machine:
         self.plane = 2
         self.inch = False
         self.feed: float | None = None
-        self.pole: np.ndarray | None = None
+        # the pole CC [mm]: its machine point, its program coordinates and the frame (frame_key) they were taken in
+        self.pole_record: tuple[np.ndarray, np.ndarray, tuple] | None = None
         self.pole_plane: int | None = None  # the plane of a CC naming the tool axis (None: the working plane)
         self.last_axes: list[int] = []
         self.tool_defs: dict[int, tuple[float, float]] = {}
@@ -390,6 +391,31 @@ class Machine:
     def to_machine(self, point: np.ndarray) -> np.ndarray:
         """Machine coordinates [mm] of the program point ``point`` [mm] (cycles 8, 10, 11, 26 applied)."""
         return self.origin() + self.transform.apply(point, self.plane)
+
+    def frame_key(self) -> tuple:
+        """What maps program to machine coordinates now (the transformations, the working plane, program zero):
+        equal keys, equal maps."""
+        return self.transform, self.plane, tuple(self.origin().tolist())
+
+    @property
+    def pole(self) -> np.ndarray | None:
+        """The pole ``CC`` in machine coordinates [mm], or None before any. CC sets a point of the part in program
+        coordinates: "An absolutely defined circle center or pole is always measured from the workpiece datum" (TNC
+        426 / TNC 310 pilot, "Circle Center and Pole: CC"), the datum cycle 7 moves; a pole set before a
+        transformation (cycles 7, 8, 10, 11, 26, a PLANE, a preset) or a TOOL CALL (the tool length) keeps its
+        program coordinates and is mapped as the next block's points are. Our reading: no manual page found shows
+        a CC set before a transformation and used after it; taken as a program point the pole keeps a subprogram
+        relocatable, as the manuals' "Coordinate transformation" examples run one contour at several datums, and a
+        pole in ZX stays on the part's Z across a tool of another length."""
+        if self.pole_record is None:
+            return None
+        machine, program, frame = self.pole_record
+        return machine if frame == self.frame_key() else self.to_machine(program)
+
+    @pole.setter
+    def pole(self, machine: np.ndarray) -> None:
+        machine = np.array(machine, dtype=float)
+        self.pole_record = (machine, self.to_program(machine), self.frame_key())
 
     def to_program(self, position: np.ndarray) -> np.ndarray:
         """Program coordinates [mm] of the machine position ``position`` [mm]."""

@@ -15,7 +15,16 @@ from interpolators.heidenhain_words import Word
 if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
 
-__all__ = ["set_compensation", "finish_compensation"]
+__all__ = ["set_compensation", "finish_compensation", "TANGENT_TOLERANCE"]
+
+#: Turns [rad] up to which two compensated elements meet as tangent ones (rounding of the program's coordinates
+#: and of arcs' ends, far below a display step of 0.0001 mm on any tool radius): a larger outside turn gets its
+#: transition arc, a larger inside one the intersection. The TNC has no LinuxCNC-like 0.05 rad tolerance: "If you
+#: program radius compensation, the TNC moves the tool around outside corners on a transitional arc" and "The TNC
+#: calculates the intersection of the tool center paths at inside corners" (TNC 640 ISO user's manual 34059x-05,
+#: 5.3 "Radius compensation: Machining corners"; TNC 426/425/415 B/407 manual: the tool "rolls around" the corner
+#: point), for every corner; how small a corner the control still rounds is not documented (our reading: all).
+TANGENT_TOLERANCE = 1e-9
 
 
 def set_compensation(word: Word, m: Machine, where: Where) -> bool:
@@ -64,7 +73,7 @@ def finish_compensation(m: Machine, *, open_end: bool = False, closed: bool = Fa
         return
     try:
         new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
-                         open_end=open_end, closed=closed)
+                         open_end=open_end, closed=closed, convex_tolerance=TANGENT_TOLERANCE)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         ahead = " (M120 LA would leave the undercut out: not modelled)" if look_ahead else ""

@@ -52,7 +52,7 @@ def _trace_contour(m: Machine, label: str, radius: float, start: np.ndarray, fee
     taken out of the program's blocks, and the compensation it used (``RL``, ``RR`` or ``R0``). The
     machine's position, feed and tool radius are as before."""
     runner = m.runner
-    saved = (m.pos.copy(), m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid)
+    saved = (m.pos.copy(), m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole_record, m.last_rapid)
     first = len(m.blocks)
     m.pos, m.tool_radius, m.feed = np.array(start, dtype=float), radius, feed
     sub = runner.fork()
@@ -72,7 +72,7 @@ def _trace_contour(m: Machine, label: str, radius: float, start: np.ndarray, fee
         finish_compensation(m, open_end=True)
     path = m.blocks[first:]
     del m.blocks[first:]
-    m.pos, m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole, m.last_rapid = saved
+    m.pos, m.tool_radius, m.feed, m.ccw, m.last_axes, m.pole_record, m.last_rapid = saved
     for b in path:
         if b.segment is None or b.start[m.plane] != b.target[m.plane]:
             Where(m.source, b.line, b.text).fail(

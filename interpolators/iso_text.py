@@ -131,11 +131,11 @@ def note_comment(keyword: str, text: str, where: Where, *, messages: list[Messag
         notes.add(f"({keyword.upper()},...) Python comment not run")
 
 
-#: A Haas M97 word (a local subprogram call, :func:`interpolators.iso_flow.run`), which LinuxCNC does not have (rs274:
-#: "Unknown m code used: M97").
 #: A loop O-word line: its label and keyword (the loop's opening, a break or continue, a do loop's closing while).
 _LOOP_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
                          r"(WHILE|DO|REPEAT|BREAK|CONTINUE)\b", re.M | re.I)
+#: A Haas M97 word (a local subprogram call, :func:`interpolators.iso_flow.run`), which LinuxCNC does not have (rs274:
+#: "Unknown m code used: M97").
 _M97 = re.compile(r"(?<![A-Z\d.])M0*97(?![\d.])", re.I)
 #: A Fanuc/Haas external output command at the start of a line (:mod:`interpolators.iso_macro`).
 _OUTPUT_COMMAND = re.compile(r"^[ \t]*(?:N[ \t]*\d+[ \t]*)?(?:POPEN|PCLOS|[DB]PRNT[ \t]*\[)", re.I | re.M)

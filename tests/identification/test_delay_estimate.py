@@ -58,7 +58,9 @@ def test_reference_shift_is_estimated_and_predicts_at_the_noise_floor(capture, d
     model = identify(_capture(capture, delay_s, step), axis="x", diagnose=False)
     T = model.sample_time
     assert T == pytest.approx(0.001 * step)
-    assert delay_s <= model.delay_s <= delay_s + 2 * T  # the loop's own lag adds 0..2 samples
+    # the loop's own lag adds 0..2 samples; at 3 ms the refinement on sub-steps ends 0.02 samples short since the
+    # spline's ringing into the rests is taken out (identification.substeps.RING_SHARE): 0.05 samples allowed
+    assert delay_s - 0.05 * T <= model.delay_s <= delay_s + 2 * T
     if step == 3:  # issue #16's case, a reference 0.1 s ahead at 3 ms: the estimate is within one sample
         assert abs(model.delay_s - delay_s) <= T
     rec = model.fit["delay"]

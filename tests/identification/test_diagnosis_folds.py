@@ -29,7 +29,10 @@ SHAKER_HZ = 55.0
 
 
 def _capture(sample_time: float, load: bool) -> tuple[Capture, tuple[float, float]]:
-    T = sample_time
+    # the loop runs at 1 ms; a slower record logs every q-th of its samples (the diagnosis predicts such a record
+    # at sub-steps, identification.substeps: a truth simulated on the record's own grid is another model)
+    q = max(1, round(sample_time / 1e-3))
+    T = sample_time / q
     xr = random_moves_reference(moves=40, span=10.0, feed=200.0, acceleration=2000.0, sample_time=T, dwell=0.05,
                                 seed=3)
     idle = int(round(IDLE_S / T))
@@ -42,6 +45,7 @@ def _capture(sample_time: float, load: bool) -> tuple[Capture, tuple[float, floa
     w = 300.0 * env * np.sin(2 * np.pi * SHAKER_HZ * t + 0.3) if load else np.zeros(n)  # [mm/s^2]
     x = augment(ReducedAxisModel(parameters=FADAL_PID_X, sample_time=T), []).simulate(xr, disturbance=w)
     x = np.round((x + np.random.default_rng(1).normal(0.0, 0.2e-3, n)) / 1e-4) * 1e-4
+    xr, x, t = xr[::q], x[::q], t[::q]
     return Capture(t=t, axes=("x",), reference=xr[:, None], measured=x[:, None], meta={"source": "test"}), window
 
 

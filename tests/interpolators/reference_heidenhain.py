@@ -644,15 +644,36 @@ def _arc(t: _Tnc, line: int, w: dict, *, polar: bool) -> None:
         end = t.machine(_polar_point(t, p, r, a, w))
     else:
         end = t.target(w)
+    p_start = t.pos.copy()
     c = t.pole.copy()
     c[n] = t.prog()[n]
-    centre = t.machine(c)
+    centre = t.machine(c) if polar else _centre_through(p_start, end, t.machine(c), (i, j))
     ccw = (w.get("DR", "+") == "+") != t.turns_over()
     if t.feed_dwell is not None:
         _feed_dwell_arc(t, line, end, centre, ccw, (i, j), w.get("IPA") if polar else None)
     else:
         t.emit(line, "arc_ccw" if ccw else "arc_cw", end, centre=centre, plane=(i, j))
     _arc_tangent(t, end, centre, ccw, (i, j))
+
+
+def _centre_through(start: np.ndarray, end: np.ndarray, centre: np.ndarray, plane: tuple) -> np.ndarray:
+    """The centre [mm, machine] of the circle a ``C`` arc runs on: both its ends on it, nearest the pole (the point
+    of the chord's perpendicular bisector closest to CC). A written end point may miss the pole's circle by its
+    rounding (the TNC accepts an end within its input tolerance, "Input tolerance: up to 0.016 mm", TNC 410 user's
+    manual, "Circular path C around circle center CC"); the element the control runs is that circle's arc, and a
+    CT, RND or DEP after it joins its end tangent (our reading: "tangential" to the element as cut, no kink)."""
+    i, j = plane
+    a, b = np.array([start[i], start[j]]), np.array([end[i], end[j]])
+    chord = b - a
+    if not np.hypot(*chord) > 1e-9:  # a full circle: nothing to move
+        return centre
+    u = chord / np.hypot(*chord)
+    mid = (a + b) / 2.0
+    c = np.array([centre[i], centre[j]])
+    c = c - u * float((c - mid) @ u)
+    out = centre.copy()
+    out[i], out[j] = c
+    return out
 
 
 def _arc_tangent(t: _Tnc, end: np.ndarray, centre: np.ndarray, ccw: bool, plane: tuple) -> None:

@@ -1,5 +1,6 @@
 """Checks of sampled setpoints shared by the interpolation tests: every axis limit by finite
-differences and in the analytic columns, and the rest-to-rest time of a trapezoidal profile."""
+differences and in the analytic columns, the setpoints' distance from the programmed path, and the
+rest-to-rest time of a trapezoidal profile."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import math
 
 import numpy as np
 
-__all__ = ["check_limits", "trapezoid_time"]
+__all__ = ["check_limits", "distance_to_path", "trapezoid_time", "xyz"]
 
 
 def check_limits(sp, program, limits, *, jerk: bool = False, feed: bool = False, rel: float = 1e-6) -> None:
@@ -35,6 +36,24 @@ def check_limits(sp, program, limits, *, jerk: bool = False, feed: bool = False,
         speed = np.linalg.norm(sp.velocity[:, xyz], axis=1)
         programmed = np.array([b.feed for b in program.blocks])[sp.block]
         assert np.all(speed <= programmed * (1 + rel) + 1e-12)
+
+
+def xyz(sp) -> np.ndarray:
+    """The X, Y, Z positions of ``sp`` [mm], shape (n, 3); an axis the setpoints lack stays at 0."""
+    out = np.zeros((len(sp), 3))
+    for i, ax in enumerate(sp.axes):
+        if ax in ("x", "y", "z"):
+            out[:, "xyz".index(ax)] = sp.position[:, i]
+    return out
+
+
+def distance_to_path(sp, step: float = 2e-4) -> float:
+    """Worst distance [mm] of the setpoints from the programmed path (``meta["programmed_path"]``, the chords
+    before blending and merging, else ``sp.path``), taken at points ``step`` apart."""
+    from scipy.spatial import cKDTree
+
+    path = sp.meta.get("programmed_path") or sp.path
+    return float(cKDTree(path.points(step=step)).query(xyz(sp))[0].max()) - step / 2
 
 
 def trapezoid_time(length: float, v: float, a: float) -> float:

@@ -11,11 +11,11 @@ import math
 
 import numpy as np
 import pytest
-from scipy.spatial import cKDTree
 
 from interpolators import DEFAULT_LIMITS, interpolate, parse_program
 from interpolators.dense import DENSE_MAX_LENGTH, fit_run, merge_dense_runs
 from interpolators.interpolate import CURVE_PATH_ERROR
+from tests.interpolators.setpoint_checks import distance_to_path
 from toolpaths.geometry import Line
 from vcnc.contour import contour_error
 
@@ -41,15 +41,6 @@ def _chord_circle(n: int) -> tuple[np.ndarray, float]:
     return np.round(np.c_[r * np.cos(a), r * np.sin(a), np.zeros(n + 1)], 4), r
 
 
-def _distance_to_path(sp, step: float = 2e-4) -> float:
-    """Worst distance [mm] of the setpoints from the programmed path (points ``step`` apart)."""
-    prog = sp.meta.get("programmed_path") or sp.path
-    pts = prog.points(step=step)
-    xyz = np.zeros((len(sp), 3))
-    for i, ax in enumerate(sp.axes):
-        xyz[:, "xyz".index(ax)] = sp.position[:, i]
-    return float(cKDTree(pts).query(xyz)[0].max()) - step / 2
-
 
 def _assert_limits(sp, jerk: bool) -> None:
     Ts = sp.sample_time
@@ -72,7 +63,7 @@ def test_chord_circle_runs_like_the_arc(profile):
     program = parse_program(_program(pts, 200.0))
     sp = interpolate(program, profile=profile)
     assert sp.duration <= 1.25 * sp_arc.duration
-    assert _distance_to_path(sp) <= TOL
+    assert distance_to_path(sp) <= TOL
     _assert_limits(sp, jerk=profile == "scurve")
     # each sample belongs to a block near it: the chord of its block lies within the tolerance
     blk = sp.block
@@ -116,7 +107,7 @@ def test_mixed_dense_code_within_tolerance_and_limits(profile):
     text += f"G1 X{end[0] + 5:.4f}\nG2 X{end[0] + 15:.4f} Y{end[1]:.4f} I5 J0\n"
     program = parse_program(text)
     sp = interpolate(program, profile=profile)
-    assert _distance_to_path(sp) <= TOL
+    assert distance_to_path(sp) <= TOL
     _assert_limits(sp, jerk=profile == "scurve")
     # the sharp corner between the two dense runs is honoured
     xyz = sp.position[:, [sp.axes.index(a) for a in "xyz"]]
@@ -167,7 +158,7 @@ def _random_dense_program(seed: int) -> str:
 def test_random_dense_curves(seed, profile):
     program = parse_program(_random_dense_program(seed))
     sp = interpolate(program, profile=profile)
-    assert _distance_to_path(sp) <= TOL
+    assert distance_to_path(sp) <= TOL
     _assert_limits(sp, jerk=profile == "scurve")
     assert np.all(np.diff(sp.block) >= 0)
     assert np.array_equal(sp.position[-1], program.end_position[[("xyz").index(a) for a in sp.axes]])
@@ -188,7 +179,7 @@ def test_dense_arc_between_tangent_lines_runs_like_the_arc(profile):
     sp = interpolate(parse_program(dense), profile=profile)
     sp_arc = interpolate(parse_program(arc), profile=profile)
     assert sp.duration <= 1.02 * sp_arc.duration  # measured 1.006 (trapezoid), 1.011 (S-curve)
-    assert _distance_to_path(sp) <= TOL
+    assert distance_to_path(sp) <= TOL
     _assert_limits(sp, jerk=profile == "scurve")
 
 

@@ -13,10 +13,10 @@ import math
 
 import numpy as np
 import pytest
-from scipy.spatial import cKDTree
 
 from interpolators import DEFAULT_LIMITS, interpolate, parse_program
 from interpolators.dense import DENSE_MAX_TURN, curve_junctions, merge_dense_runs
+from tests.interpolators.setpoint_checks import distance_to_path, xyz
 from toolpaths.geometry import Line
 
 #: Relative margin of the finite-difference limit checks (as in test_dense_code.py).
@@ -44,18 +44,6 @@ def _arc_program(radius: float, turns: int, pitch: float) -> str:
             f"P{turns} F400\nM2\n")
 
 
-def _xyz(sp) -> np.ndarray:
-    out = np.zeros((len(sp), 3))
-    for i, ax in enumerate(sp.axes):
-        out[:, "xyz".index(ax)] = sp.position[:, i]
-    return out
-
-
-def _distance_to_chords(sp, step: float = 2e-4) -> float:
-    """Worst distance [mm] of the setpoints from the programmed path (points ``step`` apart)."""
-    prog = sp.meta.get("programmed_path") or sp.path
-    pts = prog.points(step=step)
-    return float(cKDTree(pts).query(_xyz(sp))[0].max()) - step / 2
 
 
 def _worst_ratios(sp) -> tuple[float, float, float]:
@@ -89,7 +77,7 @@ def test_small_radius_helix_runs_like_the_arc_under_the_scurve(radius, chord, de
     sp = interpolate(program, profile="scurve")
     sp_arc = interpolate(parse_program(_arc_program(radius, turns, pitch)), profile="scurve")
     assert sp.duration <= ratio * sp_arc.duration
-    assert _distance_to_chords(sp) <= TOL
+    assert distance_to_path(sp) <= TOL
     assert max(_worst_ratios(sp)) <= 1.0 + LIMIT_MARGIN
     # each sample carries the block of a chord near it, in program order, every chord has samples, and the helix
     # ends on its last point
@@ -99,9 +87,9 @@ def test_small_radius_helix_runs_like_the_arc_under_the_scurve(radius, chord, de
     on = np.isin(sp.block, chords)
     start = np.array([program.blocks[b].start for b in sp.block[on]])
     ab = np.array([program.blocks[b].target for b in sp.block[on]]) - start
-    t = np.clip(np.einsum("ij,ij->i", _xyz(sp)[on] - start, ab) / np.einsum("ij,ij->i", ab, ab), 0.0, 1.0)
-    assert np.linalg.norm(_xyz(sp)[on] - start - t[:, None] * ab, axis=1).max() <= TOL
-    assert np.allclose(_xyz(sp)[-1], pts[-1], atol=1e-12)
+    t = np.clip(np.einsum("ij,ij->i", xyz(sp)[on] - start, ab) / np.einsum("ij,ij->i", ab, ab), 0.0, 1.0)
+    assert np.linalg.norm(xyz(sp)[on] - start - t[:, None] * ab, axis=1).max() <= TOL
+    assert np.allclose(xyz(sp)[-1], pts[-1], atol=1e-12)
 
 
 def test_small_radius_helix_trapezoid_is_unchanged():
@@ -117,7 +105,7 @@ def test_small_radius_helix_trapezoid_is_unchanged():
     sp = interpolate(parse_program(_chords_program(pts, 3)), profile="trapezoid")
     sp_arc = interpolate(parse_program(_arc_program(0.24, 6, 0.1)), profile="trapezoid")
     assert sp.duration <= 1.02 * sp_arc.duration  # measured 0.996: the blends cut inside the chords
-    assert _distance_to_chords(sp) <= TOL
+    assert distance_to_path(sp) <= TOL
     assert max(_worst_ratios(sp)[:2]) <= 1.0 + LIMIT_MARGIN
 
 

@@ -30,7 +30,8 @@ def rows(prog, line: int) -> list[tuple[str, list[float]]]:
 
 def test_generated_programs_are_read_as_the_reference_reads_them_or_refused_cleanly():
     # 120 seeded programs mixing BEGIN PGM MM/INCH, TOOL DEF/CALL (DL, DR, F), L abs/inc, RL/RR with L or
-    # APPR/DEP, CC/C/CR/CT/CP (IZ)/LP, RND/CHF, Q parameters in coordinates and feeds, LBL/CALL LBL REP, cycles
+    # APPR/DEP, CC (also bare, and kept across cycles 7-11 and TOOL CALL)/C (ends rounded off the circle too)/CR/CT/CP
+    # (IZ)/LP, RND/CHF, corners down to 0.2 degrees, Q parameters in coordinates and feeds, LBL/CALL LBL REP, cycles
     # 7/8/9/10/11/32 and 1/200/203/205 by CYCL CALL, M99, POS and PAT, M91/M92/M140. A refusal is a geometry the
     # tool cannot cut (a gouge, a rounding that does not fit), a GCodeError naming the block's line
     accepted = 0

@@ -1,7 +1,8 @@
 """S-curve cycle times of CAM chords against what the axis limits allow (program cycle time, never wall-clock).
 
 Both programs are modelled on FreeCAD profile paths (corpus program 0274): tight fillets (radius 0.1-0.2 mm)
-written as chords of 10-30 um with rounded end points. Each test checks the cycle time against a reference
+written as chords of 10-30 um with rounded end points (the generators of ``benchmarks/dense_code.py``, which times
+the same cases). Each test checks the cycle time against a reference
 planned in the same run, the axis limits on the setpoints and the path within the G64 tolerance of the chords.
 """
 
@@ -11,27 +12,14 @@ import math
 
 import numpy as np
 import pytest
-from scipy.spatial import cKDTree
 
+from benchmarks.dense_code import alternating_circle, fillet_square
 from interpolators import DEFAULT_LIMITS, interpolate, parse_program
 from interpolators.kinematics import CURVE_BOUND_MARGIN, JERK_SPEED_SHARE, AxisLimitArrays, curve_limits
-from tests.interpolators.setpoint_checks import check_limits
+from tests.interpolators.setpoint_checks import check_limits, distance_to_path
 from toolpaths.geometry import SplineCurve
 
 TOL = 0.01  # G64 P0.01 [mm]
-
-
-def _xyz(sp) -> np.ndarray:
-    out = np.zeros((len(sp), 3))
-    for i, ax in enumerate(sp.axes):
-        out[:, "xyz".index(ax)] = sp.position[:, i]
-    return out
-
-
-def _distance_to_chords(sp, step: float = 2e-4) -> float:
-    """Worst distance [mm] of the setpoints from the programmed chords (points ``step`` apart)."""
-    pts = sp.meta["programmed_path"].points(step=step)
-    return float(cKDTree(pts).query(_xyz(sp))[0].max()) - step / 2
 
 
 def _plan(text: str, profile: str):
@@ -41,48 +29,17 @@ def _plan(text: str, profile: str):
     return sp
 
 
-def _fillet_square(radius: float, chords: int) -> str:
-    """A 3 mm square of 0.25 mm chords at F600, each corner a 90 degree fillet of ``chords`` chords (3 decimals)."""
-    out = ["G21 G90 G17 G64 P0.01", "G0 X0 Y0"]
-    x, y, hx, hy = 0.0, 0.0, 1, 0
-    for _ in range(4):
-        for k in range(1, 12):
-            out.append(f"G1 X{x + hx * 0.25 * k:.3f} Y{y + hy * 0.25 * k:.3f} F600")
-        x, y = x + hx * 3.0, y + hy * 3.0
-        cx, cy = x - hy * radius, y + hx * radius
-        a0 = math.atan2(y - cy, x - cx)
-        for k in range(1, chords + 1):
-            a = a0 + 0.5 * math.pi * k / chords
-            out.append(f"G1 X{cx + radius * math.cos(a):.3f} Y{cy + radius * math.sin(a):.3f}")
-        x, y = cx + radius * math.cos(a0 + 0.5 * math.pi), cy + radius * math.sin(a0 + 0.5 * math.pi)
-        hx, hy = -hy, hx
-    return "\n".join([*out, "M2"]) + "\n"
-
-
 def test_fillet_chords_slow_down_at_the_fillet_only():
     """The fillets (radius 0.1 mm, 10 chords of 16 um, jerk-bound speed about 6 mm/s against F600 = 10 mm/s) lie
     inside 0.5 mm pieces of the merged curve with straight chords; cut where the speed bound changes
     (``dense._bound_breaks``), only the fillet runs slow: 1.675 s, 1.16 times the trapezoid (4.26 s, 2.94 times,
     when the whole piece took the fillet's bound)."""
-    text = _fillet_square(0.1, 10)
+    text = fillet_square(0.1, 10)
     scurve, trapezoid = _plan(text, "scurve"), _plan(text, "trapezoid")
     length = 4 * (2.75 + 0.25 + 0.5 * math.pi * 0.1)  # about: the chords' length [mm]
     assert scurve.meta["duration"] > length / 10.0
     assert scurve.meta["duration"] <= 1.3 * trapezoid.meta["duration"]
-    assert _distance_to_chords(scurve) <= TOL
-
-
-def _alternating_circle(turns: tuple[float, float], laps: int = 2) -> tuple[str, float]:
-    """Two laps of a circle of 30 um chords whose turns alternate (as rounding makes them on chords this short),
-    from a tangent entry line, F600; and the radius of the circle of the mean turn [mm]."""
-    chord = 0.03
-    out = ["G21 G90 G17 G64 P0.01", "G0 X0 Y0", "G1 X0.3 Y0 F600"]
-    p, h, k, turned = np.array([0.3, 0.0]), 0.5 * math.pi, 0, 0.0
-    while turned < 2.0 * math.pi * laps:
-        p = p + chord * np.array([math.cos(h), math.sin(h)])
-        out.append(f"G1 X{p[0]:.4f} Y{p[1]:.4f}")
-        h, turned, k = h + turns[k % 2], turned + turns[k % 2], k + 1
-    return "\n".join([*out, "M2"]) + "\n", chord / (2.0 * math.sin(0.25 * sum(turns)))
+    assert distance_to_path(scurve) <= TOL
 
 
 def test_tight_circle_of_alternating_turns_merges():
@@ -91,13 +48,11 @@ def test_tight_circle_of_alternating_turns_merges():
     within 1.25 times the time of the same two laps as G3 arcs of the mean radius (0.494 s against 0.424 s; 1.07 s,
     2.5 times, with each 0.22 rad junction a corner blended by a clothoid pair). The fitted cubic's curvature
     varies along the noisy chords, which bounds its speed below the arc's."""
-    text, radius = _alternating_circle((0.1, 0.22))
-    arcs = (f"G21 G90 G17 G64 P0.01\nG0 X0 Y0\nG1 X0.3 Y0 F600\n"
-            f"G3 X0.3 Y0 I{-radius:.4f} J0\nG3 X0.3 Y0 I{-radius:.4f} J0\nM2\n")
+    text, arcs = alternating_circle((0.1, 0.22))
     scurve = _plan(text, "scurve")
     assert scurve.meta["duration"] <= 1.25 * _plan(arcs, "scurve").meta["duration"]
     assert scurve.meta["duration"] <= 0.55
-    assert _distance_to_chords(scurve) <= TOL
+    assert distance_to_path(scurve) <= TOL
 
 
 def test_curve_bounds_keep_the_jerk_vector_norm_within_the_limit():

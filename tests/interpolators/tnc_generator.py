@@ -9,9 +9,12 @@ incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/
 ``CYCL CALL POS`` and ``CYCL CALL PAT``, ``M91``/``M92`` and ``M140 MB``.
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
-Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC``, a ``CR`` chord shorter
-than the diameter, corners of 25-155 degrees for ``RND``/``CHF``, elements of at least 8 units beside a tool
-radius of at most 3, ``IPA``/``IPR`` only after a polar block about the same pole.
+Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
+rounded to 4 places, within the TNC's input tolerance), a ``CR`` chord shorter than the diameter, corners of 25-155
+degrees for ``RND``/``CHF`` and of 0.2-3 degrees between elements (the transition arc or the intersection of the
+compensated paths), elements of at least 8 units beside a tool radius of at most 3, ``IPA``/``IPR`` only after a
+polar block about the same pole. A pole is kept across cycles 7, 8, 10, 11 and TOOL CALL (its program coordinates,
+:attr:`interpolators.heidenhain.Machine.pole`), and ``CC`` without coordinates sets it at the last programmed point.
 """
 
 from __future__ import annotations
@@ -51,6 +54,8 @@ class _Gen:
         self.tool_feed = False
         self.appr = False
         self.comp = "R0"
+        self.rounding = False  # a RND/CHF waits for the next element
+        self.pole_kept = False  # the pole was set before a transformation or TOOL CALL and not used since
 
     # -- output --------------------------------------------------------------------------------
     def emit(self, *lines: str) -> None:
@@ -103,6 +108,7 @@ class _Gen:
         self.emit(words)
         self.feed_set = self.tool_feed
         self.known = False
+        self.pole_kept = self.cc is not None
 
     def q_params(self) -> None:
         for _ in range(self.r.randint(1, 3)):
@@ -179,8 +185,9 @@ class _Gen:
         if self.r.random() < 0.3:
             self.emit(f"CYCL DEF 7.3 {p}Z{_n(self.r.choice([-2, 5]))}")
         self.known = False  # the shift's absolute total is the reader's and the reference's to work out
-        self.cc = None  # a pole set before the shift is set again after it (which datum an older pole keeps:
-        # no manual says, see the report)
+        # a pole set before the shift stays, in program coordinates: its numbers from the new datum
+        # (interpolators.heidenhain.Machine.pole); the current point is another program point now
+        self.polar_ok, self.pole_kept = False, self.cc is not None
 
     def other_cycle(self) -> None:
         if self.r.random() < 0.5:
@@ -271,6 +278,7 @@ class _Gen:
             self.emit(f"CC IX{_n(centre[0] - self.pos[0])} IY{_n(centre[1] - self.pos[1])}")
         else:
             self.emit(f"CC X{_n(centre[0])} Y{_n(centre[1])}")
+        self.pole_kept = False
         self.cc = tuple(self.pos[i] + round(centre[i] - self.pos[i], 4) for i in (0, 1)) if inc else \
             (round(centre[0], 4), round(centre[1], 4))
         self.polar_ok = False
@@ -307,6 +315,9 @@ class _Gen:
             self.polar_ok, self.exact = True, False
         else:
             end = (cc[0] + k * v2[0], cc[1] + k * v2[1])
+            if r.random() < 0.3:  # an end at any angle, rounded to 4 places: off the circle by up to 0.00007
+                a1 += r.uniform(-0.2, 0.2)
+                end = (cc[0] + 25 * k * math.cos(a1), cc[1] + 25 * k * math.sin(a1))
             inc = r.random() < 0.3 or not self.exact
             w = " ".join(self.coord(a, end[i] - self.pos[i] if inc else end[i], incremental=inc, q_ok=False)
                          for i, a in ((0, "X"), (1, "Y")))
@@ -318,15 +329,15 @@ class _Gen:
         self.pos[:2] = end
 
     def smooth(self, dx: float, dy: float) -> bool:
-        """Whether the next element may leave in the direction (dx, dy): a corner of 4 to 110 degrees (a
-        sharper one makes the compensated tool gouge, which the reader rightly refuses)."""
+        """Whether the next element may leave in the direction (dx, dy): a corner of at most 110 degrees (a
+        sharper one makes the compensated tool gouge, which the reader rightly refuses); a small one too, which
+        the TNC rounds by its transition arc or cuts at the offsets' intersection as any other."""
         if self.heading is None:
             return True
         h = math.radians(self.heading)
         c = (dx * math.cos(h) + dy * math.sin(h)) / math.hypot(dx, dy)
-        # nor a corner under 4 degrees: the compensation joins a convex turn of at most 0.05 rad without its
-        # transition arc (interpolators.compensation.CONVEX_TOLERANCE, LinuxCNC's), a few um off the reference
-        return math.cos(math.radians(110)) < c < math.cos(math.radians(4))
+        # a RND/CHF waiting for this element needs a corner to round (25 degrees: the radius fits)
+        return math.cos(math.radians(110)) < c < (math.cos(math.radians(25)) if self.rounding else 2.0)
 
     def arc_cr(self) -> None:
         r = self.r
@@ -363,6 +374,9 @@ class _Gen:
 
     def polar_line(self) -> None:
         r = self.r
+        if r.random() < 0.15:  # a CC without coordinates: the pole at the last programmed position
+            self.emit("CC")
+            self.cc, self.polar_ok = (self.pos[0], self.pos[1]), False
         cc = self.cc
         pr = math.hypot(self.pos[0] - cc[0], self.pos[1] - cc[1])
         pa = math.degrees(math.atan2(self.pos[1] - cc[1], self.pos[0] - cc[0]))
@@ -379,6 +393,7 @@ class _Gen:
             text = f"LP PR{_n(npr)} PA{_n(npa)}"
         end = (cc[0] + npr * math.cos(math.radians(npa)), cc[1] + npr * math.sin(math.radians(npa)))
         self.emit(text + self.feed())
+        self.pole_kept = False
         self.heading = math.degrees(math.atan2(end[1] - self.pos[1], end[0] - self.pos[0]))
         self.pos[:2] = end
         self.polar_ok, self.exact = True, False
@@ -398,7 +413,7 @@ class _Gen:
             self.lbl += 1
             self.emit(f"LBL {n}")
             self.emit(f"L IZ-{r.choice([1, 1.5])} R0{self.feed()}")
-            self.cc = None  # a pole set in the section is another at its next run's start
+            self.cc, self.pole_kept = None, False  # a pole set in the section is another at its next run's start
         else:
             self.emit(f"L Z{_n(depth)} R0{self.feed()}")
         self.pos, self.known, self.heading = [pre[0], pre[1], depth or 0.0], True, None
@@ -438,6 +453,8 @@ class _Gen:
             k = r.random()
             if n == 0 and self.appr:
                 self.line(self.step(r.uniform(10, 30), r.uniform(0, 360)))
+            elif self.pole_kept and corner != "CHF" and k < 0.7:  # LP about a pole set before a transformation
+                self.polar_line()
             elif corner == "CHF" or k < 0.35:  # a chamfer joins two straight lines (TNC 640 manual, "Chamfer CHF")
                 self.line(self.step(r.uniform(8, 30), self.turn()))
             elif k < 0.55:
@@ -450,14 +467,18 @@ class _Gen:
                 self.arc_ct()
             elif self.cc is not None and k < 0.9:
                 self.polar_line()
+            elif k < 0.95 and self.heading is not None and corner is None:  # a corner of 0.2 to 3 degrees
+                self.line(self.step(r.uniform(8, 30), r.choice([-1, 1]) * r.uniform(0.2, 3.0)))
             else:
                 self.line(self.step(r.uniform(8, 30), self.turn()))
-            corner = None
+            corner, self.rounding = None, False
             if r.random() < 0.25 and " IZ" not in self.blocks[-1][0]:  # RND in the working plane only
                 corner = "CHF" if self.blocks[-1][0].startswith("L ") and r.random() < 0.4 else "RND"
+                self.rounding = True
                 self.emit(f"{'CHF ' if corner == 'CHF' else 'RND R'}{r.choice([1, 2, 3])}")
         if corner is not None:
             self.line(self.step(r.uniform(8, 30), self.turn()))
+            self.rounding = False
 
     def leave(self, comp: str) -> None:
         r = self.r
@@ -493,7 +514,8 @@ class _Gen:
             self.emit("CYCL DEF 11.0 SCALING")
             self.emit("CYCL DEF 11.1 SCL1")
         self.known = False
-        self.cc = None
+        self.polar_ok = False  # the pole keeps its program coordinates under the new transformation
+        self.pole_kept = self.cc is not None
 
     # -- labels --------------------------------------------------------------------------------
     def repeated(self) -> None:

@@ -165,6 +165,11 @@ def test_nc_axes_are_named_by_the_letter_their_names_carry(tmp_path):
     g.write_text("Name\tMAIN.Axis1.NcToPlc.SetPos\tName\tMAIN.Axis1.NcToPlc.ActPos\n"
                  + "".join(f"{k}\t{0.1 * k}\t{k}\t{0.1 * k - 0.01}\n" for k in range(12)))
     assert read_capture(g).axes == ("x",)
+    # a letter with a number names no axis: MAIN.A1 is often "Achse 1" (axis 1), not a rotary A in deg (review29)
+    h = tmp_path / "a1.csv"
+    h.write_text("Name\tMAIN.A1.NcToPlc.SetPos\tName\tMAIN.A1.NcToPlc.ActPos\n"
+                 + "".join(f"{k}\t{0.1 * k}\t{k}\t{0.1 * k - 0.01}\n" for k in range(12)))
+    assert read_capture(h).axes == ("x",)
 
 
 def test_gcs_array_of_two_axes_asks_which_without_a_time_column(tmp_path):

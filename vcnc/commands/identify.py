@@ -296,13 +296,14 @@ def _report(capture, model, axis: str, baseline: list[str]):
     import numpy as np
     from matplotlib.figure import Figure
 
+    from identification.augmented import predict_record
     from vcnc.report import Report
 
     i = capture.axis_index(axis)
     t = capture.t - capture.t[0]
     xr = capture.reference[:, i]
     x = capture.measured[:, i]
-    xp = model.simulate(xr)
+    xp = predict_record(model, xr)  # as the fit predicted the record (sub-steps below 1 ms): fit.rms_um's prediction
     rep = Report(f"vcnc identify: axis {axis} of {capture.source or 'capture'}")
     u = axis_unit(axis, small=True)  # um, or mdeg on a rotary axis
     rep.heading("Model parameters (Eq. 3.3)")

@@ -384,7 +384,9 @@ def _matrix_literal(text: str) -> str:
     separated by ``;`` between brackets, MATLAB documentation "Creating, Concatenating, and Expanding Matrices") without
     its brackets and semicolons, so that they read as rows of numbers; ECP Executive's "Export Raw Data" (Educational
     Control Products' servo plants, Model 210/220/205) writes its table so under a line of names (our reading of its
-    exports). Only one line may open the matrix, and a later one must close it; any other text is returned as it is."""
+    exports). Only one line may open the matrix, a later one must close it, and every line between must be a row of
+    numbers (a line opening with ``[2024-05-01 ...]`` or ``[-]`` above a header ``Ist [um]`` is no matrix: its
+    brackets stay); any other text is returned as it is."""
     lines = text.splitlines()
     opens = [i for i, line in enumerate(lines) if _MATRIX_OPEN.match(line)]
     if len(opens) != 1:
@@ -392,9 +394,20 @@ def _matrix_literal(text: str) -> str:
     end = next((i for i in range(opens[0], len(lines)) if _MATRIX_END.search(lines[i])), None)
     if end is None:
         return text
-    for i in range(opens[0], end + 1):
-        lines[i] = _MATRIX_ROW_END.sub("", _MATRIX_OPEN.sub("", lines[i]))
+    rows = [_MATRIX_ROW_END.sub("", _MATRIX_OPEN.sub("", lines[i])) for i in range(opens[0], end + 1)]
+    if not all(_number_cells(row) for row in rows):
+        return text
+    lines[opens[0]:end + 1] = rows
     return "\n".join(lines)
+
+
+def _number_cells(row: str) -> bool:
+    """Whether a matrix row holds only numbers, separated by spaces or commas as MATLAB's are (or nothing)."""
+    try:
+        [parse_number(c) for c in re.split(r"[\s,]+", row.strip()) if c]
+    except ValueError:
+        return False
+    return True
 
 
 def _spaced_names(line: str) -> list[str]:

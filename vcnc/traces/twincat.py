@@ -357,11 +357,13 @@ def _find(name: str, channels: list[_Channel], found: list[str], src: str, line:
 
 def _axis_letters(prefixes: list[str]) -> list[str] | None:
     """The axis letters the NC axes' names carry (``Axis_Y.NcToPlc.`` -> y, ``MAIN.Z.NcToPlc.`` -> z): each prefix's
-    one word that is an axis letter, all different; None otherwise (``MAIN.Axis1.``: then x, y, z... in order). Our
-    reading: an axis a machine names Y is axis y to its user (``vcnc identify --axis y``)."""
+    one word (between separators) that is an axis letter alone, all different; None otherwise (``MAIN.Axis1.``: then
+    x, y, z... in order). A letter with a number (``MAIN.A1``, often "Achse 1", axis 1 in German projects; ``X1``, one
+    of two X drives) names no axis (review29). Our reading: an axis a machine names Y is axis y to its user
+    (``vcnc identify --axis y``)."""
     letters = []
     for prefix in prefixes:
-        words = {w for w in re.findall(r"[a-z]+", prefix.lower()) if w in AXIS_NAMES}
+        words = {w for w in re.split(r"[^a-z0-9]+", prefix.lower()) if w in AXIS_NAMES}
         if len(words) != 1:
             return None
         letters.append(words.pop())
