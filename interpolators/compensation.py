@@ -292,19 +292,13 @@ def compensate(
         For a gouge, an inside arc not larger than the tool, an entry move not longer than the
         tool radius, an arc exit move (or entry move under the TNC rule); ``index`` names the block.
     """
-    _check_arguments(side, entry, plane, radius)
-    if corner not in CORNER_RULES:
-        raise InputError(f"compensation corner rule must be one of {CORNER_RULES}, got {corner!r}")
-    if not 0.0 < convex_tolerance < math.pi / 2.0:
-        raise InputError(f"compensation convex_tolerance must be > 0 and < pi/2 rad, got {convex_tolerance!r}")
+    _check_arguments(side, entry, plane, radius, corner, convex_tolerance)
     blocks = list(blocks)
     if radius == 0.0:
         return blocks
     p, q = PLANE_AXES[plane]
     s = 1.0 if side == "left" else -1.0
-    movers = [i for i, b in enumerate(blocks)
-              if b.segment is not None and (b.kind == "arc" or math.hypot(*(_flat(b.target, plane) -
-                                                                             _flat(b.start, plane))) > _EPS)]
+    movers = [i for i, b in enumerate(blocks) if _moves_in_plane(b, plane)]
     if not movers:
         return blocks
     first = movers[0]
@@ -329,13 +323,23 @@ def compensate(
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
 
+def _moves_in_plane(block: Block, plane: int) -> bool:
+    """The block moves the tool in the compensation plane: an arc, or a line longer than ``_EPS`` there."""
+    return block.segment is not None and (
+        block.kind == "arc" or math.hypot(*(_flat(block.target, plane) - _flat(block.start, plane))) > _EPS)
+
+
 def _flat(v: np.ndarray, plane: int) -> np.ndarray:
     """The in-plane coordinates (p, q) of a 3-D point."""
     p, q = PLANE_AXES[plane]
     return np.array([v[p], v[q]], dtype=float)
 
 
-def _check_arguments(side: str, entry: str, plane: int, radius: float) -> None:
+def _check_arguments(side: str, entry: str, plane: int, radius: float, corner: str, convex_tolerance: float) -> None:
+    if corner not in CORNER_RULES:
+        raise InputError(f"compensation corner rule must be one of {CORNER_RULES}, got {corner!r}")
+    if not 0.0 < convex_tolerance < math.pi / 2.0:
+        raise InputError(f"compensation convex_tolerance must be > 0 and < pi/2 rad, got {convex_tolerance!r}")
     if side not in SIDES:
         raise InputError(f"compensation side must be one of {SIDES}, got {side!r}")
     if entry not in ENTRY_RULES:
