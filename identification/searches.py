@@ -825,21 +825,24 @@ def _split_form_equations(d: Data, delay: int) -> tuple[np.ndarray, np.ndarray]:
     vr = np.diff(xr, prepend=xr[0]) / T
     ar = np.diff(vr, prepend=0.0) / T
     dy = np.diff(x, prepend=x[0]) / T
-    g = np.column_stack([vr, -dy, e, ei, xr, ar])
     idx = np.arange(n)
     j = np.clip(idx - delay, 1, n - 1)
-    reg = g[j] + g[j - 1]
     kp, km = np.clip(idx + 1, 0, n - 1), np.clip(idx - 1, 0, n - 1)
     km2 = np.clip(idx - 2, 0, n - 1)
     vk = x[kp] - x[km]
     vk1 = x[idx] - x[km2]
-    fr = np.column_stack([-((vk > 0).astype(float) + (vk1 > 0)), -((vk < 0).astype(float) + (vk1 < 0))])
-    A = np.column_stack([reg, fr, -vk / T])
-    y = 2.0 * (x[kp] - 2.0 * x + x[km]) / (T * T)
     # the same zero-phase low-pass on both sides keeps the (linear) relation and removes the
-    # encoder noise that the second difference amplifies (and that would correlate with -dy)
+    # encoder noise that the second difference amplifies (and that would correlate with -dy);
+    # filtered a column at a time, the values of a filtfilt along the rows without its copies of the matrix
     bf, af = _LOWPASS(T)
-    return scipy.signal.filtfilt(bf, af, A, axis=0), scipy.signal.filtfilt(bf, af, y)
+    A = np.empty((n, 9))
+    for c, g in enumerate((vr, -dy, e, ei, xr, ar)):
+        A[:, c] = scipy.signal.filtfilt(bf, af, g[j] + g[j - 1])
+    A[:, 6] = scipy.signal.filtfilt(bf, af, -((vk > 0).astype(float) + (vk1 > 0)))
+    A[:, 7] = scipy.signal.filtfilt(bf, af, -((vk < 0).astype(float) + (vk1 < 0)))
+    A[:, 8] = scipy.signal.filtfilt(bf, af, -vk / T)
+    y = 2.0 * (x[kp] - 2.0 * x + x[km]) / (T * T)
+    return A, scipy.signal.filtfilt(bf, af, y)
 
 
 def _digital_regression(d: Data, delay: int, rows: np.ndarray,
