@@ -7,10 +7,11 @@ of the regressor + statistics, each solver, and the output-error refinement; the
 ``--memory [SAMPLES]`` (default 1,000,000): the peak memory of ``identify`` on a long servo-rate record (random
 moves of the same axis sampled at 125 us, as production controls record them), with and without the diagnosis,
 each in a child process of its own: max RSS before ``identify`` (the interpreter, the libraries and the record)
-and after it, against the record's own bytes (t, reference and measured). Measured 2026-11-25 (999,593 samples,
-2 shared cores, default threads), main cdddcbe -> the nested maps releasing their results and the split-form
-equations no longer kept per delay: with the diagnosis 4938 -> 1614 MB max RSS (98 -> 113 s wall on the loaded
-machine, 80 -> 82 s CPU), without it 785 MB; the record 23 MB, the process before ``identify`` 239 MB.
+and after it, against the record's own bytes (t, reference and measured). Measured 2026-11-25 (2 shared cores,
+default threads), main cdddcbe -> the nested maps releasing their results and the split-form equations no longer
+kept per delay, the same numbers: 999,593 samples, with the diagnosis 4938 -> 1487..1614 MB max RSS (the threads'
+interleaving moves it; 80 -> 80..82 s CPU), without it 785 MB (unchanged); 201,295 samples, 1290 -> 515 MB
+(13.3 -> 12.2 s CPU), without 350 MB; the process before ``identify`` 212-239 MB, the record 5 and 23 MB.
 """
 
 from __future__ import annotations
