@@ -109,6 +109,11 @@ _UNIT_RATIOS = {1000.0: "um beside mm", 25.4: "mm beside inch", 25400.0: "um bes
 #: Relative distance from a unit ratio within which a span ratio is taken for it [-].
 _UNIT_TOLERANCE = 0.1
 
+#: Key of :attr:`Capture.meta` naming a unit the user stated for the positions (``vcnc identify --unit``): a
+#: motion too small for mm is then not taken for metres.
+UNIT_GIVEN = "unit_given"
+
+
 def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | None = None) -> tuple:
     """Validate one axis of a capture for identification; returns ``(reference, measured, T)``.
 
@@ -118,7 +123,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
         Unknown axis, NaN/inf, time not increasing or not uniform.
     IdentificationError
         Fewer than :data:`MIN_SAMPLES` samples, no motion, motion in one direction only,
-        measurement identical to the reference, positions that look like metres, a measured
+        measurement identical to the reference, positions that look like metres (too small a motion when
+        ``meta[UNIT_GIVEN]`` states their unit), a measured
         channel that does not follow the commanded one (another axis', a velocity, the following
         error, a flipped sign) or in another unit (:func:`check_channels`).
     """
@@ -152,6 +158,13 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} {u}", file=src
         )
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
+    if span < 1.0 and vmax < 2.0 and capture.meta.get(UNIT_GIVEN):
+        raise IdentificationError(
+            f"too small a motion to identify on axis {axis!r}: the reference spans {span:.4g} mm at a peak speed of "
+            f"{vmax:.4g} mm/s in the unit stated ({capture.meta[UNIT_GIVEN]}); a loop is identified from moves "
+            "of 1 mm or more, or faster than 2 mm/s",
+            file=src,
+        )
     if span < 1.0 and vmax < 2.0:
         look = ("radians, not deg" if u == "deg" else
                 "metres, not mm (or radians of a rotary joint, not deg)")

@@ -705,7 +705,6 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
     # the reduced model's identification-data error, on the active samples
     stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, active)
     final = _final_model(model, stages, opt, data, rounds, plan, counts)
-    data.split_form_equations.clear()  # the searches' working arrays (~2 MB a delay) leave with them
     return DiagnosisReport(model=final, reduced=model, stages=stages, rounds=rounds, data=data,
                            time_s=time.perf_counter() - t_start, plan=plan)
 

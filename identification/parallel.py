@@ -149,10 +149,15 @@ def _shared_map(fn: Callable[[Any], Any], items: list[Any]) -> list[Any]:
         done[i].wait()
     for f in offers:
         f.cancel()
+    # an offer cancelled, or run after its item was claimed, stays in the pool's queue until a free worker
+    # drops it, holding this call's cells: the results and ``fn`` with what it captured. Released here, or
+    # the nested maps of a long search kept every result they returned (the sensitivities of the resonance
+    # search: 170 MB on a 172,703-sample record, benchmarks/identification.py, memory)
+    results, out, fn, items = out, None, None, None
     for exc in errors:
         if exc is not None:
             raise exc
-    return out
+    return results
 
 
 def process_map(fn: Callable[[Any], Any], items: Iterable[Any]) -> list[Any]:

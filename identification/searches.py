@@ -98,9 +98,6 @@ class Data:
         self.as_ = scipy.signal.savgol_filter(self.x, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
         self.vrs = scipy.signal.savgol_filter(self.xr, _SG_WINDOW, _SG_ORDER, deriv=1, delta=self.T)
         self.ars = scipy.signal.savgol_filter(self.xr, _SG_WINDOW, _SG_ORDER, deriv=2, delta=self.T)
-        #: delay [samples] -> the split-form regression's rows, filled by the searches
-        #: (:func:`_split_form_equations`)
-        self.split_form_equations: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
     @property
     def span(self) -> float:
@@ -816,12 +813,11 @@ def _LOWPASS(T: float):
 def _split_form_equations(d: Data, delay: int) -> tuple[np.ndarray, np.ndarray]:
     """The low-passed rows ``(A, y)`` of :func:`_digital_regression` over the whole record.
 
-    They depend on the record and the delay only, so they are computed once per delay and kept on
-    ``d`` (the delay search of every round and the saturation search share them).
+    They depend on the record and the delay only, but are not kept between searches: 10 float64 a
+    sample (80 MB a delay on a 1e6-sample record), kept for the nine delays of the delay search they
+    were most of the diagnosis' peak memory (benchmarks/identification.py, memory). A caller that
+    regresses one delay on several row sets computes them once and passes them on.
     """
-    cache = d.split_form_equations
-    if delay in cache:
-        return cache[delay]
     x, xr, T = d.x, d.xr, d.T
     n = d.n
     e = xr - x
@@ -829,25 +825,28 @@ def _split_form_equations(d: Data, delay: int) -> tuple[np.ndarray, np.ndarray]:
     vr = np.diff(xr, prepend=xr[0]) / T
     ar = np.diff(vr, prepend=0.0) / T
     dy = np.diff(x, prepend=x[0]) / T
-    g = np.column_stack([vr, -dy, e, ei, xr, ar])
     idx = np.arange(n)
     j = np.clip(idx - delay, 1, n - 1)
-    reg = g[j] + g[j - 1]
     kp, km = np.clip(idx + 1, 0, n - 1), np.clip(idx - 1, 0, n - 1)
     km2 = np.clip(idx - 2, 0, n - 1)
     vk = x[kp] - x[km]
     vk1 = x[idx] - x[km2]
-    fr = np.column_stack([-((vk > 0).astype(float) + (vk1 > 0)), -((vk < 0).astype(float) + (vk1 < 0))])
-    A = np.column_stack([reg, fr, -vk / T])
-    y = 2.0 * (x[kp] - 2.0 * x + x[km]) / (T * T)
     # the same zero-phase low-pass on both sides keeps the (linear) relation and removes the
-    # encoder noise that the second difference amplifies (and that would correlate with -dy)
+    # encoder noise that the second difference amplifies (and that would correlate with -dy);
+    # filtered a column at a time, the values of a filtfilt along the rows without its copies of the matrix
     bf, af = _LOWPASS(T)
-    cache[delay] = (scipy.signal.filtfilt(bf, af, A, axis=0), scipy.signal.filtfilt(bf, af, y))
-    return cache[delay]
+    A = np.empty((n, 9))
+    for c, g in enumerate((vr, -dy, e, ei, xr, ar)):
+        A[:, c] = scipy.signal.filtfilt(bf, af, g[j] + g[j - 1])
+    A[:, 6] = scipy.signal.filtfilt(bf, af, -((vk > 0).astype(float) + (vk1 > 0)))
+    A[:, 7] = scipy.signal.filtfilt(bf, af, -((vk < 0).astype(float) + (vk1 < 0)))
+    A[:, 8] = scipy.signal.filtfilt(bf, af, -vk / T)
+    y = 2.0 * (x[kp] - 2.0 * x + x[km]) / (T * T)
+    return A, scipy.signal.filtfilt(bf, af, y)
 
 
-def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
+def _digital_regression(d: Data, delay: int, rows: np.ndarray,
+                        equations: tuple[np.ndarray, np.ndarray] | None = None) -> dict | None:
     """Least squares of the sampled split form (module augmented) with u held ``delay`` samples.
 
     The zero-order-hold double integrator gives, per row k (u_k applied over [k, k+1))::
@@ -856,10 +855,11 @@ def _digital_regression(d: Data, delay: int, rows: np.ndarray) -> dict | None:
         u_k = [b1 v_r - (a1 - c) (y_j - y_{j-1}) / T + a2 e + a3 e_i + (b2 - a2) x_r + b0 a_r]_{j = k - delay}
 
     linear in (b1, a1 - c, a2, a3, b2 - a2, b0, d0, d1, c) - exact for that form when the friction
-    does not switch inside a sample.
+    does not switch inside a sample. ``equations``: :func:`_split_form_equations` of ``d`` and
+    ``delay`` when the caller has them.
     """
     n = d.n
-    A, y = _split_form_equations(d, delay)
+    A, y = _split_form_equations(d, delay) if equations is None else equations
     k = rows[(rows >= delay + 30) & (rows < n - 30)]
     A, y = A[k], y[k]
     th = solve_qr(A, y)
@@ -962,16 +962,20 @@ def search_saturation(ctx: SearchContext) -> list[Candidate]:
     # fadal-pid ringing into its current limit, anti-windup on, was found as 3): its neighbours are
     # regressed and tried with the limit too, the current parameters only with the delay found
     delays = [0] if delay is None else [delay] + [k for k in (delay - 1, delay + 1) if 0 <= k <= Delay.MAX]
+    limits = [u0 * f for f in (0.8, 0.9, 1.0, 1.1, 1.25, 1.5)]
+    # rows next to saturated ones see the smoothing window of the derivatives
+    keeps = [rows[~(np.convolve(~(demand < 0.85 * U), np.ones(2 * _SG_WINDOW + 1), mode="same") > 0)] for U in limits]
+    regs = {}
+    for n in delays:  # one delay's equations in memory at a time (_split_form_equations)
+        equations = _split_form_equations(d, n) if any(200 < k.size < rows.size for k in keeps) else None
+        for U, keep in zip(limits, keeps):
+            regs[U, n] = _digital_regression(d, n, keep, equations) if 200 < keep.size < rows.size else None
+        del equations
     starts = []
-    for f in (0.8, 0.9, 1.0, 1.1, 1.25, 1.5):
-        U = u0 * f
-        ok = demand < 0.85 * U
-        # rows next to saturated ones see the smoothing window of the derivatives
-        bad = np.convolve(~ok, np.ones(2 * _SG_WINDOW + 1), mode="same") > 0
-        keep = rows[~bad]
+    for U in limits:
         for n in delays:
             held = [Delay(samples=n, sample_time=d.T)] if n > 0 else []
-            reg = _digital_regression(d, n, keep) if 200 < keep.size < rows.size else None
+            reg = regs[U, n]
             for aw in (True, False):
                 e = Saturation(limit=U, anti_windup=aw)
                 if n == (delay or 0):

@@ -187,3 +187,17 @@ def test_the_weak_poles_line_says_when_the_refinement_left_the_equation_errors_r
     assert "moved the poles above outside that range" in line
     inside = SimpleNamespace(fit=moved.fit, method="exact+oe", poles={"omega_n_hz": 101.0, "zeta": 0.4, "p_hz": 1.0})
     assert "outside that range" not in weak_poles_line(inside) and "too little excitation" in weak_poles_line(inside)
+
+
+def test_a_stated_unit_is_not_taken_for_metres(tmp_path, capsys, small_capture):
+    """A 0.5 um move read with --unit um is refused as too small, not as metres (a PI piezo record)."""
+    small = _cap(small_capture.reference[:, 0] / 20000, small_capture.measured[:, 0] / 20000)
+    with pytest.raises(IdentificationError, match="look like metres"):
+        identify(small, diagnose=False)
+    src = tmp_path / "piezo.csv"
+    dataclasses.replace(small, reference=small.reference * 1000, measured=small.measured * 1000).to_csv(src)
+    assert main(["identify", str(src), "--unit", "um", "--no-diagnose"]) == 2
+    err = capsys.readouterr().err
+    span_mm = float(np.ptp(small.reference))
+    assert f"too small a motion to identify on axis 'x': the reference spans {span_mm:.4g} mm" in err
+    assert "(--unit um)" in err and "metres" not in err
