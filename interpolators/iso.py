@@ -334,6 +334,13 @@ class State:
         a = np.radians(self.rotation)
         return off, base, float(np.cos(a)), float(np.sin(a))
 
+    def turned(self, vector: np.ndarray) -> np.ndarray:
+        """A program-coordinate vector [mm] (an offset such as G5's I J) turned about Z by the G10 R rotation into
+        the machine's axes, as :meth:`to_machine` turns the points (G68 left out)."""
+        _, _, c, s = self._rotated_parts()
+        v = np.asarray(vector, dtype=float)
+        return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]])
+
     def to_machine(self, prog: np.ndarray) -> np.ndarray:
         """Machine coordinates [mm] of program coordinates under a rotated coordinate system:
         X Y plus the G92 offset, rotated about the work offset's origin, plus the work offset

@@ -7,7 +7,6 @@ G4, G93-G95), Fanuc 0i-MF operator's manual where the dialects differ (each func
 from __future__ import annotations
 
 import dataclasses
-import math
 import re
 from typing import TYPE_CHECKING
 
@@ -345,8 +344,6 @@ def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: i
     (:mod:`interpolators.iso_splines`). I J (and G5's P Q) are always incremental, turned with the
     coordinate system under G10 R."""
     code = "G5" if st.motion == 50 else "G5.1"
-    a = math.radians(st.rotation)
-    turn = np.array([[math.cos(a), -math.sin(a), 0.0], [math.sin(a), math.cos(a), 0.0], [0.0, 0.0, 1.0]])
     if st.plane != 2:
         where.fail(f"{code} spline: only in the XY plane (G17)", column=mcol, text=mtok, expected="G17")
     if "Z" in seen:
@@ -359,7 +356,7 @@ def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: i
         if not ij.any():
             where.fail("G5.1 spline: I and J both unspecified or zero", column=mcol, text=mtok,
                        expected="I and/or J: the control point's offset from the start")
-        control = [p0, p0 + turn @ ij * s, target]
+        control = [p0, p0 + st.turned(ij * s), target]
     else:
         if "P" not in seen or "Q" not in seen:
             where.fail("G5 spline: P and Q must both be given", column=mcol, text=mtok,
@@ -367,13 +364,13 @@ def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: i
         if ("I" in seen) != ("J" in seen):
             where.fail("G5 spline: I and J must be given together", column=mcol, text=mtok, expected="I and J")
         if "I" in seen:
-            ij = turn @ np.array([seen["I"].value, seen["J"].value, 0.0]) * s
+            ij = st.turned(np.array([seen["I"].value, seen["J"].value, 0.0]) * s)
         elif st.spline_pq is not None:
             ij = -st.spline_pq  # the tangent of the previous G5 continues
         else:
             where.fail("G5 spline: I and J are needed on the first G5 of a series", column=mcol, text=mtok,
                        expected="I and J")
-        pq = turn @ np.array([seen["P"].value, seen["Q"].value, 0.0]) * s
+        pq = st.turned(np.array([seen["P"].value, seen["Q"].value, 0.0]) * s)
         control = [p0, p0 + ij, target + pq, target]
         st.spline_pq = pq
     if st.motion == 51:
