@@ -233,19 +233,18 @@ def simulate_augmented(
                   int(spec.delay), float(spec.saturation), bool(spec.anti_windup),
                   float(spec.integral_lead), float(spec.backlash), res, tm,
                   pos, vel)
-    elif held is not None and held.substeps > 1:
-        m = held.substeps
-        fine = held.fine[:(xr.size - 1) * m + 1]
+    else:  # the exact loop; at the record's sub-steps where ``held`` gives them, wext held over each sample
+        m = held.substeps if held is not None else 1
+        ref, w = xr, wext
+        if m > 1:
+            ref = held.fine[:(xr.size - 1) * m + 1]
+            w = np.ascontiguousarray(np.repeat(wext, m)[:ref.size])
+            pos, vel = np.empty_like(ref), np.empty_like(ref)
         dm = discretize(p, T / m)
-        fpos, fvel = np.empty_like(fine), np.empty_like(fine)
-        run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, fine,
-                  np.ascontiguousarray(np.repeat(wext, m)[:fine.size]), st, float(spec.asym), float(spec.pp_period),
-                  pp_coef, fpos, fvel)
-        pos, vel = fpos[::m].copy(), fvel[::m].copy()
-    else:
-        dm = discretize(p, T)
-        run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, xr, wext, st,
-                   float(spec.asym), float(spec.pp_period), pp_coef, pos, vel)
+        run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, ref, w, st,
+                  float(spec.asym), float(spec.pp_period), pp_coef, pos, vel)
+        if m > 1:
+            pos, vel = pos[::m].copy(), vel[::m].copy()
     if spec.offset is not None:
         pos = pos + spec.offset
     return (pos, vel) if return_velocity else pos
