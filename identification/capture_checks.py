@@ -158,14 +158,14 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} {u}", file=src
         )
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
-    if span < 1.0 and vmax < 2.0 and capture.meta.get(UNIT_GIVEN):
-        raise IdentificationError(
-            f"too small a motion to identify on axis {axis!r}: the reference spans {span:.4g} mm at a peak speed of "
-            f"{vmax:.4g} mm/s in the unit stated ({capture.meta[UNIT_GIVEN]}); a loop is identified from moves "
-            "of 1 mm or more, or faster than 2 mm/s",
-            file=src,
-        )
     if span < 1.0 and vmax < 2.0:
+        if capture.meta.get(UNIT_GIVEN):
+            raise IdentificationError(
+                f"too small a motion to identify on axis {axis!r}: the reference spans {span:.4g} {u} at a peak speed "
+                f"of {vmax:.4g} {u}/s in the unit stated ({capture.meta[UNIT_GIVEN]}); a loop is identified from "
+                f"moves of 1 {u} or more, or faster than 2 {u}/s",
+                file=src,
+            )
         look = ("radians, not deg" if u == "deg" else
                 "metres, not mm (or radians of a rotary joint, not deg)")
         how = ("deg (radians: --unit rad" if u == "deg" else
