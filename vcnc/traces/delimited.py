@@ -194,7 +194,7 @@ def _gcs_array(text: str, src: str, gcs: GcsArrayHeader, *, columns: Mapping[str
         raise CaptureError("which tables of the PI GCS array are the commanded and measured positions? give --columns "
                            f"x_ref=NAME,x=NAME (SAMPLE_TIME times its rows); tables: {gcs.names} (not read from the "
                            f"names: {why})", file=src, line=gcs.end_line)
-    if unit is None and named is not None:
+    if unit is None:
         raise CaptureError(f"the PI GCS array (data recorder tables {gcs.names}; read as "
                            f"{', '.join(f'{k}={v}' for k, v in named.items())}) does not state the axis' unit: a PI "
                            "axis records in its physical unit, the controller's PUN? answer (mm on most motorised "
