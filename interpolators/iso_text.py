@@ -89,14 +89,17 @@ _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
 #: could be" for GOTO and END).
 _MACRO_B_STATEMENT = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?(?:IF[ \t]*\[|WHILE[ \t]*\[|GOTO[ \t]*[\d#\[]|"
                                 r"END[ \t]*[123](?![\d.]))", re.M | re.I)
-#: An O-word opening an if, while or repeat block; LinuxCNC keeps one line per label and refuses a second block of
-#: the same label when it runs (interp_o_word.cc convert_control_functions, O_if / O_while / O_repeat: "duplicate
-#: O-word label"; rs274 2.9.0~pre1 refuses a second 'o100 while' so, and runs a second 'o100 do' loop, whose
-#: 'o100 while' closes it).
+#: An O-word line: its label and keyword (an if, while, do or repeat opening, a sub or endsub, a break or continue:
+#: the loop notes, :func:`_loop_notes`). An O-word opening an if, while or repeat block: LinuxCNC keeps one line per
+#: label and refuses a second block of the same label when it runs (interp_o_word.cc convert_control_functions,
+#: O_if / O_while / O_repeat: "duplicate O-word label"; rs274 2.9.0~pre1 refuses a second 'o100 while' so, and runs
+#: a second 'o100 do' loop, whose 'o100 while' closes it).
 #: Its offsets are kept per call frame, so the same label in two subroutines is no duplicate (rs274 2.9.0~pre1 runs
 #: that; sub and endsub lines bound a body here).
-_OPENING_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
-                            r"(IF|WHILE|DO|REPEAT|SUB|ENDSUB)\b", re.M | re.I)
+_OWORD_LINE = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
+                         r"(IF|WHILE|DO|REPEAT|SUB|ENDSUB|BREAK|CONTINUE)\b", re.M | re.I)
+#: The keywords of :data:`_OWORD_LINE` that open a block or bound a body (the duplicate-label check).
+_OPENING_KEYWORDS = ("if", "while", "do", "repeat", "sub", "endsub")
 
 
 def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
@@ -131,9 +134,6 @@ def note_comment(keyword: str, text: str, where: Where, *, messages: list[Messag
         notes.add(f"({keyword.upper()},...) Python comment not run")
 
 
-#: A loop O-word line: its label and keyword (the loop's opening, a break or continue, a do loop's closing while).
-_LOOP_OWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
-                         r"(WHILE|DO|REPEAT|BREAK|CONTINUE)\b", re.M | re.I)
 #: A Haas M97 word (a local subprogram call, :func:`interpolators.iso_flow.run`), which LinuxCNC does not have (rs274:
 #: "Unknown m code used: M97").
 _M97 = re.compile(r"(?<![A-Z\d.])M0*97(?![\d.])", re.I)
@@ -191,17 +191,19 @@ def _in_code(text: str, at: int) -> bool:
     return ";" not in before and before.count("(") <= before.count(")")
 
 
-def _loop_notes(text: str, notes: Notes) -> None:
+def _loop_notes(owords: list[tuple[str, str]], notes: Notes) -> None:
     """Notes of loops LinuxCNC runs otherwise than vcnc (interp_o_word.cc ``convert_control_functions``):
     ``break`` or ``continue`` on a ``repeat`` loop's label, which LinuxCNC refuses (o-code.adoc, errors: "a label
     on break or continue which does not point to a matching while or do"), and a ``do`` loop after a ``break``
     out of a ``while`` loop: LinuxCNC clears the flag a break sets (``doing_break``) only at a do loop's closing
     while, so that the first do loop to close after the break leaves after one pass, where vcnc runs it as
-    o-code.adoc describes ("do ... while: the loop runs while the condition is true")."""
+    o-code.adoc describes ("do ... while: the loop runs while the condition is true"). ``owords``: the program's
+    O-word lines as (label, keyword), lower case."""
     loops: dict[str, str] = {}
     broken_while = False
-    for m in _LOOP_OWORD.finditer(text):
-        label, keyword = m.group(1).lower().replace(" ", ""), m.group(2).lower()
+    for label, keyword in owords:
+        if keyword not in ("while", "do", "repeat", "break", "continue"):
+            continue
         if keyword in ("break", "continue"):
             kind = loops.get(label)
             if kind == "repeat":
@@ -229,8 +231,10 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
                   "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
     opened: collections.Counter = collections.Counter()
     body, doing = "", set()  # doing: the labels of do loops open, whose while closes them
-    for m in _OPENING_OWORD.finditer(text):
-        label, keyword = m.group(1).lower().replace(" ", ""), m.group(2).lower()
+    owords = [(m.group(1).lower().replace(" ", ""), m.group(2).lower()) for m in _OWORD_LINE.finditer(text)]
+    for label, keyword in owords:
+        if keyword not in _OPENING_KEYWORDS:
+            continue
         if keyword in ("sub", "endsub"):
             body = label if keyword == "sub" else ""
         elif keyword == "do":
@@ -244,7 +248,7 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
             notes.add(f"O-word label o{label} opens {count} {keyword} blocks in one program or subroutine, each run in "
                       "its place (LinuxCNC refuses the second when it runs: \"duplicate O-word label\"; FluidNC "
                       "reuses labels)")
-    _loop_notes(text, notes)
+    _loop_notes(owords, notes)
     if any(_in_code(text, m.start()) for m in _M97.finditer(text)):
         notes.add("M97 local subprogram calls run as Haas runs them (LinuxCNC refuses them: \"Unknown m code used\"; "
                   "--dialect haas)")
