@@ -268,6 +268,7 @@ class State:
     g92_applied: bool = False  # LinuxCNC #5210: G92/G52/G92.3 set it, G92.1/G92.2 clear it
     local: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # Fanuc/Haas G52's part of g92
     external: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # Fanuc G10 L2 P0's part of g92
+    external_extra: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))  # its part of g92_extra
     tool_length: float = 0.0  # along Z [mm]
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None

@@ -11,7 +11,10 @@ coordinate system (G10 L2, G10 L20)"; the GSK 980MDc manual, a Fanuc-compatible 
   values are the offset, under G91 they are added to it; an axis not named keeps its offset.
   ``G10 L2 P0`` sets the external workpiece zero offset, which shifts every workpiece system (Fanuc
   "External workpiece zero point offset", ``#5201``-``#5206``; Haas: "P0 G52 references work coordinate",
-  the G52 entry of its offset table, ``#5201``-``#5205``); X Y Z only here.
+  the G52 entry of its offset table, ``#5201``-``#5205``). The external offset is one per axis (Fanuc 0i-MD
+  B-64304EN "Changing workpiece coordinate system": ``G10 L2 Pp IP_``, "p=0: External workpiece zero point
+  offset value", IP_ "for each axis"), so an A-W word sets that axis' external offset as X Y Z do theirs (a
+  Mastercam post writes ``G10 L2 P0 X0. Y0. Z0. B0.`` for a B-axis machine).
 - G92 and G52 act in these systems as in G54-G59: G92 shifts every workpiece coordinate system and
   G52 sets the local system in every one (in vcnc both offsets are kept apart from the table, see
   :mod:`interpolators.iso`).
@@ -166,6 +169,8 @@ class OffsetState(Protocol):
 
     g92: np.ndarray  # the offset shared by every system [mm]: G92 shift + G52 local + external (P0)
     external: np.ndarray  # the external workpiece zero offset (G10 L2 P0) [mm]
+    g92_extra: np.ndarray  # the a, b, c [deg], u, v, w [mm] part of g92
+    external_extra: np.ndarray  # the a, b, c [deg], u, v, w [mm] part of external
 
 
 def set_work_offset(level: int, p: float | None, words: dict[str, float], st: OffsetState, dialect: str) -> str:
@@ -218,17 +223,18 @@ def set_work_offset(level: int, p: float | None, words: dict[str, float], st: Of
 
 
 def _set_external(words: dict[str, float], st: OffsetState) -> None:
-    """G10 L2 P0: the external offset of the named axes becomes the value (G90) or moves by it (G91); the
-    shift every system shares moves with it."""
-    extra = [a for a in EXTRA_LETTERS if a in words]
-    if extra:
-        raise WordError("G10 L2 P0 (the external offset) with a rotary or secondary axis word: not supported",
-                        letter=extra[0], expected="G10 L2 P0 X.. Y.. Z..")
+    """G10 L2 P0: the external offset of the named axes (X Y Z and A-W alike, module docstring) becomes the
+    value (G90) or moves by it (G91); the shift every system shares moves with it."""
     for i, a in enumerate("XYZ"):
         if a in words:
             value = (st.external[i] if st.incremental else 0.0) + words[a] * st.scale
             st.g92[i] += value - st.external[i]
             st.external[i] = value
+    v = word_values({a: words[a] for a in EXTRA_LETTERS if a in words}, scale=st.scale)
+    given = ~np.isnan(v)
+    value = (st.external_extra if st.incremental else np.zeros(6)) + np.where(given, v, 0.0)
+    st.g92_extra[given] += (value - st.external_extra)[given]
+    st.external_extra[given] = value[given]
 
 
 def offset_parameter(n: int, dialect: str) -> tuple[str, int] | None:

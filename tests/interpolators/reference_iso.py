@@ -692,6 +692,7 @@ class _Machine:
         self.g92_extra = np.zeros(6)
         self.local = np.zeros(3)  # Fanuc/Haas G52 (a part of g92)
         self.external = np.zeros(3)  # Fanuc/Haas G10 L2 P0 (a part of g92)
+        self.external_extra = np.zeros(6)  # its A-W part (a part of g92_extra)
         self.tool_lengths: dict[int, tuple[float, float]] = {}  # Fanuc/Haas G10 L10/L11: (geometry, wear) [mm]
         self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
@@ -1245,6 +1246,10 @@ def _g10(m: _Machine, words: dict) -> None:
                 v = (m.external[i] if m.incremental else 0.0) + words[a][-1] * m.scale
                 m.g92[i] += v - m.external[i]
                 m.external[i] = v
+        for i, v in m.extra_words(words).items():  # A-W: their external offsets alike (B-64304EN "G10 L2")
+            value = (m.external_extra[i] if m.incremental else 0.0) + v
+            m.g92_extra[i] += value - m.external_extra[i]
+            m.external_extra[i] = value
         return
     if m.ctx.dialect.name in ("fanuc", "haas"):  # Fanuc "G10 L2 / L20": the value (G90) or an increment (G91)
         code = list(_WCS.values())[p - 1] if kind == 2 else f"G54.1 P{p}"

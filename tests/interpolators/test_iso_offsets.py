@@ -123,8 +123,6 @@ def test_fanuc_g92_cancels_the_local_system_of_the_axes_it_names():
     (FANUC, "G54.1 P1.5", "P1.5 is not an additional work offset number"),
     (HAAS, "G154 P100", "P100 is not an additional work offset number"),
     (FANUC, "G10 L20 P0 X1", "G10 L20 needs P1 .. P300"),
-    (dataclasses.replace(FANUC, extra_axes=("a",)), "G10 L2 P0 A1",
-     "G10 L2 P0 \\(the external offset\\) with a rotary"),
     (FANUC, "G10 L2 P7 X1", "G10 L2 needs P0 .. P6"),
     (FANUC, "G10 L2 P1 R45", "R .* is LinuxCNC's G10 L2 R"),
 ])
@@ -244,6 +242,17 @@ def test_fanuc_g10_l2_p0_external_offset_shifts_every_system():
             "#1 = #5201\nG53 X#1\n")
     assert [p[0] for p in ends(text, FANUC, reference=False)] == [105, 205, 206, 200, 0]
     assert [p[0] for p in ends(text.replace("#1 = #5201\nG53 X#1\n", ""), FANUC)] == [105, 205, 206, 200]
+
+
+def test_fanuc_g10_l2_p0_sets_the_external_offset_of_a_rotary_axis_too():
+    # B-64304EN "G10 L2 Pp IP_", p=0 the external offset "for each axis" (Mastercam: G10 L2 P0 X0. Y0. Z0. B0.):
+    # EXT B10 -> G54 B0 at 10, G55 B5 at 15; G91 P0 B-4 -> EXT 6: B0 at 6; G54's own B3 adds: B0 at 9
+    ctx = dataclasses.replace(FANUC, extra_axes=("b",))
+    text = "G21 G90 G54\nG10 L2 P0 X5 B10.\nG0 X0 B0\nG55 B5\nG91 G10 L2 P0 B-4.\nG90 B0\nG10 L2 P1 B3.\nG54 B0\n"
+    header, rows = blocks_table(parse_program(text, context=ctx))
+    assert [(r[header.index("x")], r[header.index("b")]) for r in rows] == [(105, 10), (105, 15), (105, 6), (105, 9)]
+    match = match_blocks(iso_reference(text, ctx), rows)
+    assert match.mismatch is None and match.exact == 4
 
 
 def test_linuxcnc_refuses_a_coordinate_system_change_under_cutter_compensation():
