@@ -87,6 +87,13 @@ G_UNSUPPORTED: dict[int, str] = {
     435: "G43.5 tool centre point control type 2 (5-axis; --dialect fanuc)",
     2340: "G234 tool centre point control (Haas 5-axis; --dialect haas)",
     2680: "G268 feature coordinate system (Haas 5-axis)",
+    # Haas NGC mill operator's manual "G254 Dynamic Work Offset (DWO) (Group 23)": for 3+1 / 3+2 positioning, the
+    # control moves the work offset with the rotary axes about the machine's centres of rotation (MRZP); G255
+    # cancels it. Fanuc "NURBS interpolation (G06.2)" (an option of the 30i series): control points, weights,
+    # knots. Neither runs here: their motion needs the machine's rotary centres or the curve's knots as the
+    # control reads them.
+    2540: "G254 dynamic work offset (Haas DWO: the work offset follows the rotary axes)",
+    2550: "G255 dynamic work offset cancel (Haas DWO)", 62: "G06.2 NURBS interpolation (Fanuc option)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
     401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",

@@ -840,6 +840,16 @@ def test_unsupported_control_specific_g_codes_are_named(code, name):
         parse_program(f"G21 G90\n{code}\n", context=_in_dialect("haas"))
 
 
+@pytest.mark.parametrize("dialect, code, name", [
+    # Haas NGC mill manual "G254 Dynamic Work Offset (DWO)": 3+2 positioning about the machine's rotary centres
+    ("haas", "G254", "G254 dynamic work offset (Haas DWO"), ("haas", "G255", "G255 dynamic work offset cancel"),
+    # Fanuc "NURBS interpolation (G06.2)", as an industrial post (PowerMill, NX) writes it
+    ("fanuc", "G06.2 P3 K0. X0 Y0 Z0 R1.", "G06.2 NURBS interpolation (Fanuc option)")])
+def test_industrial_post_codes_without_known_motion_are_named(dialect, code, name):
+    with pytest.raises(GCodeError, match=rf"2:1: {re.escape(name)}.*: not supported"):
+        parse_program(f"G21 G90\n{code}\nG0 X1.\n", context=_in_dialect(dialect))
+
+
 def test_fanuc_g16_polar_coordinates_place_holes_on_a_circle():
     """Fanuc Series 16/18-MC operator's manual 9.2 "Polar coordinate command (G15, G16)": under G90 the
     X word is the radius and Y the angle about the work zero (G54 at machine (100, 50, -20)); a block
