@@ -128,6 +128,7 @@ class ReaderState(Protocol):
     context: MachineContext
     tools: dict[int, Tool]  # tool table entries the program wrote
     external: np.ndarray  # Fanuc/Haas G10 L2 P0 offset [mm]
+    external_extra: np.ndarray  # its a, b, c [deg], u, v, w [mm]
     pos: np.ndarray  # machine coordinates [mm]
     extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
@@ -312,8 +313,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     if fanuc and n in PARTS_COUNTERS:
         st.parts_read = True
         return st.parts_counters.get(n, 0.0), ""
-    if fanuc and 5201 <= n <= 5206:  # Fanuc external workpiece zero offset, Haas G52 (G10 L2 P0): X Y Z
-        return (float(st.external[n - 5201]) / _stored(st) if n <= 5203 else 0.0), ""
+    if fanuc and 5201 <= n <= 5206:  # Fanuc external workpiece zero offset, Haas G52 (G10 L2 P0): X Y Z A B C
+        return _nine(st.external, st.external_extra, _stored(st))[n - 5201], ""
     extended = offset_parameter(n, st.context.dialect.name) if fanuc else None
     if extended is not None:
         return _offset_axis(extended[0], extended[1], st), ""

@@ -253,6 +253,9 @@ def test_fanuc_g10_l2_p0_sets_the_external_offset_of_a_rotary_axis_too():
     assert [(r[header.index("x")], r[header.index("b")]) for r in rows] == [(105, 10), (105, 15), (105, 6), (105, 9)]
     match = match_blocks(iso_reference(text, ctx), rows)
     assert match.mismatch is None and match.exact == 4
+    # #5205 reads the external offset of B (X Y Z A B C in the order of #5201-#5206): 6 -> machine B 6
+    prog = parse_program(text + "#1 = #5205\nG53 B#1\n", context=ctx)
+    assert round(float(prog.blocks[-1].extra_target[1]), 9) == 6.0
 
 
 def test_linuxcnc_refuses_a_coordinate_system_change_under_cutter_compensation():
