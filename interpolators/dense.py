@@ -78,6 +78,7 @@ __all__ = [
     "cubic_basis",
     "curve_junctions",
     "fit_run",
+    "fit_axes",
     "merge_dense_runs",
 ]
 
@@ -339,6 +340,66 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
             spl = BSpline(knots, c, 3)
             if chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
                 return spl
+        if q <= _MIN_POINTS_PER_KNOT:
+            return None
+        q = max(_MIN_POINTS_PER_KNOT, q // 2)
+
+
+def fit_axes(s: np.ndarray, values: np.ndarray, tolerance: float) -> BSpline | None:
+    """Smooth cubic spline of the axes beyond X, Y, Z along a merged run, within ``FIT_SHARE * tolerance`` of
+    their programmed motion.
+
+    The programmed motion of these axes is piecewise linear in the path: on each chord they move in
+    proportion to it (RS274/NGC 3, Sec. 2.1.2.5). Along the run's fitted curve (arc length ``s``, the
+    programmed points at ``s_k``) that is the polyline through ``(s_k, r_k)``; the spline replaces it as the
+    curve replaces the chords: least squares with interior knots every ``q`` points (as :func:`fit_run`),
+    through the first and last values exactly, accepted when it lies within the tolerance of the polyline
+    at :data:`CHECK_POINTS` points per chord on every axis, else with the knot spacing halved. The tolerance
+    is the path tolerance ``P`` in each axis' own unit (deg on A, B, C; mm on U, V, W): our reading of
+    LinuxCNC, whose trajectory planner passes the junctions of segments moving A-C or U-W with parabolic
+    blends of all axes under the one G64 P tolerance (``src/emc/tp/tp.c``, ``tcRotaryMotionCheck`` turns
+    the XYZ arc blends off for them); HEIDENHAIN's cycle 32 TOLERANCE has a rotary tolerance TA of its own,
+    which this reader does not take.
+
+    Parameters
+    ----------
+    s : ndarray, shape (n + 1,)
+        Arc length of each programmed point on the fitted curve [mm], increasing, ``s[0] = 0``.
+    values : ndarray, shape (n + 1, m)
+        The axes' programmed values at those points [deg or mm].
+    tolerance : float
+        [deg or mm].
+
+    Returns
+    -------
+    BSpline or None
+        ``r(s)``, values of shape (m,); None when no knot spacing fits.
+    """
+    from scipy.interpolate import BSpline
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.linalg import spsolve
+
+    n = len(s) - 1
+    f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
+    s_eval = np.append((s[:-1, None] + np.diff(s)[:, None] * f).ravel(), s[-1])
+    polyline = np.column_stack([np.interp(s_eval, s, col) for col in values.T])
+    q = max(_MIN_POINTS_PER_KNOT, int(MAX_KNOT_SPACING / (s[-1] / n)))
+    while True:
+        n_int = max(1, round(n / q))
+        inner = s[np.round(np.linspace(0, n, n_int + 1)[1:-1]).astype(np.int64)]
+        knots = np.concatenate([[s[0]] * 4, inner, [s[-1]] * 4])
+        m = len(knots) - 4
+        first, basis = cubic_basis(s, knots)
+        design = csr_matrix((basis.ravel(), (np.repeat(np.arange(n + 1), 4), (first[:, None] + np.arange(4)).ravel())),
+                            shape=(n + 1, m))
+        c = np.empty((m, values.shape[1]))
+        c[0], c[-1] = values[0], values[-1]  # clamped: the spline starts and ends on the programmed values
+        free = design[:, 1:-1]
+        rhs = values - design[:, [0]] @ values[[0]] - design[:, [m - 1]] @ values[[-1]]
+        c[1:-1] = np.asarray(spsolve((free.T @ free).tocsc(), free.T @ rhs)).reshape(m - 2, -1)
+        spl = BSpline(knots, c, 3)
+        if np.max(np.abs(spl(s_eval) - polyline)) <= FIT_SHARE * tolerance:
+            return spl
         if q <= _MIN_POINTS_PER_KNOT:
             return None
         q = max(_MIN_POINTS_PER_KNOT, q // 2)
