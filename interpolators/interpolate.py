@@ -558,18 +558,24 @@ def _vertex_arc_lengths(run: MergedRun) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _fit_derivatives(fits: dict, idx: np.ndarray, length: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Largest ``|r'|``, ``|r''|``, ``|r'''|`` (shape (len(idx), 6)) of the axis splines ``fits`` on the curve
-    pieces ``idx`` (of lengths ``length``): at :data:`_ARC_TABLE` points of each piece, at the spline's knots and
-    knot-interval middles in it (``r'''`` is constant between knots), by CURVE_BOUND_MARGIN."""
-    out = [np.zeros((len(idx), len(EXTRA_NAMES))) for _ in range(3)]
-    for j, k in enumerate(idx.tolist()):
-        spl, s0 = fits[k]
-        s1 = s0 + length[k]
+    """Largest ``|r_1|``, ``|r_2|``, ``|r_3|`` (the path derivatives, shape (len(idx), 6)) of the axis splines
+    ``fits`` on the curve pieces ``idx`` (of lengths ``length``): at :data:`_ARC_TABLE` points of each piece and
+    at the middles of the spline's knot intervals in it (``r_3`` is constant between knots), by
+    CURVE_BOUND_MARGIN; each spline evaluated once for all its pieces."""
+    out = np.zeros((3, len(idx), len(EXTRA_NAMES)))
+    splines = [fits[k][0] for k in idx.tolist()]
+    s0 = np.array([fits[k][1] for k in idx.tolist()])
+    s1 = s0 + length[idx]
+    grid = np.linspace(0.0, 1.0, _ARC_TABLE + 1)
+    for j, rows in rows_by_owner(splines, np.arange(len(idx))):
+        spl = splines[j]
         t = np.unique(spl.t)
-        inner = np.concatenate([t, 0.5 * (t[1:] + t[:-1])])
-        at = np.concatenate([np.linspace(s0, s1, _ARC_TABLE + 1), inner[(inner > s0) & (inner < s1)]])
+        mid = 0.5 * (t[1:] + t[:-1])
+        at = [np.concatenate([s0[r] + grid * (s1[r] - s0[r]), mid[(mid > s0[r]) & (mid < s1[r])]]) for r in rows]
+        cuts = np.cumsum([0, *(len(a) for a in at)])[:-1]
+        at_all = np.concatenate(at)
         for nu in range(3):
-            out[nu][j] = np.abs(spl(at, nu + 1)).max(axis=0) * CURVE_BOUND_MARGIN
+            out[nu, rows] = np.maximum.reduceat(np.abs(spl(at_all, nu + 1)), cuts, axis=0) * CURVE_BOUND_MARGIN
     return out[0], out[1], out[2]
 
 
