@@ -397,6 +397,8 @@ def fit_axes(s: np.ndarray, values: np.ndarray, tolerance: float) -> BSpline | N
         free = design[:, 1:-1]
         rhs = values - design[:, [0]] @ values[[0]] - design[:, [m - 1]] @ values[[-1]]
         c[1:-1] = np.asarray(spsolve((free.T @ free).tocsc(), free.T @ rhs)).reshape(m - 2, -1)
+        still = np.all(values == values[0], axis=0)
+        c[:, still] = values[0, still]  # an axis the run does not move: all its coefficients at its value
         spl = BSpline(knots, c, 3)
         if np.max(np.abs(spl(s_eval) - polyline)) <= FIT_SHARE * tolerance:
             return spl

@@ -483,8 +483,9 @@ def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.nd
                 pure[k] = True
                 length[k] = blk.extra_length
     for k, (spl, s0) in fits.items():
-        start[k] = spl(s0)
-        delta[k] = spl(s0 + length[k]) - start[k]
+        still = np.all(spl.c == spl.c[0], axis=0)  # an axis the run keeps still stays exact
+        start[k] = np.where(still, spl.c[0], spl(s0))
+        delta[k] = np.where(still, 0.0, spl(s0 + length[k]) - start[k])
     return _Extra(start=start, delta=delta, length=length, pure=pure, fits=fits)
 
 
@@ -575,7 +576,8 @@ def _fit_derivatives(fits: dict, idx: np.ndarray, length: np.ndarray) -> tuple[n
         cuts = np.cumsum([0, *(len(a) for a in at)])[:-1]
         at_all = np.concatenate(at)
         for nu in range(3):
-            out[nu, rows] = np.maximum.reduceat(np.abs(spl(at_all, nu + 1)), cuts, axis=0) * CURVE_BOUND_MARGIN
+            d = np.where(np.any(spl.c != spl.c[0], axis=0), np.abs(spl(at_all, nu + 1)), 0.0)  # still: exactly 0
+            out[nu, rows] = np.maximum.reduceat(d, cuts, axis=0) * CURVE_BOUND_MARGIN
     return out[0], out[1], out[2]
 
 
@@ -587,7 +589,9 @@ def _fit_ends(g: _Geom, nu: int) -> tuple[np.ndarray, np.ndarray]:
         rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0) if nu == 1 else np.zeros_like(r.delta)
     at_start, at_end = rate, rate.copy()
     for k, (spl, s0) in r.fits.items():
-        at_start[k], at_end[k] = spl(s0, nu), spl(s0 + r.length[k], nu)
+        moving = np.any(spl.c != spl.c[0], axis=0)  # an axis the run keeps still: exactly 0
+        at_start[k] = np.where(moving, spl(s0, nu), 0.0)
+        at_end[k] = np.where(moving, spl(s0 + r.length[k], nu), 0.0)
     return at_start, at_end
 
 
@@ -1032,7 +1036,10 @@ def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.
             spl, k = splines[j], on[rows]
             S = s0[which[rows]] + s[k]
             d1, d2 = spl(S, 1), spl(S, 2)
-            rot[k], rot_v[k], rot_a[k] = spl(S), d1 * v[k, None], d1 * a[k, None] + d2 * (v[k] ** 2)[:, None]
+            cols = np.flatnonzero(np.any(spl.c != spl.c[0], axis=0))  # the others: start, delta 0 (_extra_geometry)
+            rot[np.ix_(k, cols)] = spl(S)[:, cols]
+            rot_v[np.ix_(k, cols)] = (d1 * v[k, None])[:, cols]
+            rot_a[np.ix_(k, cols)] = (d1 * a[k, None] + d2 * (v[k] ** 2)[:, None])[:, cols]
     return np.hstack([pos, rot]), np.hstack([vel, rot_v]), np.hstack([acc, rot_a])
 
 

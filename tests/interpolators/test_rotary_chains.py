@@ -18,6 +18,7 @@ import pytest
 
 from interpolators import interpolate, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
+from interpolators.dense import fit_axes
 from tests.interpolators.setpoint_checks import check_limits, distance_to_path
 from tests.interpolators.test_secondary_axes import LIMITS
 
@@ -170,3 +171,33 @@ def test_run_into_a_long_line_keeps_every_limit(profile):
     assert _axis_deviation(sp, prog, "a") <= 0.01
     assert _axis_deviation(sp, prog, "w") <= 0.01
     assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+def test_fit_axes_keeps_a_constant_rate_and_refuses_a_zigzag():
+    """The axis spline of a run: a constant rate stays that rate (an axis that does not move has all its
+    coefficients at its value and no rate: the samples keep it exactly); a zigzag of +-0.5 deg per point
+    fits no spline within 0.01 deg."""
+    s = np.linspace(0.0, 10.0, 41)
+    values = np.column_stack([3.0 * s, np.full(len(s), 7.0)])
+    spl = fit_axes(s, values, 0.01)
+    assert spl is not None
+    assert np.allclose(spl(s), values, rtol=0, atol=1e-9)
+    assert np.allclose(spl(s, 1)[:, 0], 3.0, rtol=0, atol=1e-9)
+    assert np.all(spl.c[:, 1] == 7.0)
+    assert np.allclose(spl(s, 1)[:, 1], 0.0, rtol=0, atol=1e-12)
+    assert np.array_equal(spl(s[[0, -1]]), values[[0, -1]])  # through the end values exactly
+    zigzag = np.column_stack([0.5 * (np.arange(41) % 2)])
+    assert fit_axes(s, zigzag, 0.01) is None
+
+
+def test_an_axis_the_run_keeps_still_stays_exact():
+    """B programmed at 12.5 deg on every chord of a run that moves A: every sample of the run holds 12.5
+    exactly."""
+    lines = ["G21 G90 G64 P0.01 G0 X10 Y0 Z0 A0 B12.5", "G1 F2000"]
+    lines += [f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} A{30 * t:.4f} B12.5"
+              for t in np.linspace(0, math.pi, 101)[1:]]
+    prog = _program(lines)
+    sp = interpolate(prog, profile="scurve")
+    assert "programmed_path" in sp.meta  # merged
+    assert np.all(sp.position[sp.block >= 1, sp.axes.index("b")] == 12.5)
+    check_limits(sp, prog, LIMITS, jerk=True)
