@@ -63,6 +63,7 @@ if TYPE_CHECKING:  # scipy is imported where a run is fitted: a program without 
 
 __all__ = [
     "DENSE_MAX_LENGTH",
+    "UNBLENDED_MAX_LENGTH",
     "CURVE_TURN_SHARE",
     "DENSE_MAX_CURVE_TURN",
     "DENSE_MAX_TURN",
@@ -84,6 +85,8 @@ __all__ = [
 
 #: Lines at most this long [mm] may be merged.
 DENSE_MAX_LENGTH: float = 1.0
+#: Lines at most this long [mm] may be merged in a chain whose corners are not blended (moving axes beyond X, Y, Z).
+UNBLENDED_MAX_LENGTH: float = 5.0
 #: Largest turn [rad] at a junction inside a run (sharper corners end the run and stay corners).
 DENSE_MAX_TURN: float = 0.2
 #: Largest turn [rad] at a junction inside a run on a tight curve, S-curve only (see ``merge_dense_runs``).
@@ -518,13 +521,13 @@ def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndar
     return inside
 
 
-def _is_dense(seg, feed: float, rapid: bool) -> bool:
-    return isinstance(seg, Line) and not rapid and 0 < seg.length <= DENSE_MAX_LENGTH and feed > 0
+def _is_dense(seg, feed: float, rapid: bool, max_length: float = DENSE_MAX_LENGTH) -> bool:
+    return isinstance(seg, Line) and not rapid and 0 < seg.length <= max_length and feed > 0
 
 
 def merge_dense_runs(
     segments: list, blocks: list[int], feeds: list[float], rapid: list[bool], tolerances: list[float], *,
-    curvature_continuous: bool = False,
+    curvature_continuous: bool = False, unblended: bool = False,
 ) -> tuple[list, list[int], dict[int, MergedRun]]:
     """Replace runs of dense short lines of one G64 chain by fitted smooth curves.
 
@@ -540,6 +543,10 @@ def merge_dense_runs(
         The S-curve (its corners would be blended by clothoid pairs): junctions on a tight curve may
         turn by more than :data:`DENSE_MAX_TURN` inside a run (:func:`curve_junctions`), and coarser
         chords merge (:data:`CURVE_DENSITY` instead of :data:`DENSITY`).
+    unblended : bool
+        The chain's corners are not blended (it moves axes beyond X, Y, Z): lines up to
+        :data:`UNBLENDED_MAX_LENGTH` merge whatever their density, the fit's tolerance check decides (a
+        junction left unmerged is passed at the one-sample rule, far slower than a blend).
 
     Returns
     -------
@@ -553,12 +560,13 @@ def merge_dense_runs(
         For each returned piece, the run it belongs to.
     """
     n = len(segments)
-    dense = [_is_dense(s, f, r) for s, f, r in zip(segments, feeds, rapid)]
+    longest = UNBLENDED_MAX_LENGTH if unblended else DENSE_MAX_LENGTH
+    dense = [_is_dense(s, f, r, longest) for s, f, r in zip(segments, feeds, rapid)]
     # turn [rad] at each junction between two lines
     d = np.array([s.direction if isinstance(s, Line) else np.full(3, np.nan) for s in segments])
     turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0)) if n > 1 else np.zeros(0)
     inside = curve_junctions(turns, curvature_continuous=curvature_continuous)
-    density = CURVE_DENSITY if curvature_continuous else DENSITY
+    density = math.inf if unblended else CURVE_DENSITY if curvature_continuous else DENSITY
     spans: list[tuple[int, int, MergedRun | None]] = []
     k = 0
     while k < n:

@@ -530,7 +530,7 @@ def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Ch
     for each curve piece (by ``id``), the spline those axes follow along its run and the run's arc length at the
     piece's start (:func:`interpolators.dense.fit_axes`, within the run's tolerance in each axis' unit). The
     chain unmerged (no runs, no fits) when it has no run or the axes of one of its runs fit no spline."""
-    merged, run_of = _merged(ch, jerk_limited)
+    merged, run_of = _merged(ch, jerk_limited, unblended=True)
     fit_of: dict = {}
     for run in {id(r): r for r in run_of.values()}.values():
         s, s0 = _vertex_arc_lengths(run)
@@ -595,13 +595,13 @@ def _fit_ends(g: _Geom, nu: int) -> tuple[np.ndarray, np.ndarray]:
     return at_start, at_end
 
 
-def _merged(ch: _Chain, jerk_limited: bool) -> tuple[_Chain, dict[int, MergedRun]]:
+def _merged(ch: _Chain, jerk_limited: bool, *, unblended: bool = False) -> tuple[_Chain, dict[int, MergedRun]]:
     """The chain with its runs of dense short lines merged into smooth curves
     (:func:`interpolators.dense.merge_dense_runs`; ``jerk_limited``: tight curves too), and the run of each curve
     piece (by ``id``)."""
     blocks, feeds, rapid, tolerances = ch.blocks, ch.feeds, ch.rapid, ch.tolerances
     segs, first, runs = merge_dense_runs(ch.segments, blocks, feeds, rapid, tolerances,
-                                         curvature_continuous=jerk_limited)
+                                         curvature_continuous=jerk_limited, unblended=unblended)
     if not runs:
         return ch, {}
     last = [*(f - 1 for f in first[1:]), len(blocks) - 1]

@@ -74,12 +74,12 @@ def test_g64_passes_gentle_junctions_at_speed_within_every_limit(profile, sample
 
 def test_scurve_junction_rule_includes_the_jerk_limit():
     """At 1 ms the S-curve's jerk share (``v |dr_i| <= share J_i Ts^2``) leaves the gentle A rate
-    steps too small a speed to be worth passing: they stay stops, as for X, Y, Z corners. Blocks of 2 mm
-    (longer than ``DENSE_MAX_LENGTH``: not merged); the 0.5 mm blocks of ``_wrap`` merge and pass
+    steps too small a speed to be worth passing: they stay stops, as for X, Y, Z corners. Blocks of 6 mm
+    (longer than ``UNBLENDED_MAX_LENGTH``: not merged); the 0.5 mm blocks of ``_wrap`` merge and pass
     without a stop (before the axes were merged with X, Y, Z this test asserted stops on those too)."""
-    prog = parse_program(_wrap("G64 P0.01", step=2.0), context=CTX)
+    prog = parse_program(_wrap("G64 P0.01", step=6.0), context=CTX)
     sp = interpolate(prog, profile="scurve", sample_time=1e-3)
-    assert _at_rest(sp, range(2, 200)) > 100
+    assert _at_rest(sp, range(2, 200)) > 60  # the rate steps per mm a third of the 2 mm blocks' (> 100 stops)
     check_limits(sp, prog, LIMITS, jerk=True)
     _on_segments(sp, prog)
     dense = parse_program(_wrap("G64 P0.01"), context=CTX)

@@ -201,3 +201,26 @@ def test_an_axis_the_run_keeps_still_stays_exact():
     assert "programmed_path" in sp.meta  # merged
     assert np.all(sp.position[sp.block >= 1, sp.axes.index("b")] == 12.5)
     check_limits(sp, prog, LIMITS, jerk=True)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_chords_longer_than_dense_code_merge_when_the_axes_move(profile):
+    """120 chords of 1.05 mm (longer than ``DENSE_MAX_LENGTH``) of the two-lap helix under G64 P0.02: without A
+    their corners are blended one by one; with A nothing blends them, so they merge into one curve whenever it
+    fits the tolerance (``UNBLENDED_MAX_LENGTH``) and run in about the time without A (before: 5.78 s trapezoid,
+    10.75 s S-curve against 3.93 s and 4.02 s)."""
+    def helix(with_a: bool) -> list[str]:
+        out = ["G21 G90 G64 P0.02 G0 X10 Y0 Z0 A0", "G1 F2000"]
+        for i in range(1, 121):
+            t = 4 * math.pi * i / 120
+            out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 120:.4f}"
+                       + (f" A{90 * i / 120:.4f}" if with_a else ""))
+        return out
+
+    plain, rotary = _program(helix(False)), _program(helix(True))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
+    assert sp.duration <= 1.01 * sp0.duration
+    assert _inner_stops(sp, rotary) == 0
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.02
+    assert _axis_deviation(sp, rotary, "a") <= 0.02
