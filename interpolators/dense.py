@@ -45,6 +45,10 @@ segment of the chain with its own speed bound from its largest curvature and cur
 (:func:`interpolators.kinematics.curve_limits`); the pieces join with continuous curvature.
 Programs without such runs (every G61 program, lines longer than :data:`DENSE_MAX_LENGTH`) are
 planned exactly as before.
+
+A chain that moves the axes beyond X, Y, Z (A-C, U-W) has no corner blends: its runs (``unblended``) take lines up
+to :data:`UNBLENDED_MAX_LENGTH` whatever their density, the fit's tolerance check deciding, and those axes follow
+one cubic spline along the merged curve's arc length (:func:`fit_axes`, within the tolerance in each axis' unit).
 """
 
 from __future__ import annotations
