@@ -45,6 +45,10 @@ segment of the chain with its own speed bound from its largest curvature and cur
 (:func:`interpolators.kinematics.curve_limits`); the pieces join with continuous curvature.
 Programs without such runs (every G61 program, lines longer than :data:`DENSE_MAX_LENGTH`) are
 planned exactly as before.
+
+A chain that moves the axes beyond X, Y, Z (A-C, U-W) has no corner blends: its runs (``unblended``) take lines up
+to :data:`UNBLENDED_MAX_LENGTH` whatever their density, the fit's tolerance check deciding, and those axes follow
+one cubic spline along the merged curve's arc length (:func:`fit_axes`, within the tolerance in each axis' unit).
 """
 
 from __future__ import annotations
@@ -63,6 +67,7 @@ if TYPE_CHECKING:  # scipy is imported where a run is fitted: a program without 
 
 __all__ = [
     "DENSE_MAX_LENGTH",
+    "UNBLENDED_MAX_LENGTH",
     "CURVE_TURN_SHARE",
     "DENSE_MAX_CURVE_TURN",
     "DENSE_MAX_TURN",
@@ -78,11 +83,14 @@ __all__ = [
     "cubic_basis",
     "curve_junctions",
     "fit_run",
+    "fit_axes",
     "merge_dense_runs",
 ]
 
 #: Lines at most this long [mm] may be merged.
 DENSE_MAX_LENGTH: float = 1.0
+#: Lines at most this long [mm] may be merged in a chain whose corners are not blended (moving axes beyond X, Y, Z).
+UNBLENDED_MAX_LENGTH: float = 5.0
 #: Largest turn [rad] at a junction inside a run (sharper corners end the run and stay corners).
 DENSE_MAX_TURN: float = 0.2
 #: Largest turn [rad] at a junction inside a run on a tight curve, S-curve only (see ``merge_dense_runs``).
@@ -344,6 +352,68 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
         q = max(_MIN_POINTS_PER_KNOT, q // 2)
 
 
+def fit_axes(s: np.ndarray, values: np.ndarray, tolerance: float) -> BSpline | None:
+    """Smooth cubic spline of the axes beyond X, Y, Z along a merged run, within ``FIT_SHARE * tolerance`` of
+    their programmed motion.
+
+    The programmed motion of these axes is piecewise linear in the path: on each chord they move in
+    proportion to it (RS274/NGC 3, Sec. 2.1.2.5). Along the run's fitted curve (arc length ``s``, the
+    programmed points at ``s_k``) that is the polyline through ``(s_k, r_k)``; the spline replaces it as the
+    curve replaces the chords: least squares with interior knots every ``q`` points (as :func:`fit_run`),
+    through the first and last values exactly, accepted when it lies within the tolerance of the polyline
+    at :data:`CHECK_POINTS` points per chord on every axis, else with the knot spacing halved. The tolerance
+    is the path tolerance ``P`` in each axis' own unit (deg on A, B, C; mm on U, V, W): our reading of
+    LinuxCNC, whose trajectory planner passes the junctions of segments moving A-C or U-W with parabolic
+    blends of all axes under the one G64 P tolerance (``src/emc/tp/tp.c``, ``tcRotaryMotionCheck`` turns
+    the XYZ arc blends off for them); HEIDENHAIN's cycle 32 TOLERANCE has a rotary tolerance TA of its own,
+    which this reader does not take.
+
+    Parameters
+    ----------
+    s : ndarray, shape (n + 1,)
+        Arc length of each programmed point on the fitted curve [mm], increasing, ``s[0] = 0``.
+    values : ndarray, shape (n + 1, m)
+        The axes' programmed values at those points [deg or mm].
+    tolerance : float
+        [deg or mm].
+
+    Returns
+    -------
+    BSpline or None
+        ``r(s)``, values of shape (m,); None when no knot spacing fits.
+    """
+    from scipy.interpolate import BSpline
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.linalg import spsolve
+
+    n = len(s) - 1
+    f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
+    s_eval = np.append((s[:-1, None] + np.diff(s)[:, None] * f).ravel(), s[-1])
+    polyline = np.column_stack([np.interp(s_eval, s, col) for col in values.T])
+    q = max(_MIN_POINTS_PER_KNOT, int(MAX_KNOT_SPACING / (s[-1] / n)))
+    while True:
+        n_int = max(1, round(n / q))
+        inner = s[np.round(np.linspace(0, n, n_int + 1)[1:-1]).astype(np.int64)]
+        knots = np.concatenate([[s[0]] * 4, inner, [s[-1]] * 4])
+        m = len(knots) - 4
+        first, basis = cubic_basis(s, knots)
+        design = csr_matrix((basis.ravel(), (np.repeat(np.arange(n + 1), 4), (first[:, None] + np.arange(4)).ravel())),
+                            shape=(n + 1, m))
+        c = np.empty((m, values.shape[1]))
+        c[0], c[-1] = values[0], values[-1]  # clamped: the spline starts and ends on the programmed values
+        free = design[:, 1:-1]
+        rhs = values - design[:, [0]] @ values[[0]] - design[:, [m - 1]] @ values[[-1]]
+        c[1:-1] = np.asarray(spsolve((free.T @ free).tocsc(), free.T @ rhs)).reshape(m - 2, -1)
+        still = np.all(values == values[0], axis=0)
+        c[:, still] = values[0, still]  # an axis the run does not move: all its coefficients at its value
+        spl = BSpline(knots, c, 3)
+        if np.max(np.abs(spl(s_eval) - polyline)) <= FIT_SHARE * tolerance:
+            return spl
+        if q <= _MIN_POINTS_PER_KNOT:
+            return None
+        q = max(_MIN_POINTS_PER_KNOT, q // 2)
+
+
 def _turn(a: np.ndarray, b: np.ndarray) -> float:
     return math.acos(float(np.clip(a @ b, -1.0, 1.0)))
 
@@ -455,13 +525,13 @@ def curve_junctions(turns: np.ndarray, *, curvature_continuous: bool) -> np.ndar
     return inside
 
 
-def _is_dense(seg, feed: float, rapid: bool) -> bool:
-    return isinstance(seg, Line) and not rapid and 0 < seg.length <= DENSE_MAX_LENGTH and feed > 0
+def _is_dense(seg, feed: float, rapid: bool, max_length: float = DENSE_MAX_LENGTH) -> bool:
+    return isinstance(seg, Line) and not rapid and 0 < seg.length <= max_length and feed > 0
 
 
 def merge_dense_runs(
     segments: list, blocks: list[int], feeds: list[float], rapid: list[bool], tolerances: list[float], *,
-    curvature_continuous: bool = False,
+    curvature_continuous: bool = False, unblended: bool = False,
 ) -> tuple[list, list[int], dict[int, MergedRun]]:
     """Replace runs of dense short lines of one G64 chain by fitted smooth curves.
 
@@ -477,6 +547,10 @@ def merge_dense_runs(
         The S-curve (its corners would be blended by clothoid pairs): junctions on a tight curve may
         turn by more than :data:`DENSE_MAX_TURN` inside a run (:func:`curve_junctions`), and coarser
         chords merge (:data:`CURVE_DENSITY` instead of :data:`DENSITY`).
+    unblended : bool
+        The chain's corners are not blended (it moves axes beyond X, Y, Z): lines up to
+        :data:`UNBLENDED_MAX_LENGTH` merge whatever their density, the fit's tolerance check decides (a
+        junction left unmerged is passed at the one-sample rule, far slower than a blend).
 
     Returns
     -------
@@ -490,12 +564,13 @@ def merge_dense_runs(
         For each returned piece, the run it belongs to.
     """
     n = len(segments)
-    dense = [_is_dense(s, f, r) for s, f, r in zip(segments, feeds, rapid)]
+    longest = UNBLENDED_MAX_LENGTH if unblended else DENSE_MAX_LENGTH
+    dense = [_is_dense(s, f, r, longest) for s, f, r in zip(segments, feeds, rapid)]
     # turn [rad] at each junction between two lines
     d = np.array([s.direction if isinstance(s, Line) else np.full(3, np.nan) for s in segments])
     turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0)) if n > 1 else np.zeros(0)
     inside = curve_junctions(turns, curvature_continuous=curvature_continuous)
-    density = CURVE_DENSITY if curvature_continuous else DENSITY
+    density = math.inf if unblended else CURVE_DENSITY if curvature_continuous else DENSITY
     spans: list[tuple[int, int, MergedRun | None]] = []
     k = 0
     while k < n:

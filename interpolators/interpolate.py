@@ -9,13 +9,14 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from interpolators.dense import MergedRun, merge_dense_runs
+from interpolators.dense import MergedRun, fit_axes, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
     AxisLimitArrays,
     curvature_step_speed_limit,
     curve_limits,
     curved_speed_bound,
+    extra_curve_bounds,
     extra_junction_speed_limit,
     extra_path_bounds,
     junction_speed_limit,
@@ -48,6 +49,9 @@ NEGLIGIBLE_SHARE: float = 1e-7
 #: Largest distance [mm] of the polyline that stands for a smooth curve (a merged run of dense
 #: lines) in ``Setpoints.path`` from the curve: points ``sqrt(8 CURVE_PATH_ERROR / k_max)`` apart.
 CURVE_PATH_ERROR: float = 1e-4
+
+#: Points per merged-run piece at which the axes beyond X, Y, Z are placed along it and their derivatives bounded.
+_ARC_TABLE: int = 32
 
 #: Default bound on the number of samples ``interpolate`` produces (guards memory).
 MAX_SAMPLES: int = 50_000_000
@@ -161,8 +165,9 @@ def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int
 
     A feed move with X, Y or Z moving joins the chain of the previous such block when that one
     did not end in exact stop (G64) and was no rapid: look-ahead passes their junction at speed, bounded for
-    every axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains are neither
-    blended nor merged, the axes follow the programmed segments. A rapid joins only the rapid before it from
+    every axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains' corners are not
+    blended, the axes follow the programmed segments, but their runs of dense short lines are merged, X, Y, Z
+    and the other axes together (:func:`_merged_extra`). A rapid joins only the rapid before it from
     the same source line that did not end in exact stop: the chords of one rapid under tool centre point
     control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord.
     Any other such block (a rapid, a move with X, Y, Z still: a hold at its XYZ position whose profile runs
@@ -249,9 +254,9 @@ def interpolate(
       of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under
       G64 consecutive feed moves of X/Y/Z with these axes are passed at speed where every axis'
       velocity step fits in one sample (:func:`interpolators.kinematics.extra_junction_speed_limit`,
-      see ``_extra_block``); the chords of one rapid under tool centre point control likewise; other blocks
-      moving them start and end at rest. Setpoint columns
-      ``a, b, c`` are in deg, ``u, v, w`` in mm.
+      see ``_extra_block``; dense runs merged with the other axes, :func:`interpolators.dense.fit_axes`); the
+      chords of one rapid under tool centre point control likewise; other blocks moving them start and end
+      at rest. Setpoint columns ``a, b, c`` are in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
@@ -303,6 +308,7 @@ class _Extra:
     delta: np.ndarray  # (n_seg, 6) [deg, mm]
     length: np.ndarray  # (n_seg,) path length of the profile [mm, or deg on a pure rotary move]
     pure: np.ndarray  # (n_seg,) bool: X, Y, Z still, the profile runs along Block.extra_length
+    fits: dict = dataclasses.field(default_factory=dict)  # curve piece -> (axes spline r(S), S at its start)
 
 
 @dataclasses.dataclass
@@ -317,6 +323,7 @@ class _Geom:
     packed: PackedSegments
     blended: bool
     runs: dict[int, MergedRun]  # segment index -> the dense run its SplineCurve piece belongs to
+    fits: dict  # segment index -> (spline of the axes beyond X, Y, Z along its run, arc length at its start)
     extra: _Extra | None = None  # None: the program moves no axis beyond X, Y, Z
 
     @property
@@ -364,8 +371,12 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     seg_rapid: list[bool] = []
     blended = False
     runs: dict[int, MergedRun] = {}
+    fits: dict = {}
     for ch in chains:
-        if ch.hi - ch.lo == 1 or ch.extra:  # no corner to blend: the chain's own items
+        fit_of: dict = {}
+        if ch.extra and ch.hi - ch.lo > 1:
+            merged, run_of, fit_of = _merged_extra(ch, jerk_limited, program)
+        if not fit_of and (ch.hi - ch.lo == 1 or ch.extra):  # no corner to blend: the chain's own items
             it, lo, hi = ch.items, ch.lo, ch.hi
             all_segs += it.segments[lo:hi]
             seg_block += it.blocks[lo:hi]
@@ -373,15 +384,22 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             seg_rapid += it.rapid[lo:hi]
             chain_len.append(hi - lo)
             continue
-        ch, run_of = _merged(ch, jerk_limited)
-        segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
-                                   worth=_blend_worth(ch, lim, jerk_limited, Ts), curvature_continuous=jerk_limited,
-                                   kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))))
+        if fit_of:  # merged runs of a chain moving the axes beyond X, Y, Z: no corner blends
+            ch = merged
+            segs, blks = ch.segments, ch.blocks
+        else:
+            ch, run_of = _merged(ch, jerk_limited)
+            segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
+                                       worth=_blend_worth(ch, lim, jerk_limited, Ts),
+                                       curvature_continuous=jerk_limited,
+                                       kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))))
         blended = blended or len(segs) != len(ch.segments) or bool(run_of)
         feed_of = dict(zip(ch.blocks, ch.feeds))
         rapid_of = dict(zip(ch.blocks, ch.rapid))
         run_of_spline = {id(r.pieces[0].spline): r for r in run_of.values()}
         for j, (s, b) in enumerate(zip(segs, blks)):
+            if id(s) in fit_of:
+                fits[len(all_segs)] = fit_of[id(s)]
             if id(s) in run_of:
                 runs[len(all_segs)] = run_of[id(s)]
             elif isinstance(s, SplineCurve):  # a piece cut by a kink blend (of its run), or the blend
@@ -407,10 +425,10 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     seg_chain = np.repeat(np.arange(len(chains), dtype=np.int64), chain_len)
     extra = None
     if any(b.extra_start is not None for b in program.blocks):
-        extra = _extra_geometry(chains, seg_block, seg_chain, program, packed)
+        extra = _extra_geometry(chains, seg_block, seg_chain, program, packed, fits)
     return _Geom(segments=all_segs, block=seg_block, chain=seg_chain,
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
-                 packed=packed, blended=blended, runs=runs, extra=extra)
+                 packed=packed, blended=blended, runs=runs, fits=fits, extra=extra)
 
 
 def _chords_beside(segment, block: int, run: MergedRun | None, *, at_start: bool) -> tuple[np.ndarray, np.ndarray]:
@@ -447,9 +465,9 @@ def _blend_run(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, n
 
 
 def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.ndarray, program: Program,
-                     packed: PackedSegments) -> _Extra:
+                     packed: PackedSegments, fits: dict) -> _Extra:
     """Start and motion of the axes beyond X, Y, Z on each segment; only an extra chain's segments
-    (one per block) move them."""
+    (one per block, or the pieces of a merged run, ``fits``: their values at the ends) move them."""
     n = len(seg_block)
     start = np.zeros((n, len(EXTRA_NAMES)))
     delta = np.zeros((n, len(EXTRA_NAMES)))
@@ -464,7 +482,11 @@ def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.nd
             if packed.kind[k] == HOLD:
                 pure[k] = True
                 length[k] = blk.extra_length
-    return _Extra(start=start, delta=delta, length=length, pure=pure)
+    for k, (spl, s0) in fits.items():
+        still = np.all(spl.c == spl.c[0], axis=0)  # an axis the run keeps still stays exact
+        start[k] = np.where(still, spl.c[0], spl(s0))
+        delta[k] = np.where(still, 0.0, spl(s0 + length[k]) - start[k])
+    return _Extra(start=start, delta=delta, length=length, pure=pure, fits=fits)
 
 
 def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,
@@ -475,10 +497,18 @@ def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_
     ``Block.extra_length`` [mm/s or deg/s] (RS274/NGC 3, Sec. 2.1.2.5) or, for a rapid, the axes'
     rapid rates."""
     r = g.extra
-    idx = np.flatnonzero(np.any(r.delta != 0, axis=1))
+    fitted = np.array(sorted(r.fits), dtype=np.int64)
+    moving = np.any(r.delta != 0, axis=1)
+    moving[fitted] = False
+    idx = np.flatnonzero(moving)
+    v_max, a_max, j_max = v_max.copy(), a_max.copy(), j_max.copy()
+    if len(fitted):
+        share = np.where(c.reserved_segment[fitted], 1.0 - JUNCTION_SHARE, 1.0)
+        v, a, j = extra_curve_bounds(*_fit_derivatives(r.fits, fitted, r.length), v_max[fitted], limits,
+                                     share=share, jerk_limited=jerk_limited)
+        v_max[fitted], a_max[fitted], j_max[fitted] = v, np.minimum(a_max[fitted], a), np.minimum(j_max[fitted], j)
     if not len(idx):
         return v_max, a_max, j_max
-    v_max, a_max, j_max = v_max.copy(), a_max.copy(), j_max.copy()
     ratio = np.abs(r.delta[idx]) / r.length[idx, None]
     v, a, j = extra_path_bounds(ratio, g.rapid[idx], limits)
     share = np.where(c.reserved_segment[idx], 1.0 - JUNCTION_SHARE, 1.0)  # the bounds scale with A and J
@@ -495,13 +525,83 @@ def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_
     return v_max, a_max, j_max
 
 
-def _merged(ch: _Chain, jerk_limited: bool) -> tuple[_Chain, dict[int, MergedRun]]:
+def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Chain, dict[int, MergedRun], dict]:
+    """A chain moving the axes beyond X, Y, Z with its runs of dense short lines merged (:func:`_merged`) and,
+    for each curve piece (by ``id``), the spline those axes follow along its run and the run's arc length at the
+    piece's start (:func:`interpolators.dense.fit_axes`, within the run's tolerance in each axis' unit). The
+    chain unmerged (no runs, no fits) when it has no run or the axes of one of its runs fit no spline."""
+    merged, run_of = _merged(ch, jerk_limited, unblended=True)
+    fit_of: dict = {}
+    for run in {id(r): r for r in run_of.values()}.values():
+        s, s0 = _vertex_arc_lengths(run)
+        blocks = [program.blocks[b] for b in run.blocks.tolist()]
+        values = np.array([blocks[0].extra_start, *(b.extra_target for b in blocks)], dtype=float)
+        tol = DEFAULT_TOLERANCE if blocks[0].tolerance is None else blocks[0].tolerance
+        spl = fit_axes(s, values, tol)
+        if spl is None:
+            return ch, {}, {}
+        fit_of.update((id(p), (spl, float(x))) for p, x in zip(run.pieces, s0))
+    return merged, run_of, fit_of
+
+
+def _vertex_arc_lengths(run: MergedRun) -> tuple[np.ndarray, np.ndarray]:
+    """Arc length along the run's curve of each of its programmed points (from their curve parameters
+    ``vertex_u``, the pieces' arc-length tables inverted at :data:`_ARC_TABLE` points per piece) and at the start
+    of each piece."""
+    pieces = run.pieces
+    lengths = np.array([p.length for p in pieces])
+    s0 = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
+    piece = np.repeat(np.arange(len(pieces)), _ARC_TABLE + 1)
+    s_local = (np.linspace(0.0, 1.0, _ARC_TABLE + 1)[None, :] * lengths[:, None]).ravel()
+    out = np.interp(run.vertex_u, SplineCurve.parameters(pieces, piece, s_local), s0[piece] + s_local)
+    out[0], out[-1] = 0.0, s0[-1] + lengths[-1]  # the ends exactly where the samples reach them
+    return out, s0
+
+
+def _fit_derivatives(fits: dict, idx: np.ndarray, length: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Largest ``|r_1|``, ``|r_2|``, ``|r_3|`` (the path derivatives, shape (len(idx), 6)) of the axis splines
+    ``fits`` on the curve pieces ``idx`` (of lengths ``length``): at :data:`_ARC_TABLE` points of each piece and
+    at the middles of the spline's knot intervals in it (``r_3`` is constant between knots), by
+    CURVE_BOUND_MARGIN; each spline evaluated once for all its pieces."""
+    out = np.zeros((3, len(idx), len(EXTRA_NAMES)))
+    splines = [fits[k][0] for k in idx.tolist()]
+    s0 = np.array([fits[k][1] for k in idx.tolist()])
+    s1 = s0 + length[idx]
+    grid = np.linspace(0.0, 1.0, _ARC_TABLE + 1)
+    for j, rows in rows_by_owner(splines, np.arange(len(idx))):
+        spl = splines[j]
+        t = np.unique(spl.t)
+        mid = 0.5 * (t[1:] + t[:-1])
+        at = [np.concatenate([s0[r] + grid * (s1[r] - s0[r]), mid[(mid > s0[r]) & (mid < s1[r])]]) for r in rows]
+        cuts = np.cumsum([0, *(len(a) for a in at)])[:-1]
+        at_all = np.concatenate(at)
+        for nu in range(3):
+            d = np.where(np.any(spl.c != spl.c[0], axis=0), np.abs(spl(at_all, nu + 1)), 0.0)  # still: exactly 0
+            out[nu, rows] = np.maximum.reduceat(d, cuts, axis=0) * CURVE_BOUND_MARGIN
+    return out[0], out[1], out[2]
+
+
+def _fit_ends(g: _Geom, nu: int) -> tuple[np.ndarray, np.ndarray]:
+    """The ``nu``-th derivative along the path of the axes beyond X, Y, Z at the start and the end of each
+    segment: on a line ``delta / length`` (``nu = 1``) or 0, on a merged run's piece its spline's."""
+    r = g.extra
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0) if nu == 1 else np.zeros_like(r.delta)
+    at_start, at_end = rate, rate.copy()
+    for k, (spl, s0) in r.fits.items():
+        moving = np.any(spl.c != spl.c[0], axis=0)  # an axis the run keeps still: exactly 0
+        at_start[k] = np.where(moving, spl(s0, nu), 0.0)
+        at_end[k] = np.where(moving, spl(s0 + r.length[k], nu), 0.0)
+    return at_start, at_end
+
+
+def _merged(ch: _Chain, jerk_limited: bool, *, unblended: bool = False) -> tuple[_Chain, dict[int, MergedRun]]:
     """The chain with its runs of dense short lines merged into smooth curves
     (:func:`interpolators.dense.merge_dense_runs`; ``jerk_limited``: tight curves too), and the run of each curve
     piece (by ``id``)."""
     blocks, feeds, rapid, tolerances = ch.blocks, ch.feeds, ch.rapid, ch.tolerances
     segs, first, runs = merge_dense_runs(ch.segments, blocks, feeds, rapid, tolerances,
-                                         curvature_continuous=jerk_limited)
+                                         curvature_continuous=jerk_limited, unblended=unblended)
     if not runs:
         return ch, {}
     last = [*(f - 1 for f in first[1:]), len(blocks) - 1]
@@ -668,17 +768,26 @@ def _extra_junctions(g: _Geom, inner: np.ndarray, jl: np.ndarray, jl_tiny: np.nd
     XYZ tangent rule per axis); ``v_full`` (in place) capped by their limits on the segments that
     move them."""
     r = g.extra
-    moving = np.flatnonzero(np.any(r.delta != 0, axis=1))
+    fitted = np.array(sorted(r.fits), dtype=np.int64)
+    is_moving = np.any(r.delta != 0, axis=1)
+    is_moving[fitted] = False
+    moving = np.flatnonzero(is_moving)
     if len(moving):
         ratio = np.abs(r.delta[moving]) / r.length[moving, None]
         v_full[moving] = np.minimum(v_full[moving], extra_path_bounds(ratio, g.rapid[moving], limits)[0])
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0)
-    step = rate[inner + 1] - rate[inner]
+    if len(fitted):
+        v_full[fitted] = extra_curve_bounds(*_fit_derivatives(r.fits, fitted, r.length), v_full[fitted], limits,
+                                            share=np.ones(len(fitted)), jerk_limited=jerk_limited)[0]
+    rate_in, rate_out = _fit_ends(g, 1)
+    step = rate_in[inner + 1] - rate_out[inner]
+    second = None
+    if r.fits:
+        second_in, second_out = _fit_ends(g, 2)
+        second = second_in[inner + 1] - second_out[inner]
     jl = np.minimum(jl, extra_junction_speed_limit(step, limits, sample_time=Ts, share=JUNCTION_SHARE,
-                                                   jerk_limited=jerk_limited))
+                                                   jerk_limited=jerk_limited, second_jump=second))
     jl_tiny = np.minimum(jl_tiny, extra_junction_speed_limit(step, limits, sample_time=Ts, share=NEGLIGIBLE_SHARE,
-                                                             jerk_limited=jerk_limited))
+                                                             jerk_limited=jerk_limited, second_jump=second))
     return jl, jl_tiny
 
 
@@ -916,7 +1025,22 @@ def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.
     with np.errstate(divide="ignore", invalid="ignore"):
         per_s = np.where(L[:, None] > 0, r.delta[seg] / L[:, None], 0.0)  # [deg per path unit]
     rot = r.start[seg] + per_s * s[:, None]
-    return (np.hstack([pos, rot]), np.hstack([vel, per_s * v[:, None]]), np.hstack([acc, per_s * a[:, None]]))
+    rot_v, rot_a = per_s * v[:, None], per_s * a[:, None]
+    if r.fits:  # on a merged run's piece: its spline r(S) at the run's arc length S
+        pieces = np.array(sorted(r.fits), dtype=np.int64)
+        on = np.flatnonzero(np.isin(seg, pieces))
+        which = np.searchsorted(pieces, seg[on])
+        splines = [r.fits[k][0] for k in pieces.tolist()]
+        s0 = np.array([r.fits[k][1] for k in pieces.tolist()])
+        for j, rows in rows_by_owner(splines, which):
+            spl, k = splines[j], on[rows]
+            S = s0[which[rows]] + s[k]
+            d1, d2 = spl(S, 1), spl(S, 2)
+            cols = np.flatnonzero(np.any(spl.c != spl.c[0], axis=0))  # the others: start, delta 0 (_extra_geometry)
+            rot[np.ix_(k, cols)] = spl(S)[:, cols]
+            rot_v[np.ix_(k, cols)] = (d1 * v[k, None])[:, cols]
+            rot_a[np.ix_(k, cols)] = (d1 * a[k, None] + d2 * (v[k] ** 2)[:, None])[:, cols]
+    return np.hstack([pos, rot]), np.hstack([vel, rot_v]), np.hstack([acc, rot_a])
 
 
 def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float):

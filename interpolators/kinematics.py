@@ -58,6 +58,7 @@ __all__ = [
     "line_limits",
     "curvature_step_speed_limit",
     "extra_junction_speed_limit",
+    "extra_curve_bounds",
     "curved_speed_bound",
     "curve_limits",
     "CENTRIPETAL_SHARE",
@@ -459,6 +460,7 @@ def extra_junction_speed_limit(
     sample_time: float,
     share: float,
     jerk_limited: bool,
+    second_jump: np.ndarray | None = None,
 ) -> np.ndarray:
     """Largest path speed at junctions where the axes beyond X, Y, Z change their rate.
 
@@ -475,6 +477,11 @@ def extra_junction_speed_limit(
         Change of ``dr_i / ds`` (motion per unit of path [deg/mm, mm/mm]) across each junction.
     limits : mapping of str to AxisLimits
         Limits by axis name; an axis without limits adds no bound.
+    second_jump : ndarray, shape (m, 6), optional
+        Change of ``d^2 r_i / ds^2`` across each junction (beside the axis curve of a merged run,
+        :func:`extra_curve_bounds`): for the S-curve its acceleration step ``v^2 |d2r_i|``, passed
+        within one sample, uses at most ``share`` of the jerk limit (``v^2 |d2r_i| <= share J_i Ts``,
+        the curvature-step term of :func:`junction_speed_limit`).
 
     Returns
     -------
@@ -483,8 +490,57 @@ def extra_junction_speed_limit(
     """
     acc = np.array([limits[a].acceleration if a in limits else np.inf for a in EXTRA_NAMES])
     jerk = np.array([limits[a].jerk if a in limits else np.inf for a in EXTRA_NAMES])
-    return _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share,
-                             jerk_limited=jerk_limited)
+    v = _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share,
+                          jerk_limited=jerk_limited)
+    if jerk_limited and second_jump is not None:
+        v = np.minimum(v, np.sqrt(_min_ratio(share * jerk * sample_time, np.abs(second_jump))))
+    return v
+
+
+def extra_curve_bounds(
+    d1: np.ndarray, d2: np.ndarray, d3: np.ndarray, v_cap: np.ndarray, limits: Mapping[str, AxisLimits], *,
+    share: np.ndarray, jerk_limited: bool,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Path bounds that keep the axes beyond X, Y, Z within their limits where they follow a smooth curve
+    ``r(s)`` of the path (a merged run, :func:`interpolators.dense.fit_axes`).
+
+    Axis ``i`` has velocity ``r_1 v``, acceleration ``r_1 a + r_2 v^2`` and jerk ``r_1 j + 3 r_2 v a + r_3 v^3``
+    (``r_k``: the ``k``-th derivative along the path ``s``), as an axis on a curved path (module docstring)
+    with ``r_2`` for the curvature term. The shares are those of arcs: ``r_2 v^2 <= CENTRIPETAL_SHARE A``,
+    S-curve ``r_3 v^3 <= JERK_SPEED_SHARE J`` and ``3 r_2 v a <= JERK_ACCEL_SHARE J``; the path acceleration
+    and jerk take what is left at the speed bound.
+
+    Parameters
+    ----------
+    d1, d2, d3 : ndarray, shape (n, 6)
+        Largest ``|r_1|``, ``|r_2|``, ``|r_3|`` of each segment for the axes a, b, c, u, v, w.
+    v_cap : ndarray, shape (n,)
+        The segments' speed bounds from the other axes [mm/s].
+    limits : mapping of str to AxisLimits
+    share : ndarray, shape (n,)
+        Share of the acceleration and jerk limits the segment may use (the rest kept for junctions).
+
+    Returns
+    -------
+    v_max, a_max, j_max : ndarray, shape (n,)
+    """
+    lim = [limits.get(a) for a in EXTRA_NAMES]
+    vel = np.array([np.inf if x is None else x.velocity for x in lim])
+    A = np.array([np.inf if x is None else x.acceleration for x in lim])[None, :] * share[:, None]
+    J = np.array([np.inf if x is None else x.jerk for x in lim])[None, :] * share[:, None]
+    moves1, moves2, moves3 = d1 > 1e-15, d2 > 1e-15, d3 > 1e-15
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v_i = np.minimum(np.where(moves1, vel / d1, np.inf),
+                         np.sqrt(np.where(moves2, CENTRIPETAL_SHARE * A / d2, np.inf)))
+        if jerk_limited:
+            v_i = np.minimum(v_i, np.cbrt(np.where(moves3, JERK_SPEED_SHARE * J / d3, np.inf)))
+        v = np.minimum(v_cap, v_i.min(axis=1))[:, None]
+        a_i = np.where(moves1, (A - d2 * v**2) / d1, np.inf)
+        if jerk_limited:
+            a_i = np.minimum(a_i, np.where(moves2, JERK_ACCEL_SHARE * J / (3.0 * d2 * v), np.inf))
+        a = a_i.min(axis=1)[:, None]
+        j_i = np.where(moves1, (J - 3.0 * d2 * v * a - d3 * v**3) / d1, np.inf)
+    return v[:, 0], a[:, 0], j_i.min(axis=1) if jerk_limited else np.full(len(v), np.inf)
 
 
 

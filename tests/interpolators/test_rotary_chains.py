@@ -1,0 +1,226 @@
+"""Dense CAM code moving rotary (A B C) or secondary linear (U V W) axes beside X, Y, Z under G64.
+
+A run of dense short lines is merged into one smooth curve in X, Y, Z (:mod:`interpolators.dense`) and the
+other axes into one spline along its arc length (:func:`interpolators.dense.fit_axes`), each within the path
+tolerance ``P`` (deg on A-C, mm on U-W); the path bounds keep every axis within its limits
+(:func:`interpolators.kinematics.extra_curve_bounds`). So such a run takes the time its axis limits require:
+the time of the same run without those axes where they are slow, else about the time their velocity limit
+asks for. Checked by finite differences of the samples (every limit), the distance of X, Y, Z from the
+programmed chords and of each other axis from its programmed value at the same point of the chord.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from interpolators import interpolate, parse_program
+from interpolators.context import INTERPOLATION_CONTEXT
+from interpolators.dense import fit_axes
+from tests.interpolators.setpoint_checks import check_limits, distance_to_path
+from tests.interpolators.test_secondary_axes import LIMITS
+
+CTX = INTERPOLATION_CONTEXT
+PROFILES = ("trapezoid", "scurve")
+
+
+def _program(lines: list[str]) -> object:
+    return parse_program("\n".join([*lines, "M2"]) + "\n", context=CTX)
+
+
+def _helix(with_a: bool) -> list[str]:
+    """400 chords of a two-lap helix of radius 10 mm at F2000 (the A word rising 0 -> 90 deg)."""
+    out = ["G21 G90 G64 P0.01 G0 X10 Y0 Z0 A0", "G1 F2000"]
+    for i in range(1, 401):
+        t = 4 * math.pi * i / 400
+        out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 400:.4f}"
+                   + (f" A{90 * i / 400:.4f}" if with_a else ""))
+    return out
+
+
+def _swarf(with_rotary: bool) -> list[str]:
+    """500 chords of an ellipse rising and falling in Z, with A tilting and C turning once."""
+    out = ["G21 G90 G64 P0.01 G0 X30 Y0 Z0 A0 C0", "G1 F3000"]
+    for i in range(1, 501):
+        t = 2 * math.pi * i / 500
+        out.append(f"X{30 * math.cos(t):.4f} Y{20 * math.sin(t):.4f} Z{2 * math.sin(2 * t):.4f}"
+                   + (f" A{15 * math.sin(t):.4f} C{math.degrees(t):.4f}" if with_rotary else ""))
+    return out
+
+
+def _reversal(with_a: bool) -> list[str]:
+    """400 chords of 0.2 mm along a gentle S in X Y, A swinging +-30 deg (its direction reverses twice)."""
+    out = ["G21 G90 G64 P0.01 G0 X0 Y0 A0", "G1 F2400"]
+    for i in range(1, 401):
+        x = 0.2 * i
+        out.append(f"X{x:.4f} Y{3 * math.sin(x / 8):.4f}" + (f" A{30 * math.sin(x / 10):.4f}" if with_a else ""))
+    return out
+
+
+def _axis_deviation(sp, prog, axis: str) -> float:
+    """Worst distance of ``axis`` (a-c [deg], u-w [mm]) from its programmed value at the point of the chord
+    nearest the sample's X, Y, Z (of its block or the blocks beside it)."""
+    j = "abcuvw".index(axis)
+    xyz = np.zeros((len(sp), 3))
+    for i, ax in enumerate(sp.axes):
+        if ax in "xyz":
+            xyz[:, "xyz".index(ax)] = sp.position[:, i]
+    col = sp.position[:, sp.axes.index(axis)]
+    best = np.full(len(sp), np.inf)
+    for off in (-1, 0, 1):
+        k = np.clip(sp.block + off, 0, len(prog.blocks) - 1)
+        s = np.array([prog.blocks[i].start for i in k])
+        d = np.array([prog.blocks[i].target for i in k]) - s
+        r0 = np.array([prog.blocks[i].extra_start[j] for i in k])
+        r1 = np.array([prog.blocks[i].extra_target[j] for i in k])
+        n2 = np.einsum("ij,ij->i", d, d)
+        share = np.clip(np.einsum("ij,ij->i", xyz - s, d) / np.where(n2 > 0, n2, 1.0), 0.0, 1.0)
+        best = np.minimum(best, np.abs(col - (r0 + share * (r1 - r0))))
+    return float(best.max())
+
+
+def _end(prog, axes: tuple[str, ...]) -> list[float]:
+    """The programmed end point of the last block, on ``axes``."""
+    last = prog.blocks[-1]
+    full = dict(zip("xyzabcuvw", [*last.target, *last.extra_target]))
+    return [full[a] for a in axes]
+
+
+def _inner_stops(sp, prog) -> int:
+    """Samples at rest (every axis) between the first and the last feed block."""
+    feed = [k for k, b in enumerate(prog.blocks) if b.kind == "line"]
+    still = np.all(np.abs(sp.velocity) < 1e-9, axis=1)
+    return int(np.sum(still & (sp.block > feed[0]) & (sp.block < feed[-1])))
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+@pytest.mark.parametrize("shape, axes", [(_helix, "a"), (_swarf, "ac"), (_reversal, "a")])
+def test_slow_rotary_motion_costs_no_time(shape, axes, profile):
+    """Where the rotary axes stay far from their limits (A at most 24 deg/s on the helix, A and C about
+    180 deg/s at most on the swarf and the reversal) the run takes about the time of the same run without
+    them: before the axes were merged with X, Y, Z the helix took 7.75 s (trapezoid) and 23.8 s (S-curve)
+    against 3.93 s and 4.01 s without A."""
+    plain, rotary = _program(shape(False)), _program(shape(True))
+    sp0 = interpolate(plain, profile=profile)
+    sp = interpolate(rotary, profile=profile)
+    assert sp.duration <= 1.06 * sp0.duration
+    assert _inner_stops(sp, rotary) == 0
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.01
+    for axis in axes:
+        assert _axis_deviation(sp, rotary, axis) <= 0.01, axis
+    assert np.allclose(sp.position[-1], _end(rotary, sp.axes), rtol=0, atol=1e-12)
+
+
+def _wrap() -> tuple[list[str], float]:
+    """A groove wrapped on a cylinder of radius 20 mm: 600 chords of 0.1 mm in X, A turning by
+    ``40 sin(x / 6) / 20`` rad (up to 19 deg per mm: the A velocity limit, 180 deg/s, binds); and the time its
+    velocity limits require, each chord at ``min(F, V_A / |dA/dx|)``."""
+    out = ["G21 G90 G64 P0.01 G0 X0 A0", "G1 F1500"]
+    a = [0.0]
+    for i in range(1, 601):
+        a.append(round(math.degrees(2 * math.sin(0.1 * i / 6)), 4))
+        out.append(f"X{0.1 * i:.4f} A{a[-1]:.4f}")
+    rate = np.abs(np.diff(a)) / 0.1
+    return out, float(np.sum(0.1 / np.minimum(25.0, LIMITS["a"].velocity / np.maximum(rate, 1e-12))))
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_cylinder_wrap_runs_at_the_rotary_axis_limits(profile):
+    """The wrap takes at least the time A's velocity limit requires and at most 30 % more (A's acceleration:
+    its rate changes by up to 3.2 deg/mm^2 of X; before: 23.3 s trapezoid, 59.8 s S-curve, 5.2 and 13 times)."""
+    lines, least = _wrap()
+    prog = _program(lines)
+    sp = interpolate(prog, profile=profile)
+    assert least <= sp.duration <= 1.3 * least
+    assert _inner_stops(sp, prog) == 0
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert _axis_deviation(sp, prog, "a") <= 0.01
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_axes_that_fit_no_spline_follow_the_chords(profile):
+    """A zigzag of +-0.5 deg per 0.2 mm chord cannot lie within 0.01 deg of a smooth curve: the run is not
+    merged, each sample lies on its block's chord, and the zigzag's reversals stay stops."""
+    lines = ["G21 G90 G64 P0.01 G0 X0 A0", "G1 F1200"]
+    lines += [f"X{0.2 * i:.4f} A{0.5 * (i % 2):.4f}" for i in range(1, 41)]
+    prog = _program(lines)
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" not in sp.meta  # nothing merged
+    assert _axis_deviation(sp, prog, "a") <= 1e-9
+    assert _inner_stops(sp, prog) >= 38  # a stop in each block between the first and the last
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_run_into_a_long_line_keeps_every_limit(profile):
+    """A merged run whose axis spline bends (A and W curving along it) ending in a long line with constant
+    rates: the junction is passed within every limit, the S-curve's acceleration step of A and W included
+    (``v^2 |d2r|`` within the jerk share of one sample)."""
+    lines = ["G21 G90 G64 P0.01 G0 X0 Y0 A0 W0", "G1 F3000"]
+    lines += [f"X{0.25 * i:.4f} Y{2 * math.sin(0.25 * i / 4):.4f} A{0.05 * (0.25 * i) ** 2:.4f} "
+              f"W{0.002 * (0.25 * i) ** 2:.4f}" for i in range(1, 81)]
+    lines.append(f"X60 Y{2 * math.sin(5.0):.4f} A{5.0 + 40.0:.4f} W{0.2 + 0.4:.4f}")
+    prog = _program(lines)
+    sp = interpolate(prog, profile=profile)
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.01
+    assert _axis_deviation(sp, prog, "a") <= 0.01
+    assert _axis_deviation(sp, prog, "w") <= 0.01
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+def test_fit_axes_keeps_a_constant_rate_and_refuses_a_zigzag():
+    """The axis spline of a run: a constant rate stays that rate (an axis that does not move has all its
+    coefficients at its value and no rate: the samples keep it exactly); a zigzag of +-0.5 deg per point
+    fits no spline within 0.01 deg."""
+    s = np.linspace(0.0, 10.0, 41)
+    values = np.column_stack([3.0 * s, np.full(len(s), 7.0)])
+    spl = fit_axes(s, values, 0.01)
+    assert spl is not None
+    assert np.allclose(spl(s), values, rtol=0, atol=1e-9)
+    assert np.allclose(spl(s, 1)[:, 0], 3.0, rtol=0, atol=1e-9)
+    assert np.all(spl.c[:, 1] == 7.0)
+    assert np.allclose(spl(s, 1)[:, 1], 0.0, rtol=0, atol=1e-12)
+    assert np.array_equal(spl(s[[0, -1]]), values[[0, -1]])  # through the end values exactly
+    zigzag = np.column_stack([0.5 * (np.arange(41) % 2)])
+    assert fit_axes(s, zigzag, 0.01) is None
+
+
+def test_an_axis_the_run_keeps_still_stays_exact():
+    """B programmed at 12.5 deg on every chord of a run that moves A: every sample of the run holds 12.5
+    exactly."""
+    lines = ["G21 G90 G64 P0.01 G0 X10 Y0 Z0 A0 B12.5", "G1 F2000"]
+    lines += [f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} A{30 * t:.4f} B12.5"
+              for t in np.linspace(0, math.pi, 101)[1:]]
+    prog = _program(lines)
+    sp = interpolate(prog, profile="scurve")
+    assert "programmed_path" in sp.meta  # merged
+    assert np.all(sp.position[sp.block >= 1, sp.axes.index("b")] == 12.5)
+    check_limits(sp, prog, LIMITS, jerk=True)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_chords_longer_than_dense_code_merge_when_the_axes_move(profile):
+    """120 chords of 1.05 mm (longer than ``DENSE_MAX_LENGTH``) of the two-lap helix under G64 P0.02: without A
+    their corners are blended one by one; with A nothing blends them, so they merge into one curve whenever it
+    fits the tolerance (``UNBLENDED_MAX_LENGTH``) and run in about the time without A (before: 5.78 s trapezoid,
+    10.75 s S-curve against 3.93 s and 4.02 s)."""
+    def helix(with_a: bool) -> list[str]:
+        out = ["G21 G90 G64 P0.02 G0 X10 Y0 Z0 A0", "G1 F2000"]
+        for i in range(1, 121):
+            t = 4 * math.pi * i / 120
+            out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 120:.4f}"
+                       + (f" A{90 * i / 120:.4f}" if with_a else ""))
+        return out
+
+    plain, rotary = _program(helix(False)), _program(helix(True))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
+    assert sp.duration <= 1.01 * sp0.duration
+    assert _inner_stops(sp, rotary) == 0
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.02
+    assert _axis_deviation(sp, rotary, "a") <= 0.02
