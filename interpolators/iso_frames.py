@@ -14,7 +14,7 @@ from interpolators._words import Where
 from interpolators.iso_axes import EXTRA_LETTERS
 from interpolators.iso_codes import DIALECT_G, G_CODES, MILL_G
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES
-from interpolators.iso_tilt import TiltedRotation, TiltError, g68_2_rotation
+from interpolators.iso_tilt import PLANE_WORDS, TiltedRotation, TiltError, g68_2_rotation
 from interpolators.iso_transforms import Frame, g68_rotation, mirror, scaling
 from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import Block
@@ -72,22 +72,25 @@ def g68(seen, st: State, where: Where, w: Word, notes: Notes) -> None:
 
 def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], where: Where, number,
                  notes: Notes) -> None:
-    """G68.2 X Y Z I J K: the tilted working plane on the machine's tilting table; G53.1: the rotary axes
-    turned to it at rapid, the linear axes staying (:mod:`interpolators.iso_tilt`)."""
+    """G68.2 [P0] X Y Z I J K (Euler angles) or G68.2 P1 Q X Y Z I J K (roll, pitch, yaw): the tilted working
+    plane on the machine's tilting table; G53.1: the rotary axes turned to it at rapid, the linear axes staying
+    (:mod:`interpolators.iso_tilt`)."""
     if "tilted plane" in gcodes:
         w = gcodes["tilted plane"][1]
-        other = [k for k in seen if k not in ("X", "Y", "Z", "I", "J", "K", "N")]
+        taken = PLANE_WORDS.get(seen["P"].value if "P" in seen else 0)  # None: a P form refused by name below
+        other = [k for k in seen if k not in taken + "N"] if taken else []
         if other or st.comp_side is not None or st.frame is not None or st.rotation:
             bad = seen[other[0]] if other else w
-            where.fail("G68.2 tilted working plane: only X Y Z (its zero) and I J K (Euler angles), without cutter "
-                       "compensation, G68/G51/G51.1 or a G10 R rotation", column=bad.column, text=bad.text,
-                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. with G40 and G69")
+            where.fail("G68.2 tilted working plane: only X Y Z (its zero), I J K (its angles), P and with P1 Q, "
+                       "without cutter compensation, G68/G51/G51.1 or a G10 R rotation", column=bad.column,
+                       text=bad.text, expected="G68.2 X.. Y.. Z.. I.. J.. K.. with G40 and G69")
         zero = st.offset() - np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
         try:
             rot = g68_2_rotation({k: v.value for k, v in seen.items()}, context=st.context, work_zero=zero,
                                  extra=st.extra, scale=st.scale)
         except TiltError as exc:
-            where.fail(exc.message, column=w.column, text=w.text, expected=exc.expected)
+            bad = seen.get(exc.letter, w)
+            where.fail(exc.message, column=bad.column, text=bad.text, expected=exc.expected)
         set_frame(st, Frame(rotation=rot))
         notes.add("G68.2 tilted working plane")
     if "tool axis" in gcodes:
@@ -95,7 +98,7 @@ def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], wh
         rot = st.frame.rotation if st.frame is not None else None
         if not isinstance(rot, TiltedRotation):
             where.fail("G53.1 without a G68.2 tilted working plane", column=w.column, text=w.text,
-                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. before G53.1")
+                       expected="G68.2 X.. Y.. Z.. I.. J.. K.. (or P1 Q..) before G53.1")
         turned = st.extra.copy()
         for name, angle in rot.positions.items():
             turned[EXTRA_LETTERS.index(name.upper())] = angle

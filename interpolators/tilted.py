@@ -60,12 +60,14 @@ _PARALLEL = 1e-9
 
 
 class TiltError(ValueError):
-    """A tilt the machine cannot take; the reader adds the file, line and column."""
+    """A tilt the machine cannot take; the reader adds the file, line and column (of the word ``letter``
+    when given, else of the block's code)."""
 
-    def __init__(self, message: str, expected: str) -> None:
+    def __init__(self, message: str, expected: str, letter: str = "") -> None:
         super().__init__(message)
         self.message = message
         self.expected = expected
+        self.letter = letter
 
 
 def rotation_about(direction: Sequence[float], angle_deg: float) -> np.ndarray:
