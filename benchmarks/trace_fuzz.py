@@ -5,8 +5,9 @@ A capture (a random-moves reference and a measured position lagging it, 1-3 axes
 as a drive tool or logger might: delimiter ``,`` ``;`` tab, runs of spaces or ``|``; decimal comma; thousands
 separators (a spreadsheet's ``1,234.5`` in quoted cells); quoted cells; header names of the vocabularies
 :mod:`vcnc.traces.names` knows (English, German, Japanese-style), with units in brackets, parentheses, after a
-slash or an underscore, or in a row of units, or given as ``unit=``; positions in um, mm, m, in, deg or counts
-with a stated resolution; time in s, ms, us, as sample numbers or absent under a stated sampling period;
+slash, or in a row of units, or given as ``unit=``; positions in nm, um, mm, m, in, deg, rad, rev or counts
+with a stated resolution; time in s, ms, us, as date-time stamps, as sample numbers or absent under a stated
+sampling period;
 extra columns (velocity, current, following error, status bits); a preamble of metadata lines; a byte-order
 mark, CRLF, delimiters ending every row, blank lines, comment lines, empty or ``NaN`` cells at the ends;
 jittered time stamps (read with ``resample=True``); files of 3 to 30,000 rows.
@@ -36,7 +37,10 @@ from vcnc.core.errors import CaptureError
 from vcnc.traces import read_trace
 
 #: Units a position may be written in: mm (or deg) per unit.
-_LINEAR_UNITS = {"mm": 1.0, "um": 1e-3, "m": 1e3, "in": 25.4}
+_UNITS = {"mm": 1.0, "um": 1e-3, "nm": 1e-6, "m": 1e3, "in": 25.4, "deg": 1.0, "\u00b0": 1.0, "rad": math.degrees(1.0),
+          "rev": 360.0}
+#: Decimals added to the 3, 4 or 6 a position is written with, per unit.
+_MORE_DECIMALS = {"um": -2, "nm": -5, "m": 3, "in": 1, "rad": 2, "rev": 3}
 #: Time units: seconds per unit.
 _TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
 #: Header vocabularies: (commanded, measured, following error) name patterns, ``{A}`` the axis letter.
@@ -155,12 +159,12 @@ def _choose(rng: random.Random) -> _Spec:
     mixed = len(set(rotary)) > 1
     unit_style = rng.choice(["name", "name", "row", "none", "given"] if not mixed else ["name", "row", "none"])
     if all(rotary):
-        unit = rng.choice(["deg", "deg", "counts"])
+        unit = rng.choice(["deg", "deg", "counts", "rad", "rev", "\u00b0"])
     else:
-        unit = rng.choice(["mm", "um", "m", "in", "counts"] if not mixed else ["mm", "um"])
+        unit = rng.choice(["mm", "um", "m", "in", "nm", "counts"] if not mixed else ["mm", "um"])
     if unit_style == "none" and unit != "counts":
         unit = "mm" if not all(rotary) else "deg"
-    time_style = rng.choice(["s", "s", "ms", "us", "samples", "absent", "stamps-none"])
+    time_style = rng.choice(["s", "s", "ms", "us", "samples", "absent", "stamps-none", "date-time"])
     spec = _Spec(rng=rng, axes=axes, n=n, ts=rng.choice([0.001, 0.0005, 0.002, 0.004, 0.000125]), delim=delim,
                  comma=comma, quote=quote, thousands=thousands, unit=unit, unit_style=unit_style,
                  count=rng.choice([0.1e-3, 1e-3, 0.5e-3]) if not all(rotary) else rng.choice([1e-3, 1e-4]),
@@ -216,6 +220,9 @@ def _header(spec: _Spec, pos_unit: str) -> tuple[list[str], list[tuple[str, int]
     if spec.time_style in _TIME_UNITS:
         header.append(rng.choice(_TIME_NAMES))
         cols.append(("t", 0))
+    elif spec.time_style == "date-time":
+        header.append(rng.choice(["Timestamp", "Time", "Zeitstempel"]))
+        cols.append(("stamp", 0))
     elif spec.time_style in ("samples", "stamps-none"):
         header.append(rng.choice(["Sample #", "No.", "Index"]))
         cols.append(("n", 0))
@@ -233,7 +240,7 @@ def _header(spec: _Spec, pos_unit: str) -> tuple[list[str], list[tuple[str, int]
     if spec.delim == " ":
         header = [h.replace(" ", "_") for h in header]
     t_unit = spec.time_style if spec.time_style in _TIME_UNITS else ""
-    unit_of = {"t": t_unit, "n": "", "vel": "mm/s", "cur": "A", "status": "", "ferr": pos_unit}
+    unit_of = {"t": t_unit, "n": "", "stamp": "", "vel": "mm/s", "cur": "A", "status": "", "ferr": pos_unit}
     units = [unit_of[kind] if kind not in ("ref", "second") else ("deg" if spec.mixed and spec.rotary[j] else pos_unit)
              for kind, j in cols]
     units_row = None
@@ -267,6 +274,10 @@ def _rows(spec: _Spec, cols: list[tuple[str, int]], t: np.ndarray, ref: np.ndarr
                 cells.append(_fmt(t[i] / _TIME_UNITS[spec.time_style], tdec, spec.comma, ""))
             elif kind == "n":
                 cells.append(str(i))
+            elif kind == "stamp":  # a logger's local time stamps, to the microsecond
+                us = round(t[i] * 1e6) + 56_376_000
+                cells.append(f"2024-05-02{'T' if spec.delim == ' ' else ' '}15:{us // 60_000_000:02d}:"
+                             f"{us // 1_000_000 % 60:02d}.{us % 1_000_000:06d}")
             elif kind in ("ref", "second"):
                 v = (ref if kind == "ref" else second)[i, j] / scale_of[j]
                 cells.append(_fmt(round(v) if dec == 0 else v, dec, spec.comma, spec.thousands))
@@ -317,9 +328,9 @@ def generate(seed: int) -> Case:
     rng = spec.rng
     t, ref, meas = _truth(spec)
     pos_unit = {"counts": "inc", "um": rng.choice(["um", "\u00b5m"])}.get(spec.unit, spec.unit)
-    scale = spec.count if spec.unit == "counts" else (1.0 if spec.unit == "deg" else _LINEAR_UNITS[spec.unit])
+    scale = spec.count if spec.unit == "counts" else _UNITS[spec.unit]
     scale_of = [1.0 if (spec.mixed and r) else scale for r in spec.rotary]
-    dec = 0 if spec.unit == "counts" else max(0, rng.choice([3, 4, 6]) + {"um": -2, "m": 3, "in": 1}.get(spec.unit, 0))
+    dec = 0 if spec.unit == "counts" else max(0, rng.choice([3, 4, 6]) + _MORE_DECIMALS.get(spec.unit, 0))
     tol = np.array([0.5 * 10.0 ** -dec * s * 1.01 + 1e-12 for s in scale_of])
     preamble = _preamble(spec)
     header, cols, units_row = _header(spec, pos_unit)
