@@ -83,6 +83,13 @@ def test_digits_grouped_by_thousands_are_refused(tmp_path):
     g.write_text("t;x_cmd;x_fb\n0;523;500\n0.001;1.234;1.100\n0.002;2.345;2.200\n0.003;3.456;3.301\n")
     with pytest.raises(CaptureError, match="grouped by thousands"):
         read_trace(g)
+    german = tmp_path / "german.csv"  # every position grouped; the current column's decimal comma tells
+    german.write_text("Axis_Y.SetPos;Axis_Y.ActPos;Y Current\n-69.113;-69.113;1,500\n-67.999;-69.113;1,491\n"
+                      "-66.885;-69.023;1,463\n")
+    with pytest.raises(CaptureError) as info:
+        read_trace(german, unit="0.5um", sample_time=0.002)
+    assert info.value.line == 2
+    assert "y_ref='Axis_Y.SetPos': '-69.113' beside '1,500' in another column reads as digits" in str(info.value)
     h = tmp_path / "places.csv"
     h.write_text("t;x_cmd;x_fb\n0;0.523;0.500\n0.001;1.234;1.100\n0.002;2.345;2.200\n0.003;3.456;3.301\n")
     np.testing.assert_allclose(read_trace(h).reference[:, 0], [0.523, 1.234, 2.345, 3.456])

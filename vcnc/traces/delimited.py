@@ -658,8 +658,7 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
         j = marked[0]
         mark = "," if "," in col[j] else "."
         other = "." if mark == "," else ","
-        beside = next((r[c].strip().strip('"') for r in rows for c in idx.values() if c != idx[k] and other in r[c]),
-                      None)
+        beside = next((c.strip().strip('"') for r in rows for i, c in enumerate(r) if i != idx[k] and other in c), None)
         if whole or beside is not None or k in in_counts:
             like = (f"whole numbers like {whole[0]!r}" if whole else f"{beside!r} in another column" if beside
                     else f"a count unit ({in_counts[k]!r})")
