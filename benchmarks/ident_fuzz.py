@@ -7,17 +7,25 @@ encoder resolution, and the record's conditions (decimated to 0.25-8 ms, a const
 reference logged a few samples late or early, cut mid-move). It identifies the axis from the
 commanded and measured positions only and checks:
 
-- ``identify`` returns, or refuses with an :class:`IdentificationError` (never another exception);
-- every number of the model is finite, its poles are inside the bounds it reports;
-- with no effect added: no effect named (``false_positive``), held-out RMS within 3 times the
-  record's noise floor plus 1 um (``high_residual``: the built-in machines' own non-idealities,
-  e.g. the integer PDF's quantisation, are part of that floor only through the margin);
-- with an effect added that changes the noise-free measured position by more than 3 times the noise
-  floor (``visible``): it is named (``missed``; first when it is 2 times larger than the other,
-  ``not_first``) and the held-out error falls (``no_gain``); the parameter with a known truth is
-  within its tolerance (``parameter``).
+- ``identify`` returns, or refuses with an :class:`IdentificationError` (``refused``, its message listed; any other
+  exception is a ``traceback``);
+- every number of the model is finite (``nonfinite``), its poles are inside the bounds it reports (``pole``);
+- with no effect added: no effect named (``false_positive``; a ``delay`` on a record whose reference was logged
+  early is the dead time identify leaves to the diagnosis below 5 samples, ``identification/dead_time.py``), and
+  a held-out RMS within 3 times the record's noise floor plus 1 um (``high_residual``; the machines' own
+  non-idealities, e.g. fadal's 3 um nut play behind the motor encoder, are the margin);
+- with effects added, those the diagnosis must name (``shown``, marked ``*``): each changes the noise-free
+  measured position by more than 3 times the noise floor (+0.2 um), and together they leave the reduced model
+  an error 1.5 times (+0.3 um) that of the same record identified without them (what the reduced model absorbs
+  of an effect, e.g. most of a one-sample delay, is no failure). Each shown effect is named (``missed``), first
+  when it is twice the other's size (``not_first``), the held-out error falls (``no_gain``), and a parameter
+  with a known truth is within its tolerance (``parameter``: periods 5 %, backlash width 30 %, drift rate 25 %).
 
-Outcomes other than ``ok``/``refused`` are failures; ``refused`` lists the message.
+The CPU time of a case covers the simulations, the identification with its diagnosis, and the reduced fit of the
+record without the effects.
+
+Outcomes other than ``ok``, ``refused`` and ``skip`` (an effect the machine cannot take, e.g. a friction on
+chevalier-pdf's discrete plant, or a truth that diverges) are failures.
 
 Run: ``PYTHONPATH=$PWD .venv/bin/python benchmarks/ident_fuzz.py --cases 40 --seed 1 [--start 0] [--only 7]``
 """
@@ -186,6 +194,10 @@ def check(case: dict, model, shown: dict, floor: float) -> list[str]:
     named = named_effects(model)
     val = model.validation
     before, after = val.get("rms_before_um", math.nan), val.get("rms_after_um", math.nan)
+    if case["shift"] < 0 and named[:1] == ["delay"]:
+        # a reference logged early is a dead time; below MIN_DELAY_SAMPLES (dead_time.py) identify leaves it to
+        # the diagnosis' delay, as it cannot be told from an in-loop delay there
+        named = named[1:]
     if not case["effects"]:
         if named:
             out.append(f"false_positive {named}")
