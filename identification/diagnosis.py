@@ -1178,7 +1178,7 @@ def samples_note(model: ReducedAxisModel) -> str:
     substeps = (model.fit or {}).get("substeps") or 1
     how = ("on the record's sample grid" if substeps == 1 else
            f"as the fit predicts the record, on {substeps} sub-steps a sample (the reference between its samples a "
-           "cubic spline; an element's sampled controller at the record's step)")
+           "cubic spline; an element's sampled controller at the sub-steps)")
     return (f"samples: {record}'ident' and 'valid' its {n.get('identification')} "
             f"active ones (idle stretches, where an axis at rest is predicted for free, trimmed"
             + (f" with a {margin:g} s margin" if margin is not None else "") + "), 'valid' each fold's predicted by "

@@ -53,3 +53,30 @@ def test_friction_falling_near_standstill_is_not_named_stribeck():
     assert ratios[0] < 0.0 and ratios[1] < 0.0, ratios
     assert model.effects == []
     assert first["accepted"] is None
+
+
+@pytest.mark.parametrize("step", [4, 8])
+def test_saturation_of_a_record_logged_slower_than_the_loop(step):
+    """ident_fuzz seed 1 case 12 (first runner version): the EMPS loop (1 ms) with its amplifier limit at 3.985 V
+    (5.6 % of a reference test's samples beyond it), logged every 4 or 8 ms. The split form ran its sampled law at
+    the record's step, a loop 4 to 8 times slower than the one that saturated; it now runs at the record's
+    sub-steps on the spline between its samples, as the fit predicts the record (identification/substeps.py).
+    Truth: 3.985 V x 35.15 N/V / 95.11 kg = 1472.8 mm/s^2; the 1 ms record finds 1476.2 mm/s^2 and 0.90 um held
+    out. Before: at 4 ms 1433 mm/s^2 with a spurious 8.8 ms integral lead, 2.64 um held out; at 8 ms nothing named,
+    30.2 um."""
+    import toolpaths
+
+    m = vcnc.machine("emps").with_axis_options("x", noise=3e-4, encoder=None)
+    m = m.with_effect("x", "saturation", {"saturated_fraction": 0.056})
+    sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(37, 10.0, 5316, seed=5)), m)
+    cap = m.simulate(sp, seed=1)
+    rec = vcnc.Capture(t=cap.t[::step], axes=("x",), reference=cap.reference[::step], measured=cap.measured[::step])
+    model = identify(rec, axis="x")
+    assert [e.name for e in model.effects] == ["saturation"]
+    sat = model.effects[0].parameters
+    assert sat["limit_mm_s2"] == pytest.approx(1472.8, rel=0.005)
+    assert sat["anti_windup"] is True
+    assert sat["integral_lead_s"] < 1e-4
+    v = model.validation
+    assert v["rms_before_um"] > 30.0
+    assert v["rms_after_um"] < 1.0
