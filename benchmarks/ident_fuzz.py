@@ -12,7 +12,7 @@ commanded and measured positions only and checks:
 - every number of the model is finite (``nonfinite``), its poles are inside the bounds it reports (``pole``);
 - with no effect added: no effect named (``false_positive``; a ``delay`` on a record whose reference was logged
   early is the dead time identify leaves to the diagnosis below 5 samples, ``identification/dead_time.py``), and
-  a held-out RMS within 3 times the record's noise floor plus 1 um (``high_residual``; the machines' own
+  the final model's held-out RMS within 3 times the record's noise floor plus 1 um (``high_residual``; the machines' own
   non-idealities, e.g. fadal's 3 um nut play behind the motor encoder, are the margin);
 - with effects added, those the diagnosis must name (``shown``, marked ``*``): each changes the noise-free
   measured position by more than 3 times the noise floor (+0.2 um), and together they leave the reduced model
@@ -201,8 +201,8 @@ def check(case: dict, model, shown: dict, floor: float) -> list[str]:
     if not case["effects"]:
         if named:
             out.append(f"false_positive {named}")
-        if before > 3.0 * floor + 1.0:
-            out.append(f"high_residual {before:.2f} um (floor {floor:.2f})")
+        if after > 3.0 * floor + 1.0:
+            out.append(f"high_residual {after:.2f} um (floor {floor:.2f})")
     for e in shown:
         if e not in named:
             out.append(f"missed {e} ({shown[e]:.1f} um)")
