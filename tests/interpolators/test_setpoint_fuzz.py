@@ -1,0 +1,54 @@
+"""Setpoints of random programs (``benchmarks/setpoint_fuzz.py``: the readers' generators and CAM-like dense code,
+both profiles, random limits and sample times) checked for their invariants, and the failures the fuzzer found,
+each as a small hand-written program."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from benchmarks.setpoint_fuzz import SOURCES, cam_program, check_setpoints, run_case
+from interpolators import AxisLimits, interpolate, parse_program
+from tests.interpolators.setpoint_checks import xyz
+
+
+@pytest.mark.parametrize("source", SOURCES)
+def test_random_programs_keep_every_setpoint_invariant(source):
+    # limits (jerk under the S-curve), feed, path deviation within the block's tolerance, every block end passed
+    # within it (on a sample at a stop), the program's end reached, dwells held, finite values, no jumps,
+    # Setpoints.block never decreasing; four seeds per source, each under the trapezoid and the S-curve
+    outcomes = [case for seed in range(4) for case in run_case(source, seed)]
+    failures = [(source, fails) for outcome, _, _, fails in outcomes if outcome in ("fail", "crash")]
+    assert failures == []
+    assert sum(outcome == "ok" for outcome, *_ in outcomes) >= 4
+
+
+def test_cam_programs_are_seeded_and_dense():
+    assert cam_program(3) == cam_program(3)
+    assert cam_program(3) != cam_program(4)
+    assert "CYCL DEF 32.0 TOLERANCE" in "".join(cam_program(s, tnc=True) for s in range(4))
+
+
+def test_scurve_kink_blend_keeps_the_slower_feed_of_the_block_after_it():
+    # a 20 mm/s arc into a 1 mm/s line under G64: the kink blend's second half carries the line's block, and was
+    # planned at the arc's feed, so the line's samples ran at 20 mm/s (found: linuxcnc_fuzz seed 104, G93 feeds)
+    prog = parse_program("G21 G64\nG0 X0 Y0\nG2 X10 Y0 R5 F1200\nG1 X12 Y-20 F60\nM2\n")
+    sp = interpolate(prog, profile="scurve")
+    speed = np.linalg.norm(sp.velocity, axis=1)
+    assert speed[sp.block == 2].max() <= 1.0 + 1e-9
+    assert speed[sp.block == 1].max() == pytest.approx(20.0, rel=1e-3)
+    np.testing.assert_allclose(sp.position[-1], [12.0, -20.0], atol=1e-12)
+
+
+def test_scurve_kink_blend_passes_the_corner_within_the_tolerance():
+    # a plunge into a helix under G64 (0.01 mm): the kink blend stayed within 0.01 mm of both pieces but passed
+    # the corner X5 Y5 Z0 0.0131 mm away (found: fanuc_generator seed 102 under random limits); now the corner is
+    # within the tolerance (here the smaller blend does not pay and the corner is a stop)
+    limits = {"x": AxisLimits(velocity=27.4, acceleration=260.0, jerk=120618.0, rapid=62.0),
+              "y": AxisLimits(velocity=74.1, acceleration=170.0, jerk=34463.0, rapid=174.0),
+              "z": AxisLimits(velocity=403.3, acceleration=2228.0, jerk=16174.0, rapid=932.0)}
+    prog = parse_program("G21 G64\nG0 X5 Y5 Z2\nG1 Z0 F100\nG3 X5 Y5 Z-0.5 I10 J0\nM2\n")
+    sp = interpolate(prog, limits=limits, sample_time=0.0024, profile="scurve")
+    assert check_setpoints(prog, sp, limits, "scurve") == []
+    assert np.linalg.norm(xyz(sp) - [5.0, 5.0, 0.0], axis=1).min() <= 0.01
+    np.testing.assert_allclose(sp.position[-1], [5.0, 5.0, -0.5], atol=1e-12)
