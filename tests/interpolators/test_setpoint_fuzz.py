@@ -56,3 +56,18 @@ def test_scurve_kink_blend_passes_the_corner_within_the_tolerance():
     assert check_setpoints(prog, sp, limits, "scurve") == []
     assert np.linalg.norm(xyz(sp) - [5.0, 5.0, 0.0], axis=1).min() <= 0.01
     np.testing.assert_allclose(sp.position[-1], [5.0, 5.0, -0.5], atol=1e-12)
+
+
+def test_limit_check_allows_the_rapid_rate_on_a_step_across_a_rapid_end():
+    # a rapid down Z at up to 30 mm/s into a feed move at the 20 mm/s velocity limit (G64: passed at speed): the
+    # position step that straddles the junction runs partly on the rapid, above 20 mm/s on average; the check took
+    # the feed block's limit for it (found: fanuc_generator seeds 127 and 138)
+    limits = {"x": AxisLimits(velocity=20.0, acceleration=500.0, rapid=30.0),
+              "y": AxisLimits(velocity=20.0, acceleration=500.0, rapid=30.0),
+              "z": AxisLimits(velocity=20.0, acceleration=500.0, rapid=30.0)}
+    prog = parse_program("G21 G64\nG0 X0 Y0 Z0\nG0 Z-10\nG1 Z-20 F6000\nM2\n")
+    sp = interpolate(prog, limits=limits, sample_time=0.0025)
+    z = sp.position[:, 2]
+    first_feed = int(np.argmax(sp.block == 2))
+    assert abs(z[first_feed] - z[first_feed - 1]) / 0.0025 > 20.0
+    assert check_setpoints(prog, sp, limits, "trapezoid") == []
