@@ -127,8 +127,17 @@ class _Chain:
 
     @property
     def tolerances(self) -> list[float]:
-        """The path tolerance after each item (a dwell's is never used)."""
+        """The path tolerance of each item (its block's; a dwell's is never used)."""
         return self.items.tolerances[self.lo:self.hi]
+
+    @property
+    def junction_tolerances(self) -> list[float]:
+        """The path tolerance of the junction after each item: the smaller of its two items' (a program that
+        changes G64 P between two moves blends their corner within both: LinuxCNC's ``tcFindBlendTolerance``,
+        src/emc/tp/tc.c, takes ``fmin(T1, T2)`` of the two segments, "in case it dropped between moves"); the
+        last item's own."""
+        t = self.tolerances
+        return [min(a, b) for a, b in zip(t, t[1:])] + t[-1:]
 
 
 def _chains(program: Program) -> list[_Chain]:
@@ -389,7 +398,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             segs, blks = ch.segments, ch.blocks
         else:
             ch, run_of = _merged(ch, jerk_limited)
-            segs, blks = blend_corners(ch.segments, ch.blocks, ch.tolerances,
+            segs, blks = blend_corners(ch.segments, ch.blocks, ch.junction_tolerances,
                                        worth=_blend_worth(ch, lim, jerk_limited, Ts),
                                        curvature_continuous=jerk_limited,
                                        kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))))

@@ -215,3 +215,16 @@ def test_blend_corners_match_closed_form_and_for_corner():
     kept, _ = blend_corners(lines, [0, 1, 2, 3, 4], tol, worth=lambda b: b.corner != 1)
     assert [type(s).__name__ for s in kept].count("Arc") == 2
     np.testing.assert_array_equal(kept[2].end, pts[2])
+
+
+@pytest.mark.parametrize("first", [0.5, 0.01])
+def test_a_corner_between_two_tolerances_is_blended_within_the_smaller(first):
+    """G64 P changed between two moves: their corner keeps within both tolerances, as LinuxCNC's
+    ``tcFindBlendTolerance`` (src/emc/tp/tc.c) blends within ``fmin(T1, T2)``; the next corner, between
+    two P0.5 moves (or two P0.01 moves), takes its own."""
+    second = 0.01 if first == 0.5 else 0.5
+    prog = parse_program(f"G21 G90 G64 P{first}\nG0 X0 Y0\nG1 X20 F3000\nG64 P{second}\nG1 X20 Y20\nG1 X0 Y20\nM2\n")
+    p = interpolate(prog, profile="trapezoid").position
+    near = [float(np.hypot(p[:, 0] - cx, p[:, 1] - cy).min()) for cx, cy in ((20.0, 0.0), (20.0, 20.0))]
+    assert near[0] <= 0.01 + 1e-9, near  # was 0.5 with P0.5 before the change: the incoming move's
+    assert near[1] == pytest.approx(second, abs=1e-3) if second == 0.5 else near[1] <= 0.01 + 1e-9, near
