@@ -628,7 +628,8 @@ def _merged(ch: _Chain, jerk_limited: bool, *, unblended: bool = False) -> tuple
     if not runs:
         return ch, {}
     last = [*(f - 1 for f in first[1:]), len(blocks) - 1]
-    out = _Chain.of(segs, [blocks[i] for i in first], [feeds[i] for i in first], [rapid[i] for i in first],
+    slowest = [min(feeds[f:max(f, e) + 1]) for f, e in zip(first, last)]  # a run's feeds may differ (unblended)
+    out = _Chain.of(segs, [blocks[i] for i in first], slowest, [rapid[i] for i in first],
                     [tolerances[i] for i in last])
     return out, {id(segs[k]): run for k, run in runs.items()}
 

@@ -252,3 +252,28 @@ def test_a_run_that_fits_no_spline_leaves_the_other_runs_merged(profile):
     check_limits(sp, zig, LIMITS, jerk=profile == "scurve")
     assert distance_to_path(sp) <= 0.01
     assert np.allclose(sp.position[-1], _end(zig, sp.axes), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_inverse_time_chords_merge_at_the_slowest_feed_of_each_piece(profile):
+    """The helix with A under G93, every chord F6366.2 (1/F min each: 3.77 s in all): rounding the words to
+    4 decimals leaves the chords' feeds (length over time) up to 0.3 % apart, which used to end a run at every
+    chord (7.75 s trapezoid, 23.8 s S-curve). They merge: the run takes about the programmed time, at most
+    1 % more (each piece at the slowest feed of its chords), never above a block's feed."""
+    lines = ["G21 G90 G64 P0.01 G0 X10 Y0 Z0 A0", "G93 G1"]
+    for i in range(1, 401):
+        t = 4 * math.pi * i / 400
+        lines.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 400:.4f} A{90 * i / 400:.4f}"
+                     " F6366.2")
+    prog = _program([*lines, "G94"])
+    feeds = [b.feed for b in prog.blocks if b.kind == "line"]
+    assert 1.0 < max(feeds) / min(feeds) < 1.005
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" in sp.meta
+    programmed = 400 * 60.0 / 6366.2
+    on_helix = np.sum(sp.block >= 2) * sp.sample_time
+    assert programmed <= on_helix <= 1.03 * programmed
+    assert _inner_stops(sp, prog) == 0
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
+    assert distance_to_path(sp) <= 0.01
+    assert _axis_deviation(sp, prog, "a") <= 0.01
