@@ -58,8 +58,9 @@ Fanuc and Haas mills (``fanuc`` and ``haas`` dialects only; LinuxCNC keeps its m
 ``G05 P10000``            (:mod:`interpolators.iso_smoothing`)
 ``G68 G69``               coordinate rotation; ``G51 G50`` scaling; ``G51.1 G50.1`` mirror image,
                           Haas ``G101 G100`` (:mod:`interpolators.iso_transforms`)
-``G68.2 G53.1``           tilted working plane X Y Z I J K (Euler) and the rotary axes turned to it, on a
-                          machine with a tilting table (``MachineContext.kinematics``; :mod:`interpolators.iso_tilt`)
+``G68.2 G53.1``           tilted working plane X Y Z I J K (Euler, P0; P1 one roll/pitch/yaw angle) and the rotary
+                          axes turned to it, on a machine with a tilting table (``MachineContext.kinematics``;
+                          :mod:`interpolators.iso_tilt`)
 ``G43.4 G43.5 G234``      tool centre point control (Fanuc, Haas): X Y Z the tool tip on the part the tilting table
                           carries, rotary words (G43.5: the tool direction I J K) moving with it, G49 ends it
                           (:mod:`interpolators.iso_tcp`, :mod:`interpolators.tcp`)
