@@ -16,7 +16,7 @@ from identification.dead_time import LAG_STEP_S, follow_lag
 from identification.poles import poles_from_denominator
 from identification.regressor import RegressorOptions
 from vcnc.core.axes import axis_unit
-from vcnc.core.capture import Capture, check_sampling
+from vcnc.core.capture import UNIT_GIVEN, Capture, check_sampling
 from vcnc.core.errors import CaptureError, IdentificationError
 
 __all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
@@ -109,9 +109,6 @@ _UNIT_RATIOS = {1000.0: "um beside mm", 25.4: "mm beside inch", 25400.0: "um bes
 #: Relative distance from a unit ratio within which a span ratio is taken for it [-].
 _UNIT_TOLERANCE = 0.1
 
-#: Key of :attr:`Capture.meta` naming a unit the user stated for the positions (``vcnc identify --unit``): a
-#: motion too small for mm is then not taken for metres.
-UNIT_GIVEN = "unit_given"
 
 
 def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | None = None) -> tuple:

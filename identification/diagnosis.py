@@ -88,6 +88,7 @@ __all__ = [
     "diagnose",
     "diagnose_report",
     "refit",
+    "stribeck_static_ratios",
     "before_after_rows",
     "format_before_after",
     "samples_note",
@@ -820,6 +821,10 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
             record["resonance_motion_coherence"] = coh
             ok = coh >= _MIN_MODE_COHERENCE
+        if ok and c.effect.NAME == "friction_stribeck":
+            ratios = stribeck_static_ratios(j.model)
+            record["stribeck_static_ratios"] = list(ratios)
+            ok = min(ratios) >= _MIN_STATIC_RATIO
         if ok and c.effect.KIND == "element":
             # the element must beat its own null (the sampled split form without it), refitted
             null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
@@ -836,6 +841,29 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
     record["gain_pct"] = 100.0 * _gain(prev, best[0].held_out_rms_um)
     record["accepted"] = chosen[1].effect.NAME if chosen else None
     return chosen
+
+
+def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
+    """Static over Coulomb friction, moving + and moving -, of ``model``'s Stribeck term: ``(d0 + s+) / d0`` and
+    ``(d1 + s-) / d1`` (:class:`identification.effects.FrictionStribeck`).
+
+    The Stribeck curve is friction that *falls* from its static level to the Coulomb level as the speed rises:
+    static >= Coulomb, 1.3-2 times on lubricated guideways and ball screws (Armstrong-Helouvry, Dupont, Canudas de
+    Wit, Automatica 30(7), 1994). A term whose excess opposes the Coulomb level says that friction vanishes
+    near standstill, which is another effect imitated: on fadal-pid's x axis with its 3 um nut play and the loop
+    closed on the motor encoder, the motor crosses the gap free of the table's friction at every reversal, and the
+    refit found ``v_s`` 0.30 mm/s, excesses -562 / +558 mm/s^2 against Coulomb levels +538 / -359 (ratios -0.04 and
+    -0.56; ``benchmarks/ident_fuzz.py`` seed 1 case 22). A direction without Coulomb friction in the model (d = 0)
+    gives +inf when the excess resists motion there, -inf when it drives it."""
+    st = next(e for e in model.elements if e.NAME == "friction_stribeck")
+    p = model.parameters
+
+    def ratio(coulomb: float, excess: float, resisting: float) -> float:
+        if coulomb * resisting > 0:
+            return (coulomb + excess) / coulomb
+        return math.inf if excess * resisting >= 0 else -math.inf
+
+    return ratio(p["d0"], st.excess_positive, 1.0), ratio(p["d1"], st.excess_negative, -1.0)
 
 
 def _worse_on_the_record(before: ReducedAxisModel, after: AugmentedAxisModel, data: Data,
@@ -1029,6 +1057,9 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
 #: (0.9 for a mode the motion excites, 0.09 for an external 55 Hz line: residual.motion_coherence)
 _MIN_MODE_COHERENCE = 0.5
 
+#: static / Coulomb friction below which a Stribeck term is no Stribeck curve [-] (:func:`stribeck_static_ratios`)
+_MIN_STATIC_RATIO = 0.9
+
 #: explained share of the residual's variance above which a state "explains" it [-] (time: slow
 #: trends and the residual's own correlation explain some of any residual, hence the higher bar)
 _STRUCTURE_SHARE = {"position": 0.2, "velocity": 0.2, "direction": 0.2, "acceleration": 0.2, "time": 0.35}
@@ -1147,7 +1178,7 @@ def samples_note(model: ReducedAxisModel) -> str:
     substeps = (model.fit or {}).get("substeps") or 1
     how = ("on the record's sample grid" if substeps == 1 else
            f"as the fit predicts the record, on {substeps} sub-steps a sample (the reference between its samples a "
-           "cubic spline; an element's sampled controller at the record's step)")
+           "cubic spline; an element's sampled controller at the sub-steps)")
     return (f"samples: {record}'ident' and 'valid' its {n.get('identification')} "
             f"active ones (idle stretches, where an axis at rest is predicted for free, trimmed"
             + (f" with a {margin:g} s margin" if margin is not None else "") + "), 'valid' each fold's predicted by "

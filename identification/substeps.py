@@ -23,8 +23,8 @@ The identified model keeps the record's sample time and its own contract:
 exported FMU reproduces), and predicts the coarse record worse than ``fit.rms_um``, which is this
 module's prediction (``fit.substeps`` says how many). At the machine's own interpolation step
 (1 ms or less) the two agree. The diagnosis predicts the record as the fit does
-(:attr:`identification.searches.Data.held`; an element's split form excepted, whose controller is a
-sampled law at the record's step), so that one report states one error for one model: camber linD
+(:attr:`identification.searches.Data.held`; an element's split form with its law sampled at the
+sub-steps), so that one report states one error for one model: camber linD
 at 10 ms, 237.7 um in the fit against 275.2 um in the diagnosis' table before (the spline between
 samples against their chord, 62 um apart at 5000 mm/s^2 over 10 ms).
 """

@@ -398,6 +398,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
         rapid_of = dict(zip(ch.blocks, ch.rapid))
         run_of_spline = {id(r.pieces[0].spline): r for r in run_of.values()}
         for j, (s, b) in enumerate(zip(segs, blks)):
+            feed, rapid = feed_of[b], rapid_of[b]
             if id(s) in fit_of:
                 fits[len(all_segs)] = fit_of[id(s)]
             if id(s) in run_of:
@@ -410,11 +411,13 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
                         _chords_beside(all_segs[-1], b, runs.get(len(all_segs) - 1), at_start=False),
                         _chords_beside(nxt, blks[j + 1], run_of_spline.get(id(getattr(nxt, "spline", None))),
                                        at_start=True), s)
+                    # its second half carries the outgoing block: neither block's feed is exceeded on it
+                    feed, rapid = min(feed, feed_of[blks[j + 1]]), rapid and rapid_of[blks[j + 1]]
                 runs[len(all_segs)] = run
             all_segs.append(s)
             seg_block.append(b)
-            seg_feed.append(feed_of[b])
-            seg_rapid.append(rapid_of[b])
+            seg_feed.append(feed)
+            seg_rapid.append(rapid)
         chain_len.append(len(segs))
     # a curve piece is packed as the chord of its end points with the curve's length; _evaluate and
     # _limits give its own geometry and bounds

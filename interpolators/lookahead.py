@@ -276,7 +276,12 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     (:meth:`toolpaths.geometry.SplineCurve.hermite`) from the point ``d`` before the end of ``a`` to the point ``d``
     after the start of ``b``, matching position, tangent and curvature there, that lies within ``tolerance`` [mm]
     of the programmed path (measured against the polyline of both pieces, :func:`_blend_deviation`, within
-    :data:`_KINK_FIT_SHARE` of it), ``d`` just under half of either at most.
+    :data:`_KINK_FIT_SHARE` of it) and passes the kink itself within ``tolerance`` too (measured against the
+    polyline of the blend's check points, which lies inside the blend), ``d`` just under half of either at most.
+    The programmed path includes the corner: a blend may stay near both pieces and still cut a sharp kink by
+    more than the tolerance; the line/line blends keep their distance from the corner at the tolerance
+    (:func:`_arc_blends`, :func:`_clothoid_blends`), and so does LinuxCNC's planner, which sizes a blend from the
+    tolerance at the segments' intersection (``blendmath.c``); our reading of G64 P for kinks.
 
     For each end-tangent stretch of :data:`_KINK_STRETCHES`, ``d`` starts from the clothoid pair's leg for the
     same turn and is rescaled by ``tolerance`` over the deviation measured (the largest fitting ``d`` kept); of
@@ -295,6 +300,7 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     leg_f, dev_f = ClothoidPair.shape_factors(theta)
     d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
     u = np.linspace(0.0, 1.0, _KINK_CHECK_POINTS)
+    corner = b.point_at(np.zeros(1))
     best, best_v = None, 0.0
     for stretch in _KINK_STRETCHES:
         d, fit = d_start, None
@@ -304,7 +310,8 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
             ends = (*_frame(a, la - d), *_frame(b, d))
             controls = SplineCurve.hermite_controls(*ends, stretch=stretch)
             path = np.concatenate([a.point_at(la - min(2.0 * d, la) * (1.0 - u)), b.point_at(min(2.0 * d, lb) * u)])
-            deviation = _blend_deviation(controls, path) / _KINK_FIT_SHARE
+            deviation = max(_blend_deviation(controls, path),
+                            float(_path_distance(corner, _CHECK_BASIS[0] @ controls)[0])) / _KINK_FIT_SHARE
             if deviation <= tolerance and (fit is None or d > fit[2]):
                 fit = (ends, controls, d)
             if deviation <= tolerance and (deviation >= 0.8 * tolerance or d >= d_max):

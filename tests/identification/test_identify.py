@@ -200,4 +200,4 @@ def test_a_stated_unit_is_not_taken_for_metres(tmp_path, capsys, small_capture):
     err = capsys.readouterr().err
     span_mm = float(np.ptp(small.reference))
     assert f"too small a motion to identify on axis 'x': the reference spans {span_mm:.4g} mm" in err
-    assert "(--unit um)" in err and "metres" not in err
+    assert "(unit um given)" in err and "metres" not in err

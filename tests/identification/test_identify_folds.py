@@ -147,8 +147,8 @@ def test_the_table_says_which_samples_each_number_covers():
     assert (f"samples: 'all' the record's {n}; 'ident' and 'valid' its {active} active ones (idle stretches, where an "
             "axis at rest is predicted for free, trimmed with a 0.2 s margin), 'valid' each fold's predicted by the "
             "model refitted on the others; all simulated as the fit predicts the record, on 10 sub-steps a sample "
-            "(the reference between its samples a cubic spline; an element's sampled controller at the record's "
-            "step)") in text
+            "(the reference between its samples a cubic spline; an element's sampled controller at the sub-steps)"
+            ) in text
     assert samples_note(rep.reduced) == ""  # an undiagnosed model has no table
     # a model file written before the 'all' column names no record count (it printed "the record's ?")
     old = dataclasses.replace(model, validation={**v, "samples": {"identification": active, "validation": active}})

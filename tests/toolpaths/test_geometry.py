@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from toolpaths import Arc, Line, PackedSegments, Path
-from toolpaths.geometry import PLANE_AXES, ClothoidPair
+from toolpaths.geometry import PLANE_AXES, ClothoidPair, SplineCurve
 from vcnc.errors import InputError
 
 
@@ -152,3 +152,18 @@ def test_bulk_constructors_match_the_constructors_row_by_row():
         ref = ClothoidPair(c_start[i], corner[i], c_end[i])
         _same_attributes(blend, ref, ("start", "corner", "end", "length", "half_length", "deflection", "sharpness",
                                       "peak_curvature", "deviation", "u_in", "u_out", "w_in", "w_out", "normal"))
+
+
+def test_spline_curve_bounds_hold_between_the_table_nodes():
+    # a quintic whose tangent turns through +X between two of its four table nodes: the largest |t_x| of the nodes
+    # was 0.967, and a merged CAM curve planned from it ran X 0.46 % over its velocity limit (setpoint fuzzer,
+    # tnc_cam seed 239); the bound now adds the curvature times half the node spacing
+    t_in, t_out = np.array([1.0, -0.9, 0.0]), np.array([1.0, 1.0, 0.0])
+    curve = SplineCurve.hermite(np.zeros(3), t_in / np.linalg.norm(t_in), np.zeros(3), np.array([1.0, 0.2, 0.0]),
+                                t_out / np.linalg.norm(t_out), np.zeros(3), subdivisions=4)
+    t = np.abs(curve.tangent_at(np.linspace(0.0, curve.length, 20001)))
+    kappa, _, t_abs = curve.bounds()
+    assert t[:, 0].max() == pytest.approx(1.0, abs=1e-9)
+    assert np.all(t_abs >= t.max(axis=0) - 1e-12)
+    assert t_abs[0] == 1.0 and t_abs[2] == 0.0
+    assert kappa > 0

@@ -310,8 +310,8 @@ def test_a_delimiter_ending_the_rows_or_the_names(tmp_path, names, ending):
 def test_a_file_without_a_table_names_its_first_line(tmp_path):
     f = tmp_path / "notes.txt"
     f.write_text("Axis 1 moved to 19.5 at 15:05\nno trace recorded\n")
-    with pytest.raises(CaptureError, match=r"notes.txt:1: no rows of numbers separated by tab, ';', ',' or spaces "
-                                           r"\(got 'Axis 1 moved to 19.5 at 15:05'\)"):
+    with pytest.raises(CaptureError, match=r"notes.txt:1: no rows of numbers separated by tab, ';', ',', '\|' or "
+                                           r"spaces \(got 'Axis 1 moved to 19.5 at 15:05'\)"):
         read_capture(f)
 
 

@@ -139,7 +139,8 @@ def test_hexadecimal_sampling_output_is_named(tmp_path):
     # Mitsubishi CNC sampling with "#6 OUTPUT FORM" 1: one 8-digit hexadecimal value per channel per line
     f = tmp_path / "sampling.txt"
     f.write_text("".join(f"{v & 0xFFFFFFFF:08X}\n" for k in range(20) for v in (200000 + k, -3, 3)))
-    with pytest.raises(CaptureError, match=r"sampling.txt:1: no rows of numbers separated by tab, ';', ',' or spaces: "
+    with pytest.raises(CaptureError, match=r"sampling.txt:1: no rows of numbers separated by tab, ';', ',', '\|' or "
+                                           r"spaces: "
                                            r"lines of one hexadecimal number each \(00030D40\) are a hexadecimal dump"):
         read_capture(f)
 

@@ -195,7 +195,7 @@ def test_words_of_hex_letters_are_no_hexadecimal_dump(tmp_path, lines):
     with pytest.raises(CaptureError) as err:
         read_capture(f)
     msg = str(err.value)
-    assert "no rows of numbers separated by tab, ';', ',' or spaces" in msg
+    assert "no rows of numbers separated by tab, ';', ',', '|' or spaces" in msg
     assert "hexadecimal dump" not in msg
 
 

@@ -398,11 +398,8 @@ def _bounds(args: argparse.Namespace, capture) -> dict | None:
 
 def run(args: argparse.Namespace) -> int:
     from identification import identify
-    from identification.capture_checks import UNIT_GIVEN
 
-    capture = read_trace_argument(args.capture, args)
-    if args.unit:  # a stated unit is not second-guessed as metres (identification.capture_checks)
-        capture.meta[UNIT_GIVEN] = f"--unit {args.unit}"
+    capture = read_trace_argument(args.capture, args)  # a unit given or stated: meta[UNIT_GIVEN] (vcnc.traces)
     axis = args.axis or ("x" if "x" in capture.axes or len(capture.axes) != 1 else capture.axes[0])
     model = identify(
         capture,

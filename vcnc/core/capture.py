@@ -35,6 +35,12 @@ _REL_SAMPLING_TOL = 1e-4
 _AXIS_ARRAYS = ("reference", "measured", "control", "table", "velocity", "friction")
 
 
+#: Key of :attr:`Capture.meta` saying the positions' unit is stated, not assumed: given by the user
+#: (:func:`vcnc.traces.read_trace`'s ``unit``, ``--unit``) or stated by the file (a unit in every position column's
+#: name or units row, a stated count size, TNCscope's ``%DIMENSION``; :func:`vcnc.traces.columns.unit_stated`). The
+#: capture checks then do not second-guess a small motion as metres (``identification.capture_checks``).
+UNIT_GIVEN = "unit_given"
+
 @dataclasses.dataclass(frozen=True, kw_only=True, eq=False)
 class Capture:
     """Commanded and measured motion of one or more axes.

@@ -22,7 +22,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from vcnc.core.axes import ROTARY_AXES
-from vcnc.core.capture import Capture, read_capture_csv
+from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
 from vcnc.traces import emps, mtconnect, sinumerik, tncscope
 from vcnc.traces.columns import read_text, within_reach
@@ -93,6 +93,25 @@ def _xml_root(path: Path) -> str:
     return m.group(1) if m else "?"
 
 
+def _capture_csv(path: Path, *, axes: Sequence[str] | None, resample: bool) -> Capture:
+    """vcnc's capture CSV (ARCHITECTURE.md); a header starting with ``t`` whose names are not the contract's
+    (``t,X Commanded Position,...``, ``t,x_cmd,x_fb``) is another logger's, read by its names
+    (:func:`vcnc.traces.names.columns_from_names`) when they leave no doubt, else the capture CSV's error at the
+    header (tracefuzz: ``t`` is the commonest name of a time column)."""
+    try:
+        return read_capture_csv(path)
+    except CaptureError as exc:
+        lines = read_text(path, str(path)).splitlines()
+        header = next((i for i, s in enumerate(lines, start=1) if s.strip() and not s.lstrip("\ufeff").startswith("#")),
+                      None)
+        if exc.line != header:
+            raise
+        try:
+            return read_delimited(path, axes=axes, resample=resample)
+        except CaptureError:
+            raise exc from None
+
+
 def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,
                time_unit: str | None = None, unit: str | None = None,
                axes: Sequence[str] | None = None, resample: bool = False,
@@ -152,7 +171,7 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     elif fmt == "sinumerik":
         cap = read_sinumerik(p, axes=tuple(axes) if axes else None)
     elif fmt == "capture-csv" and not delimited_options:
-        cap = read_capture_csv(p)
+        cap = _capture_csv(p, axes=axes, resample=resample)
     else:
         cap = read_delimited(p, columns=columns, time_unit=time_unit, unit=unit, axes=axes, resample=resample,
                              sample_time=sample_time)
@@ -164,4 +183,6 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         for j, axis in enumerate(cap.axes):
             within_reach(values[:, j], f"the {name} position of axis {axis}", "deg" if axis in ROTARY_AXES else "mm",
                          str(p))
+    if unit is not None:  # a unit given is not second-guessed (vcnc.core.capture.UNIT_GIVEN)
+        cap.meta[UNIT_GIVEN] = f"unit {unit} given"
     return cap

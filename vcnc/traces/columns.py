@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
-from vcnc.core.capture import check_sampling
+from vcnc.core.capture import UNIT_GIVEN, check_sampling
 from vcnc.core.errors import CaptureError
 from vcnc.core.text import BinaryDataError, decode_text
 from vcnc.traces.lag import subtract_following_error
@@ -67,7 +67,8 @@ COUNT_UNITS = frozenset({"inc", "incr", "increment", "increments", "count", "cou
 _COUNT_UNIT = re.compile(r"\s*((?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([^\d\s.][^\s]*)\s*")
 _UNIT = re.compile(r"[\[(]\s*([^\[\]()]+?)\s*[\])]\s*$")
 #: A unit after the name without brackets: ``Zeit in ms``, ``Zeit/ms`` (DIN 1313's quantity/unit), ``time_ms``,
-#: ``rel_time_s`` (loggers written in code); never "in" itself after "_" or "/" (an input).
+#: ``rel_time_s`` (loggers written in code); "in" after "/" is inch (DIN 1313's quantity/unit: ``ActPos/in``), never
+#: after "_" (an input).
 _SUFFIX_UNIT = re.compile(r"(?:\s+in\s+|\s*/\s*|_)([^\s/_\d\[\]()][^\s/_\[\]()]*)\s*$", re.IGNORECASE)
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
@@ -117,7 +118,7 @@ def unit_in_name(name: str, kind: str) -> str | None:
     m = _UNIT.search(name)
     if not m:
         suffix = _SUFFIX_UNIT.search(name)
-        if suffix and not (suffix.group(1).lower() == "in" and not suffix.group(0).strip().lower().startswith("in")):
+        if suffix and not (suffix.group(1).lower() == "in" and suffix.group(0).strip()[0] == "_"):
             return unit_named(suffix.group(1), kind)
         return None
     named = unit_named(m.group(1), kind)
@@ -279,6 +280,16 @@ def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
         raise CaptureError(f"unit {u!r} given for rotary axes {[a for a in axes if a in ROTARY_AXES]}; "
                            "rotary positions are in deg, rad or rev", file=src)
     return scale
+
+
+def unit_stated(units: Mapping[str, str | None], how: str) -> dict[str, str]:
+    """``{UNIT_GIVEN: ...}`` (:data:`vcnc.core.capture.UNIT_GIVEN`) when every position column of ``units``
+    (capture column -> unit, None where assumed; ``t`` aside) has its unit stated, ``how`` saying where (``"stated
+    in the header"``); else ``{}``. The one rule every reader's stated units go through."""
+    positions = {k: u for k, u in units.items() if k != "t"}
+    if not positions or any(u is None for u in positions.values()):
+        return {}
+    return {UNIT_GIVEN: f"{how}: " + ", ".join(f"{k} in {u}" for k, u in positions.items())}
 
 
 def mapping_meta(axes: Sequence[str], columns: Mapping[str, str]) -> dict[str, str]:

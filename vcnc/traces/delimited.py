@@ -100,6 +100,7 @@ from vcnc.traces.columns import (
     read_text,
     unit_in_name,
     unit_named,
+    unit_stated,
     with_following_errors,
     within_reach,
 )
@@ -113,8 +114,10 @@ from vcnc.traces.twincat import looks_like_twincat, read_twincat
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "looks_like_camonitor",
            "TIME_UNITS", "LENGTH_UNITS"]
 
-_DELIMITERS = ("\t", ";", ",", " ")  # " ": runs of spaces (halsampler), tried last
-_NAMES = {",": "comma", ";": "semicolon", "\t": "tab", " ": "spaces"}
+#: " ": runs of spaces (halsampler), tried last; "|": a pipe, as database and report tools separate columns
+#: (tracefuzz; our reading, a delimiter no number holds)
+_DELIMITERS = ("\t", ";", ",", "|", " ")
+_NAMES = {",": "comma", ";": "semicolon", "\t": "tab", "|": "pipe", " ": "spaces"}
 _OVERRUN = "overrun"  # halsampler's line where its FIFO was full and samples were lost
 
 
@@ -318,7 +321,7 @@ def _table(text: str, src: str) -> _Table:
     if first < 0 or width < 2:
         k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
         first_text = lines[k].strip() if k is not None else ""
-        raise CaptureError("no rows of numbers separated by tab, ';', ',' or spaces" + _hex_dump(lines), file=src,
+        raise CaptureError("no rows of numbers separated by tab, ';', ',', '|' or spaces" + _hex_dump(lines), file=src,
                            line=k + 1 if k is not None else None, text=first_text[:80] if k is not None else None)
     rows, row_lines, overruns, text_cells = [], [], [], {}
     nan_cells: dict[int, list[tuple[int, int, str]]] = {}
@@ -569,9 +572,13 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         raise CaptureError(f"fewer than two rows with all of {list(columns.values())}", file=src)
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
+    _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
+                          src, in_counts=_counted_columns(header, units_row, idx))
     units = _header_units(header, units_row, idx, time_unit, unit)
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
     stated.update(_turn_travel(units, above))
+    if unit is None:
+        stated.update(unit_stated({k: u for k, u in units.items() if k in idx}, "stated in the file"))
     stamped = "t" in idx and ":" in _split(lines[lines_kept[0] - 1], delimiter)[idx["t"]]
     if units["t"] is None and period is not None and sample_time is None and not stamped:
         units["t"] = _unit_of_step(d[:, idx["t"]], float(period.value))
@@ -621,6 +628,51 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 
+#: A number with its digits grouped by thousands (``1,234``, ``-12.345.678``), which a decimal point or comma at
+#: the same place would also read.
+_GROUPED = re.compile(r"[+-]?[1-9]\d{0,2}(?:([.,])\d{3})(?:\1\d{3})*")
+
+
+def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mapping[str, str],
+                          cells: Callable[[], list[list[str]]], row_lines: Sequence[int], src: str, *,
+                          in_counts: Mapping[str, str]) -> None:
+    """An error for a position column whose numbers look grouped by thousands: every cell with a point or comma
+    is ``1,234`` / ``1.234`` (three digits after each), beside whole numbers below 1000 (``523``) written
+    without one, in a file whose other columns write the other decimal mark (``1.234`` beside ``0,5``), or in a
+    column of counts (``[inc]``: a count is a whole number). A
+    spreadsheet's digit grouping writes such a column of counts (``"1,234"`` with the delimiter ``,``, ``1.234`` in
+    a German export); read as decimals it is a thousand times too small, and a column of decimals with three places
+    always has the mark (tracefuzz; our reading). The cells are only read when the numbers are whole in
+    thousandths."""
+    with np.errstate(over="ignore", invalid="ignore"):  # a number beyond reach is the reach check's error
+        suspect = [k for k in idx if k != "t" and _whole(d[:, idx[k]] * 1000) and (d[:, idx[k]] % 1 != 0).any()]
+    if not suspect:
+        return
+    rows = cells()
+    for k in suspect:
+        col = [r[idx[k]].strip().strip('"') for r in rows]
+        marked = [j for j, c in enumerate(col) if "." in c or "," in c]
+        whole = [c for c in col if c and "." not in c and "," not in c]
+        if not marked or not all(_GROUPED.fullmatch(col[j]) for j in marked):
+            continue
+        j = marked[0]
+        mark = "," if "," in col[j] else "."
+        other = "." if mark == "," else ","
+        beside = next((c.strip().strip('"') for r in rows for i, c in enumerate(r) if i != idx[k] and other in c), None)
+        if whole or beside is not None or k in in_counts:
+            like = (f"whole numbers like {whole[0]!r}" if whole else f"{beside!r} in another column" if beside
+                    else f"a count unit ({in_counts[k]!r})")
+            raise CaptureError(f"{k}={columns[k]!r}: {col[j]!r} beside {like} reads as digits "
+                               "grouped by thousands as well as a decimal; vcnc reads no digit grouping",
+                               file=src, line=row_lines[j], text=col[j],
+                               expected="numbers without thousands separators (the export's number format)")
+
+
+def _whole(values: np.ndarray) -> bool:
+    """True when every value is a whole number (to rounding)."""
+    return bool(np.all(np.abs(values - np.round(values)) < 1e-6))
+
+
 def _rounded_stamps(t: np.ndarray, stamps: Callable[[], list[str]], scale: float,
                     src: str) -> tuple[np.ndarray, dict[str, str]]:
     """Time [s] on a uniform step when its stamps are one rounded to the digits printed (``0.0063694``,
@@ -668,18 +720,20 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
                  line: int) -> dict[str, str]:
     """Positions logged in counts (:func:`vcnc.traces.names.counted`, or a count unit in the units row) without
     a unit given: scaled by the size of one count the preamble states (:mod:`vcnc.traces.preamble`), set in
-    ``units``, and the ``meta["count_size"]`` note; without one an error asking for ``--unit``."""
-    counts = {}
-    for k in idx:
-        if k == "t" or units[k] is not None:
-            continue
-        cell = units_row[idx[k]].strip("[]() ").lower() if units_row is not None else ""
-        c = (counted(header[idx[k]]) if header is not None else None) or (cell if cell in COUNT_UNITS else None)
-        if c is not None:
-            counts[k] = c
+    ``units``, and the ``meta["count_size"]`` note; without one an error asking for ``--unit``. A stated count
+    size above positions that name no unit at all is an error too: counts or mm, the file does not say which
+    (tracefuzz; our reading: a drive tool stating its resolution logs counts, a column without a unit may be either,
+    and a wrong guess is a factor of thousands)."""
+    marked = _counted_columns(header, units_row, idx)
+    counts = {k: c for k, c in marked.items() if units[k] is None}
+    plain = [k for k in idx if k != "t" and units[k] is None and k not in marked]
+    size = stated_count_size(above) if counts or plain else None
+    if plain and size is not None:
+        raise CaptureError(f"line {size.line} states the size of one count ({size.text!r}), and "
+                           f"{', '.join(f'{k}={columns[k]!r}' for k in plain)} state no unit: counts or mm?",
+                           file=src, line=line, expected=f"--unit {size.value} (counts) or --unit mm")
     if not counts:
         return {}
-    size = stated_count_size(above)
     if size is None:
         k, c = next(iter(counts.items()))
         raise CaptureError(f"{k}={columns[k]!r} is logged in increments ({c!r}) and the file does not state their "
@@ -690,6 +744,18 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
         units[k] = str(size.value)
     return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
                           f"({size.text!r})"}
+
+
+def _counted_columns(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int]) -> dict[str, str]:
+    """The position columns logged in counts, by their names (:func:`vcnc.traces.names.counted`) or a count unit in
+    the units row, each with its count unit."""
+    out = {}
+    for k in idx:
+        cell = units_row[idx[k]].strip("[]() ").lower() if units_row is not None else ""
+        c = (counted(header[idx[k]]) if header is not None else None) or (cell if cell in COUNT_UNITS else None)
+        if k != "t" and c is not None:
+            out[k] = c
+    return out
 
 
 #: Motor angle units per turn, for a linear axis logged in its motor's angle (:func:`_turn_travel`).

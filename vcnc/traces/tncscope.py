@@ -50,6 +50,7 @@ from vcnc.traces.columns import (
     parse_number,
     read_text,
     unit_named,
+    unit_stated,
     with_following_errors,
 )
 
@@ -95,6 +96,7 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
     lag_lines: dict[str, int] = {}  # the file line and name of each axis' s diff curve
     lag_names: dict[str, str] = {}
     scale: dict[int, float] = {}
+    dims: dict[int, str | None] = {}  # each position column's %DIMENSION, None where the curve states none
     for k, (c, name) in enumerate(zip(curves, found), start=1):
         ctype = " ".join(c.get("CHANNELTYPE", "").lower().split())
         axis = (c.get("AXISTYPE") or re.split(r"[/\s]", name)[-1]).lower()
@@ -107,6 +109,7 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
                                line=int(c["_line"]))
         if ctype in COMMANDED + MEASURED + LAG:
             scale[int(col)] = _position_scale(c, axis, src)
+            dims[int(col)] = c.get("DIMENSION", "").strip() or None
         for kind, table in ((COMMANDED, ref), (MEASURED, meas), (LAG, lag)):
             if ctype in kind:
                 table.setdefault(axis, int(col))
@@ -140,7 +143,8 @@ def read_tncscope(path: str | os.PathLike[str], *, resample: bool = False) -> Ca
                **{x + LAG_SUFFIX: f"col{lag[x]} ({lag_names[x]})" for x in axes if x not in meas}}
     m, lag_meta = with_following_errors(axes, mapping, r, m, float(t[1] - t[0]), src, line=lag_lines,
                                         expected=LAG_CONVENTION)
-    meta = {"format": "TNCscope", **mapping_meta(axes, mapping), **lag_meta, **how}
+    meta = {"format": "TNCscope", **mapping_meta(axes, mapping), **lag_meta, **how,
+            **unit_stated({f"col{k}": dims[k] for k in r_cols + m_cols}, "stated by %DIMENSION")}
     converted = {k: v for k, v in scale.items() if v != 1.0 and k in r_cols + m_cols}
     if converted:
         meta["converted"] = ",".join(f"col{k}x{v:g}" for k, v in sorted(converted.items()))

@@ -68,6 +68,7 @@ from vcnc.traces.columns import (
     position_scale,
     read_text,
     unit_named,
+    unit_stated,
     with_following_errors,
 )
 from vcnc.traces.names import channels_from_names, mapping_note
@@ -192,6 +193,8 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
             **how}
     if note:
         meta["columns"] = note
+    if unit is None:
+        meta.update(unit_stated(units, "stated in the Unit row"))
     scaling = [f"{c.name} ({c.scaling})" for c in used.values() if c.scaling]
     if scaling:
         meta["scaling"] = (f"{'; '.join(scaling)}: applied by Scope only with 'Scale values before export', "

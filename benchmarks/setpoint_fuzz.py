@@ -1,0 +1,445 @@
+"""Seeded setpoint fuzzer: random programs interpolated under both profiles, their setpoints checked for invariants.
+
+The readers' fuzzers (``benchmarks/linuxcnc_fuzz.py``, ``tests/interpolators/fanuc_generator.py``,
+``tests/interpolators/tnc_generator.py``) compare block end points with references; this one checks the *setpoints*
+of random programs: those three generators' programs and CAM-like dense code written here (:func:`cam_program`:
+chords of random curves 1 um - 2 mm long, tangent arc chains, tiny arcs, zig-zags, helices, near-reversals, very
+short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`: the same in TNC conversational
+with cycle 32 tolerances), each run under the trapezoid and the S-curve with random but sane limits per axis
+(:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, rapid rates) and a sample
+time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
+
+* ``nonfinite``: a NaN or infinity in a column;
+* ``limits``: an axis beyond its velocity, acceleration (or, S-curve, jerk) limit by finite differences or in the
+  analytic columns, or the X/Y/Z path speed above the programmed feed (``setpoint_checks.check_limits``);
+* ``jump``: a position step that the analytic velocity and acceleration columns do not explain;
+* ``block_order``: ``Setpoints.block`` decreasing;
+* ``start`` / ``end``: the first sample not at the program's start, the last not exactly at its end;
+* ``deviation``: a sample farther from the programmed path than the tolerance of its block and the one before
+  (0 under G61 where a block ends at rest; G64 P; 0.01 mm without P, ``interpolators.DEFAULT_TOLERANCE``; the TNC
+  cycle 32 T or the dialect's tolerance, ``Block.tolerance``);
+* ``corner``: a programmed block end not passed within the block's tolerance (not on a sample within 1 nm where
+  the block ends at rest);
+* ``dwell``: a dwell not held at rest for its time rounded up to whole samples.
+
+``python -m benchmarks.setpoint_fuzz --count 200 --seed 0`` prints a table of outcomes per source; ``--list``
+names every failing case (source, seed, profile, sample time, kind and detail).
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import math
+import random
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from benchmarks import linuxcnc_fuzz  # noqa: E402
+from interpolators import DEFAULT_TOLERANCE, AxisLimits, interpolate, parse_program  # noqa: E402
+from interpolators.context import DEFAULT_CONTEXT, INTERPOLATION_CONTEXT, MachineContext  # noqa: E402
+from tests.interpolators import fanuc_generator, tnc_generator  # noqa: E402
+from tests.interpolators.setpoint_checks import check_limits, path_distances, xyz  # noqa: E402
+from vcnc.core.axes import EXTRA_NAMES  # noqa: E402
+from vcnc.errors import GCodeError, ProgramTooLongError  # noqa: E402
+
+#: Sources of programs: name -> (program text, machine context) of a seed.
+SOURCES = ("cam", "tnc_cam", "linuxcnc", "fanuc", "haas", "tnc")
+#: Largest number of samples a case may take (a longer one is skipped as ``too_long``).
+MAX_SAMPLES = 3_000_000
+#: A point "on" a sample [mm] (exact stops, program start and end).
+EXACT = 1e-6
+#: Allowance beyond a tolerance [mm] for the rounding of the measurement.
+ALLOWANCE = 1e-6
+
+
+def _num(rng: random.Random, v: float) -> str:
+    """A coordinate as CAM posts write it: mostly 4 decimals, sometimes 3 or 6."""
+    return f"{v:.{rng.choice((4, 4, 4, 3, 6))}f}"
+
+
+class _Cam:
+    """A CAM-like ISO program being written: its lines and the current point [mm]."""
+
+    def __init__(self, rng: random.Random, *, tnc: bool = False):
+        self.r = rng
+        self.tnc = tnc
+        self.lines: list[str] = []
+        self.pos = np.array([0.0, 0.0, 5.0])
+        self.extra = False
+
+    def move(self, p, *, rapid: bool = False, feed: float | None = None, extra: str = "") -> None:
+        """A straight move to ``p`` (written with the program's rounding; the current point follows it)."""
+        words = [self._coord(a, v) for a, v in zip("XYZ", p)]
+        self.pos = np.array([float(w[1:]) for w in words])
+        if self.tnc:
+            f = " FMAX" if rapid else (f" F{feed:.0f}" if feed else "")
+            self.lines.append(f"L {' '.join(words)} R0{f}")
+        else:
+            f = f" F{feed:.0f}" if feed else ""
+            self.lines.append(f"{'G0' if rapid else 'G1'} {' '.join(words)}{extra}{f}")
+
+    def _coord(self, axis: str, v: float) -> str:
+        s = _num(self.r, v)
+        return f"{axis}{'+' if self.tnc and not s.startswith('-') else ''}{s}"
+
+    def arc(self, centre, end, ccw: bool, *, z: float | None = None) -> None:
+        """An arc about ``centre`` (X Y) to ``end`` (X Y), helical to ``z``; the end put on the circle."""
+        c = np.array([float(_num(self.r, centre[0])), float(_num(self.r, centre[1]))])
+        r0 = float(np.hypot(*(self.pos[:2] - c)))
+        ang = math.atan2(end[1] - c[1], end[0] - c[0])
+        end = c + r0 * np.array([math.cos(ang), math.sin(ang)])
+        zz = self.pos[2] if z is None else z
+        ex, ey, ez = (f"{v:.6f}" for v in (end[0], end[1], zz))
+        if self.tnc:
+            self.lines.append(f"CC X{c[0]:+.6f} Y{c[1]:+.6f}")
+            zw = f" Z{float(ez):+.6f}" if z is not None else ""
+            self.lines.append(f"C X{float(ex):+.6f} Y{float(ey):+.6f}{zw} DR{'+' if ccw else '-'}")
+        else:
+            i, j = c - self.pos[:2]
+            zw = f" Z{ez}" if z is not None else ""
+            self.lines.append(f"{'G3' if ccw else 'G2'} X{ex} Y{ey}{zw} I{i:.6f} J{j:.6f}")
+        self.pos = np.array([float(ex), float(ey), float(ez)])
+
+    def mode(self) -> None:
+        """A path mode: G61, G64, G64 P (TNC: cycle 32 with or without T, or none)."""
+        tol = self.r.choice((0.001, 0.005, 0.01, 0.02, 0.05, 0.1))
+        k = self.r.random()
+        if self.tnc:
+            if k < 0.6:
+                self.lines += ["CYCL DEF 32.0 TOLERANCE", f"CYCL DEF 32.1 T{tol}" if k < 0.45 else "CYCL DEF 32.1"]
+            return
+        self.lines.append("G61" if k < 0.2 else "G64" if k < 0.4 else f"G64 P{tol}")
+
+    def feed(self) -> float:
+        return self.r.choice((100.0, 500.0, 1500.0, 3000.0, 6000.0, 12000.0, 30000.0))
+
+    def dwell(self) -> None:
+        t = self.r.choice((0.001, 0.0123, 0.1, 0.25))
+        self.lines += (["CYCL DEF 9.0 DWELL TIME", f"CYCL DEF 9.1 DWELL {t}"] if self.tnc else [f"G4 P{t}"])
+
+
+def _chords(g: _Cam) -> None:
+    """Chords of a random smooth curve (a wavy circle or a sine wave, in 2D or 3D), each 1 um - 2 mm long."""
+    r = g.r
+    step = 10 ** r.uniform(-3, math.log10(2.0))
+    n = r.randint(8, min(400, max(9, int(60 / step))))
+    amp, freq, phase = r.uniform(0, 0.3), r.randint(1, 7), r.uniform(0, 6.3)
+    radius = r.uniform(0.2, 30.0)
+    dz = r.choice((0.0, 0.0, r.uniform(-2, 2)))
+    start = g.pos.copy()
+    kind = r.random()
+    feed = g.feed()
+    for k in range(1, n + 1):
+        s = k * step
+        if kind < 0.5:
+            th = s / radius
+            rr = radius * (1 + amp * math.sin(freq * th + phase))
+            p = start + [rr * math.cos(th) - radius, rr * math.sin(th), dz * k / n]
+        else:
+            p = start + [s, radius * 0.1 * math.sin(s * freq / max(radius, 1) + phase), dz * k / n]
+        g.move(p, feed=feed if k == 1 else None)
+        if r.random() < 0.02:
+            feed = g.feed()
+            g.move(g.pos + [step, 0, 0], feed=feed)
+
+
+def _arc_chain(g: _Cam, *, tiny: bool = False) -> None:
+    """Tangent arcs (and lines) turning either way; radii 1 um - 0.05 mm when ``tiny``."""
+    r = g.r
+    heading = r.uniform(0, 2 * math.pi)
+    g.move(g.pos + [math.cos(heading), math.sin(heading), 0], feed=g.feed())
+    for _ in range(r.randint(2, 12)):
+        rad = 10 ** r.uniform(-3, math.log10(0.05)) if tiny else 10 ** r.uniform(-1.3, 1.3)
+        ccw = r.random() < 0.5
+        side = 1 if ccw else -1
+        normal = np.array([-math.sin(heading), math.cos(heading)]) * side
+        c = g.pos[:2] + rad * normal
+        sweep = r.uniform(0.05, 3.0) * side
+        a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
+        end = c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)])
+        g.arc(c, end, ccw)
+        heading += sweep
+        if r.random() < 0.3:
+            length = 10 ** r.uniform(-2, 0.7)
+            g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0])
+
+
+def _zigzag(g: _Cam) -> None:
+    """A raster: passes 0.5 - 20 mm long, 0.01 - 1 mm apart, or a saw tooth of small amplitude."""
+    r = g.r
+    length, over = r.uniform(0.5, 20), 10 ** r.uniform(-2, 0)
+    g.move(g.pos, feed=g.feed())
+    for k in range(r.randint(3, 20)):
+        g.move(g.pos + [length * (1 if k % 2 == 0 else -1), 0, 0])
+        g.move(g.pos + [0, over, 0])
+
+
+def _helix(g: _Cam) -> None:
+    """Helical arcs descending about a centre, a quarter to a whole turn each."""
+    r = g.r
+    rad = r.uniform(0.2, 10)
+    c = g.pos[:2] + [rad, 0]
+    ccw = r.random() < 0.5
+    g.move(g.pos, feed=g.feed())
+    for _ in range(r.randint(1, 5)):
+        a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
+        sweep = r.choice((0.5, 1.0, 1.5, 3.0)) * (1 if ccw else -1)
+        end = c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)])
+        g.arc(c, end, ccw, z=g.pos[2] - r.uniform(0.01, 2))
+
+
+def _reversals(g: _Cam) -> None:
+    """Lines that turn back by nearly 180 degrees, and very short segments (0.1 - 10 um)."""
+    r = g.r
+    heading = r.uniform(0, 2 * math.pi)
+    g.move(g.pos, feed=g.feed())
+    for _ in range(r.randint(2, 10)):
+        if r.random() < 0.5:
+            length = 10 ** r.uniform(-4, -2)
+        else:
+            length = r.uniform(0.05, 5)
+            heading += math.pi - 10 ** r.uniform(-4, -0.5) * r.choice((1, -1))
+        g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), r.choice((0, 0, 0, 1e-3))])
+
+
+def _extra_axes(g: _Cam) -> None:
+    """Feed moves with a rotary or secondary axis moving beside X/Y (ISO only)."""
+    r = g.r
+    axis = r.choice("ABCUVW")
+    value = 0.0
+    g.extra = True
+    g.move(g.pos, feed=g.feed())
+    for _ in range(r.randint(2, 10)):
+        value += r.uniform(-20, 20)
+        g.move(g.pos + [r.uniform(-3, 3), r.uniform(-3, 3), 0], extra=f" {axis}{value:.4f}")
+
+
+_SECTIONS = (_chords, _chords, _chords, _arc_chain, lambda g: _arc_chain(g, tiny=True), _zigzag, _helix,
+             _reversals)
+
+
+def cam_program(seed: int, *, tnc: bool = False) -> str:
+    """A CAM-like program of ``seed``: sections of dense chords, arc chains, zig-zags, helices, near-reversals
+    and short segments in random path modes, with feed changes and dwells; ISO (LinuxCNC) or, with ``tnc``, TNC
+    conversational with cycle 32."""
+    r = random.Random(f"cam:{tnc}:{seed}")
+    g = _Cam(r, tnc=tnc)
+    if not tnc:
+        g.lines.append("G21 G17 G90 G40")
+    g.move([0, 0, 5], rapid=True)
+    for _ in range(r.randint(2, 6)):
+        g.mode()
+        section = r.choice(_SECTIONS + (() if tnc else (_extra_axes,)))
+        section(g)
+        if r.random() < 0.25:
+            g.dwell()
+        if r.random() < 0.2:
+            g.move(g.pos + [0, 0, r.uniform(0.5, 5)], rapid=True)
+    if tnc:
+        body = ["BEGIN PGM CAM MM", *g.lines, "END PGM CAM MM"]
+        return "\n".join(f"{k} {line}" for k, line in enumerate(body)) + "\n"
+    return "\n".join([*g.lines, "M2"]) + "\n"
+
+
+def program_of(source: str, seed: int) -> tuple[str, MachineContext]:
+    """The program text of ``source`` and ``seed`` and the machine context it runs on."""
+    if source == "cam":
+        return cam_program(seed), INTERPOLATION_CONTEXT
+    if source == "tnc_cam":
+        return cam_program(seed, tnc=True), DEFAULT_CONTEXT
+    if source == "linuxcnc":
+        return linuxcnc_fuzz.generate(seed)[0], INTERPOLATION_CONTEXT
+    if source in ("fanuc", "haas"):
+        return fanuc_generator.generate(seed, source), fanuc_generator.context(seed, source)
+    if source == "tnc":
+        return tnc_generator.generate(seed), MachineContext(home=(0.0, 0.0, 300.0))
+    raise ValueError(f"unknown source {source!r}; known: {', '.join(SOURCES)}")
+
+
+def random_limits(rng: random.Random, axes) -> dict[str, AxisLimits]:
+    """Limits per axis (mm or deg): velocity from 10, acceleration from 100, jerk from 1000, each axis' value a
+    random 1 - 40 times a base drawn per program (so up to 40x apart between axes); rapid 1 - 3 x the velocity."""
+    base = [10 ** rng.uniform(1, 1.5), 10 ** rng.uniform(2, 3), 10 ** rng.uniform(3, 5)]
+    out = {}
+    for axis in axes:
+        v, a, j = (b * 40 ** rng.random() for b in base)
+        out[axis] = AxisLimits(velocity=v, acceleration=a, jerk=j, rapid=v * rng.uniform(1, 3))
+    return out
+
+
+def block_tolerances(program) -> np.ndarray:
+    """The path tolerance of each block [mm]: 0 where it ends at rest (G61, dwells), else its G64 P or cycle 32 T
+    (``Block.tolerance``), :data:`interpolators.DEFAULT_TOLERANCE` without (rapids too: G0 corners are blended
+    under G64 as LinuxCNC's planner blends them)."""
+    return np.array([0.0 if b.exact_stop or b.kind == "dwell" else
+                     DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance for b in program.blocks])
+
+
+def _full(program, sp, pos: np.ndarray, extra: np.ndarray | None) -> np.ndarray:
+    """A position of the program (X Y Z and the blocks' extra axes) in the column order of ``sp``."""
+    return np.array([pos["xyz".index(a)] if a in "xyz" else (0.0 if extra is None else extra[EXTRA_NAMES.index(a)])
+                     for a in sp.axes])
+
+
+def _polyline_distance(points: np.ndarray, q: np.ndarray) -> float:
+    """Distance [mm] of ``q`` from the polyline through ``points`` (n, 3)."""
+    if len(points) == 1:
+        return float(np.linalg.norm(points[0] - q))
+    a, d = points[:-1], np.diff(points, axis=0)
+    dd = np.einsum("ij,ij->i", d, d)
+    u = np.clip(np.einsum("ij,ij->i", q - a, d) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    return float(np.linalg.norm(a + u[:, None] * d - q, axis=1).min())
+
+
+def _corner_failures(program, sp, pts: np.ndarray, tol: np.ndarray, sagitta: float) -> list[str]:
+    """Each motion block's end passed within its tolerance by the samples' polyline (its chords, up to ``sagitta``
+    [mm] inside the curve the samples are on, allowed beside it), and on the block's last sample where the setpoints
+    stop there."""
+    blocks = program.blocks
+    first = np.searchsorted(sp.block, np.arange(len(blocks)), side="left")
+    last = np.searchsorted(sp.block, np.arange(len(blocks)), side="right")
+    for i, b in enumerate(blocks):
+        if b.segment is None or b.length == 0 or first[i] == last[i]:
+            continue
+        hi = int(np.searchsorted(sp.block, i + 1, side="right")) + 1
+        lo = max(first[i] - 1, 0)
+        d = _polyline_distance(pts[lo:hi], b.target)
+        k = last[i] - 1
+        # a block shorter than a sample may carry only the stop at its start
+        at_rest = not sp.velocity[k].any() and np.linalg.norm(pts[k] - b.start) > EXACT
+        if at_rest:
+            d = float(np.linalg.norm(pts[k] - b.target))
+        if d > (EXACT if at_rest else tol[i] + sagitta + ALLOWANCE):
+            return [f"corner: block {i} (line {b.line}) end missed by {d:.3g} mm, tolerance {tol[i]:g}"
+                    f"{' (at rest)' if at_rest else ''}"]
+    return []
+
+
+def _dwell_failures(program, sp) -> list[str]:
+    out = []
+    Ts = sp.sample_time
+    for i, b in enumerate(program.blocks):
+        if b.kind != "dwell":
+            continue
+        on = sp.block == i
+        n = int(on.sum())
+        want = math.ceil(b.dwell / Ts - 1e-9)
+        if not (want <= n <= want + 1) or np.abs(sp.velocity[on]).max(initial=0.0) > 0:
+            out.append(f"dwell: block {i} (line {b.line}) {b.dwell:g} s held {n} samples of {Ts:g} s")
+            break
+    return out
+
+
+def _jump_failures(sp, limits) -> list[str]:
+    """Position steps the analytic velocity explains: the trapezoid rule within an acceleration step."""
+    Ts = sp.sample_time
+    step = np.diff(sp.position, axis=0)
+    rule = Ts * (sp.velocity[:-1] + sp.velocity[1:]) / 2
+    bound = np.array([limits[a].acceleration for a in sp.axes]) * Ts**2 + 1e-9
+    bad = np.abs(step - rule) > bound
+    if bad.any():
+        k, j = np.argwhere(bad)[0]
+        return [f"jump: axis {sp.axes[j]} at sample {k}: step {step[k, j]:.4g}, velocity says {rule[k, j]:.4g}"]
+    return []
+
+
+def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) -> list[str]:
+    """The failures of ``sp`` (setpoints of ``program`` under ``limits`` and ``profile``), one line per kind
+    (see the module docstring); empty when every invariant holds."""
+    cols = (sp.position, sp.velocity, sp.acceleration)
+    if not all(np.isfinite(c).all() for c in cols):
+        return ["nonfinite: a NaN or infinity in the setpoints"]
+    out = []
+    try:
+        check_limits(sp, program, limits, jerk=profile == "scurve", feed=True)
+    except AssertionError as e:
+        out.append(f"limits: {e}")
+    out += _jump_failures(sp, limits)
+    if np.any(np.diff(sp.block) < 0):
+        out.append(f"block_order: block decreases at sample {int(np.argmax(np.diff(sp.block) < 0))}")
+    b0, b1 = program.blocks[0], program.blocks[-1]
+    if np.abs(sp.position[0] - _full(program, sp, b0.start, b0.extra_start)).max() > EXACT:
+        out.append("start: first sample not at the program start")
+    end = _full(program, sp, b1.target, b1.extra_target)
+    if np.abs(sp.position[-1] - end).max() > EXACT:
+        out.append(f"end: last sample {np.abs(sp.position[-1] - end).max():.3g} mm from the program end")
+    tol = block_tolerances(program)
+    blk = np.clip(sp.block, 0, None)
+    # a blend joins a block to the moving block before it (a zero-length block between them has no samples)
+    moving = np.array([b.segment is not None and b.length > 0 for b in program.blocks])
+    before = np.maximum.accumulate(np.where(moving, np.arange(len(moving)), 0))
+    before = np.concatenate([[0], before[:-1]])
+    allowed = np.maximum(tol[blk], tol[before[blk]]) + ALLOWANCE
+    path = program.path()
+    if path.segments:
+        d = path_distances(path, xyz(sp))
+        if np.any(d > allowed):
+            k = int(np.argmax(d - allowed))
+            out.append(f"deviation: sample {k} (block {sp.block[k]}, line {program.blocks[blk[k]].line}) "
+                       f"{d[k]:.3g} mm off the path, tolerance {allowed[k] - ALLOWANCE:g}")
+    # a chord between samples v Ts apart on a curve of radius v^2 / a lies a Ts^2 / 8 inside it
+    a_xyz = np.linalg.norm([limits[a].acceleration for a in sp.axes if a in "xyz"])
+    out += _corner_failures(program, sp, xyz(sp), tol, a_xyz * sp.sample_time**2 / 8)
+    out += _dwell_failures(program, sp)
+    return out
+
+
+def run_case(source: str, seed: int) -> list[tuple[str, str, float, list[str]]]:
+    """Both profiles of the program of ``source`` and ``seed``: (outcome, profile, sample time, failures) each;
+    outcome ``ok``, ``fail``, ``refused`` (the reader's GCodeError), ``too_long`` or ``crash``."""
+    text, context = program_of(source, seed)
+    rng = random.Random(f"limits:{source}:{seed}")
+    Ts = 10 ** rng.uniform(math.log10(2.5e-4), math.log10(4e-3))
+    try:
+        program = parse_program(text, source=f"{source}-{seed}", context=context)
+    except GCodeError as e:
+        return [("refused", "-", Ts, [str(e).splitlines()[0]])]
+    if not any(b.segment is not None for b in program.blocks):
+        return [("refused", "-", Ts, ["no motion"])]
+    limits = random_limits(rng, program.axes)
+    out = []
+    for profile in ("trapezoid", "scurve"):
+        try:
+            sp = interpolate(program, limits=limits, sample_time=Ts, profile=profile, max_samples=MAX_SAMPLES)
+        except ProgramTooLongError:
+            out.append(("too_long", profile, Ts, []))
+            continue
+        except Exception as e:  # noqa: BLE001 - a fuzzer reports every failure
+            out.append(("crash", profile, Ts, [f"crash: {type(e).__name__}: {e}"]))
+            continue
+        fails = check_setpoints(program, sp, limits, profile)
+        out.append(("fail" if fails else "ok", profile, Ts, fails))
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--count", type=int, default=100, help="programs per source")
+    ap.add_argument("--seed", type=int, default=0, help="first seed")
+    ap.add_argument("--sources", default=",".join(SOURCES), help="comma-separated: " + ", ".join(SOURCES))
+    ap.add_argument("--list", action="store_true", help="name every failing case")
+    args = ap.parse_args(argv)
+    table: dict[str, collections.Counter] = {}
+    for source in args.sources.split(","):
+        counts = table.setdefault(source, collections.Counter())
+        for seed in range(args.seed, args.seed + args.count):
+            for outcome, profile, Ts, fails in run_case(source, seed):
+                counts[outcome] += 1
+                for f in fails if outcome in ("fail", "crash") else ():
+                    counts[f.split(":")[0]] += 1
+                    if args.list:
+                        print(f"{source} {seed} {profile} Ts={Ts:.3g}: {f}", flush=True)
+    kinds = sorted({k for c in table.values() for k in c})
+    print("source     " + " ".join(f"{k:>11}" for k in kinds))
+    for source, c in table.items():
+        print(f"{source:<10} " + " ".join(f"{c[k]:>11}" for k in kinds))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
