@@ -68,6 +68,7 @@ if TYPE_CHECKING:  # scipy is imported where a run is fitted: a program without 
 __all__ = [
     "DENSE_MAX_LENGTH",
     "UNBLENDED_MAX_LENGTH",
+    "UNBLENDED_FEED_SPREAD",
     "CURVE_TURN_SHARE",
     "DENSE_MAX_CURVE_TURN",
     "DENSE_MAX_TURN",
@@ -91,6 +92,9 @@ __all__ = [
 DENSE_MAX_LENGTH: float = 1.0
 #: Lines at most this long [mm] may be merged in a chain whose corners are not blended (moving axes beyond X, Y, Z).
 UNBLENDED_MAX_LENGTH: float = 5.0
+#: Largest relative difference of a line's feed from the first one of its run in such a chain: inverse time (G93)
+#: feeds, each chord's length over its time, differ by the rounding of the programmed words.
+UNBLENDED_FEED_SPREAD: float = 0.01
 #: Largest turn [rad] at a junction inside a run (sharper corners end the run and stay corners).
 DENSE_MAX_TURN: float = 0.2
 #: Largest turn [rad] at a junction inside a run on a tight curve, S-curve only (see ``merge_dense_runs``).
@@ -550,7 +554,8 @@ def merge_dense_runs(
     unblended : bool
         The chain's corners are not blended (it moves axes beyond X, Y, Z): lines up to
         :data:`UNBLENDED_MAX_LENGTH` merge whatever their density, the fit's tolerance check decides (a
-        junction left unmerged is passed at the one-sample rule, far slower than a blend).
+        junction left unmerged is passed at the one-sample rule, far slower than a blend), and so do lines
+        whose feeds differ by up to :data:`UNBLENDED_FEED_SPREAD` (inverse time, G93).
 
     Returns
     -------
@@ -571,6 +576,7 @@ def merge_dense_runs(
     turns = np.arccos(np.clip(np.einsum("ij,ij->i", d[:-1], d[1:]), -1.0, 1.0)) if n > 1 else np.zeros(0)
     inside = curve_junctions(turns, curvature_continuous=curvature_continuous)
     density = math.inf if unblended else CURVE_DENSITY if curvature_continuous else DENSITY
+    spread = UNBLENDED_FEED_SPREAD if unblended else 0.0
     spans: list[tuple[int, int, MergedRun | None]] = []
     k = 0
     while k < n:
@@ -580,8 +586,8 @@ def merge_dense_runs(
             continue
         e = k + 1
         # dense junctions only (module docstring): coarser chords are blended per junction
-        while (e < n and dense[e] and feeds[e] == feeds[k] and tolerances[e - 1] == tolerances[k]
-               and tolerances[e - 1] > 0 and inside[e - 1]
+        while (e < n and dense[e] and abs(feeds[e] - feeds[k]) <= spread * feeds[k]
+               and tolerances[e - 1] == tolerances[k] and tolerances[e - 1] > 0 and inside[e - 1]
                and turns[e - 1] * min(segments[e - 1].length, segments[e].length) < density * tolerances[e - 1]):
             e += 1
         before = segments[k - 1] if k > 0 and isinstance(segments[k - 1], (Line, Arc)) else None

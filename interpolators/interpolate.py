@@ -540,10 +540,12 @@ def _extra_bounds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_
 def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Chain, dict[int, MergedRun], dict]:
     """A chain moving the axes beyond X, Y, Z with its runs of dense short lines merged (:func:`_merged`) and,
     for each curve piece (by ``id``), the spline those axes follow along its run and the run's arc length at the
-    piece's start (:func:`interpolators.dense.fit_axes`, within the run's tolerance in each axis' unit). The
-    chain unmerged (no runs, no fits) when it has no run or the axes of one of its runs fit no spline."""
+    piece's start (:func:`interpolators.dense.fit_axes`, within the run's tolerance in each axis' unit). A run
+    whose axes fit no spline keeps its chords (:func:`_restore_runs`), the others stay merged; the chain as it was
+    (no runs, no fits) when none is left."""
     merged, run_of = _merged(ch, jerk_limited, unblended=True)
     fit_of: dict = {}
+    failed: set[int] = set()
     for run in {id(r): r for r in run_of.values()}.values():
         s, s0 = _vertex_arc_lengths(run)
         blocks = [program.blocks[b] for b in run.blocks.tolist()]
@@ -551,9 +553,30 @@ def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Ch
         tol = DEFAULT_TOLERANCE if blocks[0].tolerance is None else blocks[0].tolerance
         spl = fit_axes(s, values, tol)
         if spl is None:
-            return ch, {}, {}
+            failed.add(id(run))
+            continue
         fit_of.update((id(p), (spl, float(x))) for p, x in zip(run.pieces, s0))
+    if not fit_of:
+        return ch, {}, {}
+    if failed:
+        merged, run_of = _restore_runs(ch, merged, run_of, failed)
     return merged, run_of, fit_of
+
+
+def _restore_runs(ch: _Chain, merged: _Chain, run_of: dict[int, MergedRun], failed: set[int]
+                  ) -> tuple[_Chain, dict[int, MergedRun]]:
+    """The merged chain ``merged`` of ``ch`` with the runs ``failed`` (by ``id``) put back as their chords (the
+    items of ``ch``: one per block in a chain moving the axes beyond X, Y, Z), and the run of each piece left."""
+    index = {b: i for i, b in enumerate(ch.blocks)}
+    out = _Chain.of([], [], [], [], [])
+    for k, seg in enumerate(merged.segments):
+        run = run_of.get(id(seg))
+        if run is None or id(run) not in failed:
+            out.add(seg, merged.blocks[k], merged.feeds[k], merged.rapid[k], merged.tolerances[k])
+        elif seg is run.pieces[0]:
+            for i in (index[b] for b in run.blocks.tolist()):
+                out.add(ch.segments[i], ch.blocks[i], ch.feeds[i], ch.rapid[i], ch.tolerances[i])
+    return out, {key: run for key, run in run_of.items() if id(run) not in failed}
 
 
 def _vertex_arc_lengths(run: MergedRun) -> tuple[np.ndarray, np.ndarray]:
@@ -617,7 +640,8 @@ def _merged(ch: _Chain, jerk_limited: bool, *, unblended: bool = False) -> tuple
     if not runs:
         return ch, {}
     last = [*(f - 1 for f in first[1:]), len(blocks) - 1]
-    out = _Chain.of(segs, [blocks[i] for i in first], [feeds[i] for i in first], [rapid[i] for i in first],
+    slowest = [min(feeds[f:max(f, e) + 1]) for f, e in zip(first, last)]  # a run's feeds may differ (unblended)
+    out = _Chain.of(segs, [blocks[i] for i in first], slowest, [rapid[i] for i in first],
                     [tolerances[i] for i in last])
     return out, {id(segs[k]): run for k, run in runs.items()}
 

@@ -224,3 +224,56 @@ def test_chords_longer_than_dense_code_merge_when_the_axes_move(profile):
     check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
     assert distance_to_path(sp) <= 0.02
     assert _axis_deviation(sp, rotary, "a") <= 0.02
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_run_that_fits_no_spline_leaves_the_other_runs_merged(profile):
+    """The two-lap helix with A, then past a sharp corner ten chords whose A zigzags by 0.5 deg: the zigzag's
+    run keeps its chords (each sample on its block's chord, a stop at each reversal) while the helix stays
+    merged and takes about the time it takes when a straight line follows it instead (before, one run fitting no
+    spline left the whole chain unmerged: 8.09 s trapezoid, 24.6 s S-curve against 4.27 s and 4.78 s)."""
+    def program(zigzag: bool):
+        tail = [f"X{10 + 0.2 * i:.4f} Y0 Z-0.5 A{90 + (0.5 * (i % 2) if zigzag else 0):.4f}" for i in range(1, 11)]
+        return _program([*_helix(True), *tail])
+
+    line, zig = program(False), program(True)
+    sp0, sp = interpolate(line, profile=profile), interpolate(zig, profile=profile)
+    assert "programmed_path" in sp.meta  # the helix merged
+    helix = (sp.block >= 2) & (sp.block <= 401)
+    assert np.sum(helix) <= 1.02 * np.sum((sp0.block >= 2) & (sp0.block <= 401))  # about the time on the helix
+    assert _inner_stops(sp, zig) - _inner_stops(sp0, line) == 8  # the zigzag's inner reversals
+    tail = sp.block >= 402
+    a = sp.position[:, sp.axes.index("a")]
+    assert _axis_deviation(sp, zig, "a") <= 0.01
+    for k in np.flatnonzero(tail):
+        b = zig.blocks[sp.block[k]]
+        share = (sp.position[k, 0] - b.start[0]) / (b.target[0] - b.start[0])
+        assert a[k] == pytest.approx(b.extra_start[0] + share * (b.extra_delta[0]), abs=1e-9)
+    check_limits(sp, zig, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.01
+    assert np.allclose(sp.position[-1], _end(zig, sp.axes), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_inverse_time_chords_merge_at_the_slowest_feed_of_each_piece(profile):
+    """The helix with A under G93, every chord F6366.2 (1/F min each: 3.77 s in all): rounding the words to
+    4 decimals leaves the chords' feeds (length over time) up to 0.3 % apart, which used to end a run at every
+    chord (7.75 s trapezoid, 23.8 s S-curve). They merge: the run takes about the programmed time, at most
+    1 % more (each piece at the slowest feed of its chords), never above a block's feed."""
+    lines = ["G21 G90 G64 P0.01 G0 X10 Y0 Z0 A0", "G93 G1"]
+    for i in range(1, 401):
+        t = 4 * math.pi * i / 400
+        lines.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 400:.4f} A{90 * i / 400:.4f}"
+                     " F6366.2")
+    prog = _program([*lines, "G94"])
+    feeds = [b.feed for b in prog.blocks if b.kind == "line"]
+    assert 1.0 < max(feeds) / min(feeds) < 1.005
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" in sp.meta
+    programmed = 400 * 60.0 / 6366.2
+    on_helix = np.sum(sp.block >= 2) * sp.sample_time
+    assert programmed <= on_helix <= 1.03 * programmed
+    assert _inner_stops(sp, prog) == 0
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
+    assert distance_to_path(sp) <= 0.01
+    assert _axis_deviation(sp, prog, "a") <= 0.01
