@@ -541,14 +541,19 @@ def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Ch
     """A chain moving the axes beyond X, Y, Z with its runs of dense short lines merged (:func:`_merged`) and,
     for each curve piece (by ``id``), the spline those axes follow along its run and the run's arc length at the
     piece's start (:func:`interpolators.dense.fit_axes`, within the run's tolerance in each axis' unit). A run
-    whose axes fit no spline keeps its chords (:func:`_restore_runs`), the others stay merged; the chain as it was
-    (no runs, no fits) when none is left."""
+    whose axes fit no spline keeps its chords (:func:`_restore_runs`), the others stay merged, and so does a run of
+    chords under tool centre point control (``Block.tcp``: X, Y, Z follow the tip through the rotary axes, a fit
+    of those apart would move the tip off the tolerance by the pivot distance); the chain as it was (no runs, no
+    fits) when none is left."""
     merged, run_of = _merged(ch, jerk_limited, unblended=True)
     fit_of: dict = {}
     failed: set[int] = set()
     for run in {id(r): r for r in run_of.values()}.values():
         s, s0 = _vertex_arc_lengths(run)
         blocks = [program.blocks[b] for b in run.blocks.tolist()]
+        if any(b.tcp for b in blocks):
+            failed.add(id(run))
+            continue
         values = np.array([blocks[0].extra_start, *(b.extra_target for b in blocks)], dtype=float)
         tol = DEFAULT_TOLERANCE if blocks[0].tolerance is None else blocks[0].tolerance
         spl = fit_axes(s, values, tol)

@@ -84,6 +84,11 @@ class Block:
         ``a, b, c`` [deg], then the secondary linear axes ``u, v, w`` [mm]) before and after the
         block; ``None`` in a program that moves none of them. They move in proportion to the path
         (RS274/NGC 3, Sec. 2.1.2.5: with X, Y or Z moving, the feed applies to the XYZ path). Read-only.
+    tcp : bool
+        A chord of a move under tool centre point control (G43.4/G43.5/G234, M128 / FUNCTION TCPM): its X, Y, Z
+        follow the tool tip through the rotary axes, within the path tolerance already, so the look-ahead never
+        merges such chords (a fit of the rotary axes apart from X, Y, Z would move the tip by the pivot distance
+        times the angle's error).
 
     Notes
     -----
@@ -105,6 +110,7 @@ class Block:
     tolerance: float | None = None
     extra_start: np.ndarray | None = None
     extra_target: np.ndarray | None = None
+    tcp: bool = False
 
     def __post_init__(self) -> None:
         for arr in (self.start, self.target, self.extra_start, self.extra_target):
@@ -132,6 +138,7 @@ class Block:
         _set_tolerance(blk, tolerance)
         _set_extra_start(blk, None)
         _set_extra_target(blk, None)
+        _set_tcp(blk, False)
         return blk
 
     @property
@@ -159,7 +166,7 @@ class Block:
 
 # the slots' own setters: what the frozen dataclass's __init__ does, without its per-field object.__setattr__
 (_set_line, _set_number, _set_text, _set_kind, _set_start, _set_target, _set_feed, _set_segment, _set_dwell,
- _set_exact_stop, _set_tolerance, _set_extra_start, _set_extra_target) = (
+ _set_exact_stop, _set_tolerance, _set_extra_start, _set_extra_target, _set_tcp) = (
     vars(Block)[f.name].__set__ for f in dataclasses.fields(Block))
 
 

@@ -339,3 +339,32 @@ def test_fn18_id270_under_m128_reads_the_tip_on_the_part():
     assert at[9].target == pytest.approx(tip, abs=1e-9)
     # after M129, X+Q4 is the machine X read by ID240 (from the preset: machine X = 10 + Q4)
     assert at[11].target[0] == pytest.approx(10.0 + tip[0], abs=1e-9)
+
+
+def test_dense_chords_under_tcp_are_never_merged():
+    """200 short G43.4 moves round R30 with A and C turning: their chords are ``Block.tcp`` and the look-ahead keeps
+    them (no merged curve, ``meta["programmed_path"]`` absent), so the tool tip stays within the G64 P the chords
+    were cut to (a fit of A and C apart from X, Y, Z would move the tip by the pivot distance times the angle's
+    error: review30 measured the chain merged once its inverse-time-like feeds were allowed to differ by 1 %)."""
+    lines = ["G21 G90 G54 G64 P0.01", "G0 A0 C0", "G43.4 H1 X30. Y0 Z0", "G1 F2000."]
+    pts = []
+    for i in range(1, 201):
+        t = math.pi * i / 200
+        pts.append((30 * math.cos(t), 30 * math.sin(t), 0.0))
+        lines.append(f"X{pts[-1][0]:.4f} Y{pts[-1][1]:.4f} Z0 A{10 * math.sin(t):.4f} C{math.degrees(t):.4f}")
+    prog = parse_iso("\n".join([*lines, "G49", "M30"]) + "\n", source="t.nc", context=FANUC)
+    assert all(b.tcp for b in prog.blocks[2:] if b.length > 0) and not prog.blocks[0].tcp  # G0 A0 C0: before G43.4
+    rows = [k for k, b in enumerate(prog.blocks) if b.kind == "line"][2:]
+    poly = np.array([(30.0, 0.0, 0.0), *pts]) + np.array(PRESET)
+    u = np.linspace(0.0, 1.0, 200)[None, :, None]
+    dense = (poly[:-1, None] + (poly[1:] - poly[:-1])[:, None] * u).reshape(-1, 3)
+    for profile in ("trapezoid", "scurve"):
+        assert "programmed_path" not in interpolate(prog, profile=profile).meta
+        tip = tips(prog, AC, rows, profile=profile)
+        assert np.linalg.norm(tip[:, None] - dense[None, ::7], axis=2).min(axis=1).max() <= 0.01 + 0.003
+
+
+def test_moves_under_m128_are_tcp_chords():
+    prog = tnc("3 M128\n4 L X+10 Y+0 Z+0 FMAX\n5 L X+40 Y+10 Z+5 B+30 C+45 F600\n6 M129\n7 L X+0 F600")
+    assert [b.tcp for b in prog.blocks if b.number == 5] and all(b.tcp for b in prog.blocks if b.number == 5)
+    assert not any(b.tcp for b in prog.blocks if b.number in (2, 7))
