@@ -548,7 +548,8 @@ class Machine:
         self.blocks.append(Block(kind=kind, target=np.array(target, dtype=float), feed=feed, segment=segment,
                                  line=where.line, number=number, text=where.text, start=self.pos.copy(),
                                  exact_stop=self.exact_stop, tolerance=self.tolerance, dwell=dwell,
-                                 tcp=bool(self.tcpm and self.tcpm_move), **ends))
+                                 tcp=bool(self.tcpm and self.tcpm_move and extra is not None
+                                          and np.any(np.asarray(extra, dtype=float) != self.extra)), **ends))
         self.pos = np.array(target, dtype=float)
         if extra is not None:
             self.extra = np.array(extra, dtype=float)

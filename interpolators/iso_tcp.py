@@ -180,8 +180,8 @@ def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: S
         used.update(i for i in range(3) if target[i] != st.pos[i])
         blocks.append(Block(line=where.line, number=number, text=where.text, kind="rapid" if rapid else "line",
                             start=st.pos.copy(), target=target.copy(), feed=float(feed), segment=Line(st.pos, target),
-                            exact_stop=st.exact_stop if k == last else False, tolerance=st.tolerance, tcp=True,
-                            **extra))
+                            exact_stop=st.exact_stop if k == last else False, tolerance=st.tolerance,
+                            tcp=bool(np.any(ends != st.extra)), **extra))
         st.pos = target.copy()
         st.extra = ends.copy()
     return True

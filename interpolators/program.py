@@ -85,10 +85,10 @@ class Block:
         block; ``None`` in a program that moves none of them. They move in proportion to the path
         (RS274/NGC 3, Sec. 2.1.2.5: with X, Y or Z moving, the feed applies to the XYZ path). Read-only.
     tcp : bool
-        A chord of a move under tool centre point control (G43.4/G43.5/G234, M128 / FUNCTION TCPM): its X, Y, Z
-        follow the tool tip through the rotary axes, within the path tolerance already, so the look-ahead never
-        merges such chords (a fit of the rotary axes apart from X, Y, Z would move the tip by the pivot distance
-        times the angle's error).
+        A chord of a move under tool centre point control (G43.4/G43.5/G234, M128 / FUNCTION TCPM) that turns a
+        rotary axis: its X, Y, Z follow the tool tip through the rotary axes, within the path tolerance already, so
+        the look-ahead never merges such chords (a fit of the rotary axes apart from X, Y, Z would move the tip by
+        the pivot distance times the angle's error).
 
     Notes
     -----

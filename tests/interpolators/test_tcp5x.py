@@ -353,7 +353,8 @@ def test_dense_chords_under_tcp_are_never_merged():
         pts.append((30 * math.cos(t), 30 * math.sin(t), 0.0))
         lines.append(f"X{pts[-1][0]:.4f} Y{pts[-1][1]:.4f} Z0 A{10 * math.sin(t):.4f} C{math.degrees(t):.4f}")
     prog = parse_iso("\n".join([*lines, "G49", "M30"]) + "\n", source="t.nc", context=FANUC)
-    assert all(b.tcp for b in prog.blocks[2:] if b.length > 0) and not prog.blocks[0].tcp  # G0 A0 C0: before G43.4
+    turning = [b.extra_start is not None and bool(np.any(b.extra_target != b.extra_start)) for b in prog.blocks]
+    assert sum(turning) >= 200 and [b.tcp for b in prog.blocks] == [t and k > 0 for k, t in enumerate(turning)]
     rows = [k for k, b in enumerate(prog.blocks) if b.kind == "line"][2:]
     poly = np.array([(30.0, 0.0, 0.0), *pts]) + np.array(PRESET)
     u = np.linspace(0.0, 1.0, 200)[None, :, None]
