@@ -8,8 +8,9 @@ offsets ``G54``-``G59``, ``G54.1 P..`` (Fanuc) or ``G154 P..`` / ``G110``-``G129
 ``G41``/``G42 D..`` contours with lines and arcs (inside and outside corners) entered and left by straight
 moves, drilling cycles ``G73 G81 G82 G83 G84 G85 G86 G89`` with ``R``, ``Q``, ``P``, repeats (Fanuc ``K``, Haas
 ``L``) and ``G98``/``G99`` in ``G90`` and ``G91``, ``G04``, ``M98``/``M99`` subprograms after ``M30``, Macro B
-(``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation, ``G51`` scaling
-and mirror (Fanuc ``G51.1``, Haas ``G101``).
+(``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation (also inside a
+``G52`` local system), ``G51`` scaling and mirror (Fanuc ``G51.1``, Haas ``G101``), a drilling series whose hole
+positions are in a subprogram.
 
 Sources for what each dialect defines: Haas mill operator's manual, G-code chapter ("G02/G03", "G10", "G12",
 "G28", "G41/G42", "G52", "G54.1/G154/G110-G129", "G65", "G68", "G73"-"G89", "G98/G99", "G101"), M-code chapter
@@ -41,7 +42,8 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "rotation", "scaling", "mirror", "g52", "g92", "g10", "extended_offset", "g28_g53", "dwell",
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
-            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools")
+            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
+            "cycle_sub", "g52_rotated")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -603,6 +605,45 @@ class _Gen:
         self.pos[2] = 20
         self.emit(f"G0 {self.xyz(z=25)}")
 
+    def cycle_sub_section(self) -> None:
+        """A drilling series whose hole positions are in a subprogram: the cycle stays modal through M98 and
+        drills at each position block of the subprogram (Haas mill operator's manual, "Subprograms": "G81 G99
+        Z-0.26 R0.1 F7." then "M98 P1000" with the positions "X.. Y.." in O01000; Fanuc 0i-MF "Canned cycle
+        for drilling": the cycle is modal until G80). Absolute positions, called once."""
+        code = self.r.choice(("G81", "G82", "G83", "G73", "G85"))
+        ret = self.r.choice(("G98", "G99"))
+        self.start(20)
+        q = f" Q{self.v(2)}" if code in ("G73", "G83") else ""
+        p = " P300" if code == "G82" else ""
+        self.emit(f"G90 {ret} {code} {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-6)} R{self.v(3)}{q}{p} "
+                  f"{self.feed()}")
+        prog = 3000 + len(self.subs) * 10
+        body = [f"O{prog} (HOLES)"]
+        for _ in range(self.r.randint(1, 4)):
+            x, y = self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + self.r.randint(1, 2) * 5
+            body.append(self.xyz(x, y))
+        body.append("M99")
+        self.subs.append(body)
+        self.emit(f"M98 P{prog}")
+        self.emit("G80")
+        self.pos[2] = 20 if ret == "G98" else 3
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def g52_rotated_section(self) -> None:
+        """G68 inside a G52 local system: the centre of rotation and the moves in local coordinates (Fanuc 0i-MF
+        "Local coordinate system": commands after G52 are in the local system; "Coordinate system rotation":
+        the centre is given in the current workpiece system; Haas "G52", "G68"), then G69 and G52 X0 Y0."""
+        self.emit(f"G52 X{self.v(self.r.randint(-4, 4) * 5)} Y{self.v(self.r.randint(-4, 4) * 5)}")
+        self.start()
+        self.emit(f"G68 X{self.v(self.pos[0] + self.r.randint(-2, 2) * 5)} Y{self.v(self.pos[1])} "
+                  f"R{self.r.choice((15, 30, 45, 90, -30))}.")
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
+        self.emit(self.arc(self.r.choice(("G2", "G3"))))
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G69")
+        self.emit("G52 X0. Y0.")
+
     def g28_shifted_section(self) -> None:
         """G28 through a point written in the local system (G52) in G90, and G30 in G91 (0i-MF "Reference
         position return": the intermediate point in the workpiece system)."""
@@ -708,7 +749,8 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "cycle_modal": g.cycle_modal_section, "g28_shifted": g.g28_shifted_section,
              "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
              "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section,
-             "g10_tools": g.g10_tools_section}
+             "g10_tools": g.g10_tools_section, "cycle_sub": g.cycle_sub_section,
+             "g52_rotated": g.g52_rotated_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
