@@ -10,7 +10,7 @@ moves, drilling cycles ``G73 G81 G82 G83 G84 G85 G86 G89`` with ``R``, ``Q``, ``
 ``L``) and ``G98``/``G99`` in ``G90`` and ``G91``, ``G04``, ``M98``/``M99`` subprograms after ``M30``, Macro B
 (``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation (also inside a
 ``G52`` local system), ``G51`` scaling and mirror (Fanuc ``G51.1``, Haas ``G101``), a drilling series whose hole
-positions are in a subprogram.
+positions are in a subprogram, ``G10 L2 P0`` (the external offset, also of the rotary B).
 
 Sources for what each dialect defines: Haas mill operator's manual, G-code chapter ("G02/G03", "G10", "G12",
 "G28", "G41/G42", "G52", "G54.1/G154/G110-G129", "G65", "G68", "G73"-"G89", "G98/G99", "G101"), M-code chapter
@@ -43,16 +43,17 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
-            "cycle_sub", "g52_rotated")
+            "cycle_sub", "g52_rotated", "external")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
     """The machine the generated program of ``seed`` runs on: offsets for G54-G59 and the first extended ones,
-    tools 1-6 (length 10n mm, radius 0.5 + 0.25n mm)."""
+    tools 1-6 (length 10n mm, radius 0.5 + 0.25n mm), a rotary table B."""
     offsets = {f"G5{k}": (-300.0 + 10 * k, -200.0 + 5 * k, -400.0 + k) for k in range(4, 10)}
     offsets.update({f"G54.1 P{k}": (-250.0 + k, -150.0 - k, -350.0) for k in range(1, 21)})
     tools = {n: Tool(number=n, length=10.0 * n, radius=0.5 + 0.25 * n) for n in range(1, 7)}
     return MachineContext(work_offsets=offsets, tools=tools, home=(0.0, 0.0, 0.0), dialect=DIALECTS[dialect],
+                          extra_axes=("b",),
                           decimal_point_input="increment" if _increments(seed, dialect) else "calculator")
 
 
@@ -357,6 +358,20 @@ class _Gen:
             p = 0
         self.emit(f"G{53 + p}" if p else self.extended_code(1))
         self.lines_section()
+
+    def external_section(self) -> None:
+        """``G10 L2 P0``: the external workpiece zero offset, which shifts every workpiece system, for X Y Z and
+        the rotary B (Fanuc 0i-MD B-64304EN "Changing workpiece coordinate system": ``G10 L2 Pp IP_``, p=0 the
+        external workpiece zero point offset; Haas "G10": P0 the G52 entry, the common shift), absolute or added
+        under G91, moves in the shifted system, then the offset cleared."""
+        vals = " ".join(f"{a}{_num(self.r.randint(-8, 8) * 2.5 * self.unit)}" for a in "XYZ")
+        b = f" B{self.r.choice((15, -30, 90))}." if self.r.random() < 0.5 else ""
+        self.emit(f"{self.r.choice(('G90', 'G91'))} G10 L2 P0 {vals}{b}")
+        self.emit("G90")
+        self.lines_section()
+        if self.r.random() < 0.5:
+            self.emit(f"G0 B{self.r.choice((0, 45, -60))}.")
+        self.emit("G90 G10 L2 P0 X0. Y0. Z0." + (" B0." if b else ""))
 
     def extended_code(self, k: int) -> str:
         if self.fanuc:
@@ -750,7 +765,7 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
              "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section,
              "g10_tools": g.g10_tools_section, "cycle_sub": g.cycle_sub_section,
-             "g52_rotated": g.g52_rotated_section}
+             "g52_rotated": g.g52_rotated_section, "external": g.external_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
