@@ -252,8 +252,9 @@ class _Gen:
         and finishing (Q215 = 0), plunging vertically (Q366 = 0), after the transformations 8/10/11 are reset (the
         reference models the pockets without them), called by ``CYCL CALL``, ``M99`` or ``CYCL CALL POS``."""
         r = self.r
-        self.emit("CYCL DEF 10.0 ROTATION", "CYCL DEF 10.1 ROT+0", "CYCL DEF 8.0 MIRROR IMAGE", "CYCL DEF 8.1",
-                  "CYCL DEF 11.0 SCALING", "CYCL DEF 11.1 SCL1")
+        for block in ("CYCL DEF 10.0 ROTATION", "CYCL DEF 10.1 ROT+0", "CYCL DEF 8.0 MIRROR IMAGE", "CYCL DEF 8.1",
+                      "CYCL DEF 11.0 SCALING", "CYCL DEF 11.1 SCL1"):
+            self.emit(block)
         self.emit(f"L X{_n(r.uniform(20, 80))} Y{_n(r.uniform(20, 80))} Z+20 R0 FMAX")
         kind = r.choice([251, 252])
         if kind == 251:
