@@ -59,7 +59,7 @@ def test_generator_is_seeded():
     assert generate(7, "fanuc") == generate(7, "fanuc")
     assert generate(7, "fanuc") != generate(8, "fanuc")
     assert generate(7, "haas") != generate(7, "fanuc")
-    assert generate(3, "haas").startswith("%\nO1003 (FUZZ 3)\n")
+    assert generate(3, "haas").startswith("%\nO4003 (FUZZ 3)\n")
 
 
 SUB = "O1000\nG91 G1 X5. F100.\nG90\nM99\n"
