@@ -13,7 +13,7 @@ from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
-from tests.interpolators.tnc_generator import generate
+from tests.interpolators.tnc_generator import context, generate
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
@@ -32,18 +32,19 @@ def test_generated_programs_are_read_as_the_reference_reads_them_or_refused_clea
     # 120 seeded programs mixing BEGIN PGM MM/INCH, TOOL DEF/CALL (DL, DR, F), L abs/inc, RL/RR with L or
     # APPR/DEP, CC (also bare, and kept across cycles 7-11 and TOOL CALL)/C (ends rounded off the circle too)/CR/CT/CP
     # (IZ)/LP, RND/CHF, corners down to 0.2 degrees, Q parameters in coordinates and feeds, LBL/CALL LBL REP, cycles
-    # 7/8/9/10/11/32 and 1/200/203/205 by CYCL CALL, M99, POS and PAT, M91/M92/M140. A refusal is a geometry the
+    # 7/8/9/10/11/32 and 1/200/203/205 by CYCL CALL, M99, POS and PAT, pockets 251/252, on a B/C table for a
+    # quarter of the seeds PLANE SPATIAL / RESET and M128 with B C, M91/M92/M140. A refusal is a geometry the
     # tool cannot cut (a gouge, a rounding that does not fit), a GCodeError naming the block's line
     accepted = 0
     for seed in range(120):
         text = generate(seed)
         try:
-            prog = parse_heidenhain(text, source="t.h", context=HOME)
+            prog = parse_heidenhain(text, source="t.h", context=context(seed))
         except GCodeError as e:
             assert str(e).startswith("t.h:"), (seed, str(e))
             assert "expected" in str(e), (seed, str(e))
             continue
-        match = match_blocks(heidenhain_reference(text, HOME), reader_rows(*blocks_table(prog)))
+        match = match_blocks(heidenhain_reference(text, context(seed)), reader_rows(*blocks_table(prog)))
         assert match.mismatch is None, (seed, match.mismatch)
         accepted += 1
     assert accepted >= 100
