@@ -180,6 +180,15 @@ def _to_machine(p: np.ndarray, state: dict) -> np.ndarray:
     return np.array([c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]]) + state["g5x"] + state["tool"]
 
 
+def _turned_rounding(state: dict) -> float:
+    """What a G10 L2 R rotation adds to the rounding of a printed point [mm]: rs274 prints the point before the
+    canon turns it (with the G92 offset), each coordinate within half its last digit; turned by the angle, a
+    machine coordinate is within that times |cos| + |sin| (up to sqrt 2 at 45 degrees; fuzz seed 306464: a G41
+    arc end under R-45 in inch, 1.8 um off)."""
+    turn = abs(math.cos(state["rotation"])) + abs(math.sin(state["rotation"])) - 1.0
+    return turn * (0.5e-4 * state["unit"] + (state["g92_slack"] if np.any(state["g92"]) else 0.0))
+
+
 def canonical_moves(output: str) -> list[Move]:
     """The moves of rs274's printed canonical calls, in machine coordinates.
 
@@ -219,7 +228,7 @@ def canonical_moves(output: str) -> list[Move]:
         start = moves[-1] if moves else None
         if name == "RIGID_TAP":  # prints no A B C: they stay where they are
             abc = (start.abc if start else np.zeros(3)) - abc_offset
-        slack = sum(state[f"{k}_slack"] for k in ("g5x", "g92", "tool") if np.any(state[k]))
+        slack = sum(state[f"{k}_slack"] for k in ("g5x", "g92", "tool") if np.any(state[k])) + _turned_rounding(state)
         moves.append(Move(kind=kind, xyz=_to_machine(end, state), abc=abc + abc_offset, center=center,
                           normal=normal, rotation=rotation, unit=state["unit"], slack=slack))
         if name == "RIGID_TAP":  # taps to x, y, z and returns to its start (emccanon.cc)

@@ -159,8 +159,18 @@ def chunk_arcs(w: _Writer) -> None:
     w.emit("G17 G90")
 
 
+def _rotary_words(rng: random.Random) -> str:
+    """For about a third of the offsets, A B C words [deg] (one to three of them) after the linear ones, with a
+    leading space; else nothing. g-code.adoc "G10 L2", "G10 L20", "G52", "G92": the axis words are any of
+    X Y Z A B C U V W, rotary axes in degrees in either length unit."""
+    if rng.random() >= 0.35:
+        return ""
+    return "".join(f" {a}{rng.randint(-90, 90)}" for a in sorted(rng.sample("ABC", rng.randint(1, 3))))
+
+
 def chunk_offsets(w: _Writer) -> None:
-    """Work offsets and their changes: G10 L2 (with R rotation) / L20, G54-G59.3, G52, G92 and its cancels."""
+    """Work offsets and their changes: G10 L2 (with R rotation) / L20, G54-G59.3, G52, G92 and its cancels, some
+    with A B C words (:func:`_rotary_words`), then moves with and without the rotary axes."""
     rng = w.rng
     w.units()
     systems = ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]
@@ -169,20 +179,23 @@ def chunk_offsets(w: _Writer) -> None:
         if kind == "L2":
             rot = f" R{rng.choice([0, 15, 30, 90, -45, 12.5])}" if rng.random() < 0.4 else ""
             w.emit(f"G10 L2 P{rng.randint(0, 9)} X{w.num(w.coord())} Y{w.num(w.coord())} Z{w.num(w.coord(-10, 10))}"
-                   f"{rot}")
+                   f"{_rotary_words(rng)}{rot}")
         elif kind == "L20":
-            w.emit(f"G10 L20 P{rng.randint(0, 9)} X{w.num(w.coord())} Y{w.num(w.coord())}")
+            w.emit(f"G10 L20 P{rng.randint(0, 9)} X{w.num(w.coord())} Y{w.num(w.coord())}{_rotary_words(rng)}")
         elif kind == "G5x":
             w.emit(rng.choice(systems))
         elif kind == "G52":
-            w.emit(f"G52 X{w.num(w.coord(-10, 10))} Y{w.num(w.coord(-10, 10))}" if rng.random() < 0.7 else
-                   "G52 X0 Y0 Z0")
+            w.emit(f"G52 X{w.num(w.coord(-10, 10))} Y{w.num(w.coord(-10, 10))}{_rotary_words(rng)}"
+                   if rng.random() < 0.7 else "G52 X0 Y0 Z0")
         elif kind == "G92":
-            w.emit(f"G92 X{w.num(w.coord())} Y{w.num(w.coord())}")
+            w.emit(f"G92 X{w.num(w.coord())} Y{w.num(w.coord())}{_rotary_words(rng)}")
         else:
             w.emit(rng.choice(["G92.1", "G92.2", "G92.3"]))
         w.start(w.coord(), w.coord(), w.coord(0, 20))
         w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]])} {w.feed()}")
+        if rng.random() < 0.3:
+            words = " ".join(f"{a}{rng.randint(-120, 120)}" for a in rng.sample("ABC", rng.randint(1, 3)))
+            w.emit(f"G{rng.choice([0, 1])} {words} {w.feed()}")
         if rng.random() < 0.4:
             w.emit("G17")
             _arc(w, 2)

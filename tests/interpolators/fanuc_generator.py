@@ -8,8 +8,9 @@ offsets ``G54``-``G59``, ``G54.1 P..`` (Fanuc) or ``G154 P..`` / ``G110``-``G129
 ``G41``/``G42 D..`` contours with lines and arcs (inside and outside corners) entered and left by straight
 moves, drilling cycles ``G73 G81 G82 G83 G84 G85 G86 G89`` with ``R``, ``Q``, ``P``, repeats (Fanuc ``K``, Haas
 ``L``) and ``G98``/``G99`` in ``G90`` and ``G91``, ``G04``, ``M98``/``M99`` subprograms after ``M30``, Macro B
-(``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation, ``G51`` scaling
-and mirror (Fanuc ``G51.1``, Haas ``G101``).
+(``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation (also inside a
+``G52`` local system), ``G51`` scaling and mirror (Fanuc ``G51.1``, Haas ``G101``), a drilling series whose hole
+positions are in a subprogram, ``G10 L2 P0`` (the external offset, also of the rotary B).
 
 Sources for what each dialect defines: Haas mill operator's manual, G-code chapter ("G02/G03", "G10", "G12",
 "G28", "G41/G42", "G52", "G54.1/G154/G110-G129", "G65", "G68", "G73"-"G89", "G98/G99", "G101"), M-code chapter
@@ -29,6 +30,7 @@ import dataclasses
 import random
 
 from interpolators.context import DIALECTS, MachineContext, Tool
+from interpolators.tilted import Kinematics, RotaryAxis
 
 __all__ = ["generate", "context", "FEATURES"]
 
@@ -41,17 +43,32 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "rotation", "scaling", "mirror", "g52", "g92", "g10", "extended_offset", "g28_g53", "dwell",
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
-            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools")
+            "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
+            "cycle_sub", "g52_rotated", "external", "tcp")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
     """The machine the generated program of ``seed`` runs on: offsets for G54-G59 and the first extended ones,
-    tools 1-6 (length 10n mm, radius 0.5 + 0.25n mm)."""
+    tools 1-6 (length 10n mm, radius 0.5 + 0.25n mm), a rotary table B; or for a quarter of the seeds
+    (:func:`five_axis`) the A/C tilting table :data:`_AC_TABLE` instead."""
     offsets = {f"G5{k}": (-300.0 + 10 * k, -200.0 + 5 * k, -400.0 + k) for k in range(4, 10)}
     offsets.update({f"G54.1 P{k}": (-250.0 + k, -150.0 - k, -350.0) for k in range(1, 21)})
     tools = {n: Tool(number=n, length=10.0 * n, radius=0.5 + 0.25 * n) for n in range(1, 7)}
+    five = five_axis(seed, dialect)
     return MachineContext(work_offsets=offsets, tools=tools, home=(0.0, 0.0, 0.0), dialect=DIALECTS[dialect],
+                          extra_axes=("a", "c") if five else ("b",), kinematics=_AC_TABLE if five else None,
                           decimal_point_input="increment" if _increments(seed, dialect) else "calculator")
+
+
+#: The tilting table of the five-axis seeds: A about X round (0, 0, -80), C about Z through (5, 0, 0).
+_AC_TABLE = Kinematics(axes=(RotaryAxis(name="a", pivot=(0.0, 0.0, -80.0), limits=(-120.0, 120.0)),
+                             RotaryAxis(name="c", pivot=(5.0, 0.0, 0.0))))
+
+
+def five_axis(seed: int, dialect: str) -> bool:
+    """The program of ``seed`` runs on the A/C tilting table (about a quarter of the seeds) and may use tool
+    centre point control (Fanuc ``G43.4``, Haas ``G234``)."""
+    return random.Random(f"{seed}:{dialect}:five").random() < 0.25
 
 
 def _increments(seed: int, dialect: str) -> bool:
@@ -79,6 +96,7 @@ class _Gen:
     tool: int = 0
     label: int = 9000
     dpi0: bool = False
+    five: bool = False  # the A/C tilting table (:func:`five_axis`)
 
     @property
     def fanuc(self) -> bool:
@@ -356,6 +374,44 @@ class _Gen:
         self.emit(f"G{53 + p}" if p else self.extended_code(1))
         self.lines_section()
 
+    def external_section(self) -> None:
+        """``G10 L2 P0``: the external workpiece zero offset, which shifts every workpiece system, for X Y Z and
+        the rotary B (Fanuc 0i-MD B-64304EN "Changing workpiece coordinate system": ``G10 L2 Pp IP_``, p=0 the
+        external workpiece zero point offset; Haas "G10": P0 the G52 entry, the common shift), absolute or added
+        under G91, moves in the shifted system, then the offset cleared."""
+        vals = " ".join(f"{a}{_num(self.r.randint(-8, 8) * 2.5 * self.unit)}" for a in "XYZ")
+        rot = "C" if self.five else "B"
+        b = f" {rot}{self.r.choice((15, -30, 90))}." if self.r.random() < 0.5 else ""
+        self.emit(f"{self.r.choice(('G90', 'G91'))} G10 L2 P0 {vals}{b}")
+        self.emit("G90")
+        self.lines_section()
+        if self.r.random() < 0.5:
+            self.emit(f"G0 {rot}{self.r.choice((0, 45, -60))}.")
+        self.emit("G90 G10 L2 P0 X0. Y0. Z0." + (f" {rot}0." if b else ""))
+
+    def tcp_section(self) -> None:
+        """On the five-axis seeds, tool centre point control on the A/C table: Fanuc ``G43.4 H..`` (FANUC 30i
+        "Tool center point control for 5-axis machining" A-79348E 1.1: X Y Z the tool tip in the workpiece
+        system, which the table carries), Haas ``G234 H..`` ("G234 Tool Center Point Control (TCPC)"), G0/G1
+        moves with A and C, ended by ``G49`` and the table turned back; then ``G43 H`` again. Elsewhere plain
+        lines."""
+        if not self.five:
+            self.lines_section()
+            return
+        self.start(30)
+        turned = f"G0 A{self.r.choice((-15, 20))}. C{self.r.randint(0, 8) * 45}."
+        self.emit("G0 A0. C0." if self.r.random() < 0.6 else turned)
+        self.emit(f"{'G43.4' if self.fanuc else 'G234'} H{self.tool or 1} {self.xyz(z=20)}")
+        for _ in range(self.r.randint(1, 4)):
+            x, y = self.pos[0] + self.r.randint(-4, 4) * 2.5, self.pos[1] + self.r.randint(-4, 4) * 2.5
+            rapid = self.r.random() < 0.3
+            feed = "" if rapid else " " + self.feed()
+            self.emit(f"G{0 if rapid else 1} {self.xyz(x, y, self.r.choice((5, 10, 20)))} "
+                      f"A{self.r.randint(-6, 6) * 5}. C{self.r.randint(-8, 8) * 15}.{feed}")
+        self.emit("G49")
+        self.emit("G0 A0. C0.")
+        self.emit(f"G43 H{self.tool or 1} {self.xyz(z=50)}")
+
     def extended_code(self, k: int) -> str:
         if self.fanuc:
             return f"G54.1 P{k}"
@@ -603,6 +659,45 @@ class _Gen:
         self.pos[2] = 20
         self.emit(f"G0 {self.xyz(z=25)}")
 
+    def cycle_sub_section(self) -> None:
+        """A drilling series whose hole positions are in a subprogram: the cycle stays modal through M98 and
+        drills at each position block of the subprogram (Haas mill operator's manual, "Subprograms": "G81 G99
+        Z-0.26 R0.1 F7." then "M98 P1000" with the positions "X.. Y.." in O01000; Fanuc 0i-MF "Canned cycle
+        for drilling": the cycle is modal until G80). Absolute positions, called once."""
+        code = self.r.choice(("G81", "G82", "G83", "G73", "G85"))
+        ret = self.r.choice(("G98", "G99"))
+        self.start(20)
+        q = f" Q{self.v(2)}" if code in ("G73", "G83") else ""
+        p = " P300" if code == "G82" else ""
+        self.emit(f"G90 {ret} {code} {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-6)} R{self.v(3)}{q}{p} "
+                  f"{self.feed()}")
+        prog = 3000 + len(self.subs) * 10
+        body = [f"O{prog} (HOLES)"]
+        for _ in range(self.r.randint(1, 4)):
+            x, y = self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + self.r.randint(1, 2) * 5
+            body.append(self.xyz(x, y))
+        body.append("M99")
+        self.subs.append(body)
+        self.emit(f"M98 P{prog}")
+        self.emit("G80")
+        self.pos[2] = 20 if ret == "G98" else 3
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def g52_rotated_section(self) -> None:
+        """G68 inside a G52 local system: the centre of rotation and the moves in local coordinates (Fanuc 0i-MF
+        "Local coordinate system": commands after G52 are in the local system; "Coordinate system rotation":
+        the centre is given in the current workpiece system; Haas "G52", "G68"), then G69 and G52 X0 Y0."""
+        self.emit(f"G52 X{self.v(self.r.randint(-4, 4) * 5)} Y{self.v(self.r.randint(-4, 4) * 5)}")
+        self.start()
+        self.emit(f"G68 X{self.v(self.pos[0] + self.r.randint(-2, 2) * 5)} Y{self.v(self.pos[1])} "
+                  f"R{self.r.choice((15, 30, 45, 90, -30))}.")
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
+        self.emit(self.arc(self.r.choice(("G2", "G3"))))
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G69")
+        self.emit("G52 X0. Y0.")
+
     def g28_shifted_section(self) -> None:
         """G28 through a point written in the local system (G52) in G90, and G30 in G91 (0i-MF "Reference
         position return": the intermediate point in the workpiece system)."""
@@ -687,9 +782,10 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
     r = random.Random(f"{dialect}:{seed}")
     inch = r.random() < 0.25
     chosen = features(seed, dialect)
-    g = _Gen(r, dialect, 0.05 if inch else 1.0, dpi0=_increments(seed, dialect))
+    g = _Gen(r, dialect, 0.05 if inch else 1.0, dpi0=_increments(seed, dialect), five=five_axis(seed, dialect))
     g.lines.append("%")
-    g.lines.append(f"O{1000 + seed % 8000:04d} (FUZZ {seed})")
+    # the main program O4000-O8999, apart from the subprograms (O1000-O3999, O9010-): a call finds its own
+    g.lines.append(f"O{4000 + seed % 5000:04d} (FUZZ {seed})")
     g.emit(f"{'G20' if inch else 'G21'} G17 G40 G49 G80 G90")
     g.tool_change()
     table = {"lines": g.lines_section, "arcs": g.arcs_section, "helix": g.helix_section,
@@ -708,7 +804,8 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "cycle_modal": g.cycle_modal_section, "g28_shifted": g.g28_shifted_section,
              "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
              "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section,
-             "g10_tools": g.g10_tools_section}
+             "g10_tools": g.g10_tools_section, "cycle_sub": g.cycle_sub_section,
+             "g52_rotated": g.g52_rotated_section, "external": g.external_section, "tcp": g.tcp_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")

@@ -1804,7 +1804,7 @@ def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
             back(z)
     if op == 2 or (op == 0 and (side > 0 or p.get("wall only"))):
         for z in depths(surface + depth, p.get("Q338", 0.0) or abs(depth)):
-            _move_z(t, line, "feed", z)
+            _move_z(t, line, "feed", z, optional=True)  # none when the roughing left the tool there (Q338 = Q200)
             mid = t.prog()
             if slot:
                 _slot_ring(t, line, p, kind, wall)

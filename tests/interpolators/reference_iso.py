@@ -1535,8 +1535,12 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
-        while depth > bottom:  # LinuxCNC's loop; a last peck within rounding of the bottom may be left out
-            rows = "optional" if depth - bottom <= _EPS * max(1.0, abs(bottom)) else "one"
+        # LinuxCNC's loop in doubles: a last peck within rounding of the bottom may be left out. Fanuc and Haas
+        # count in decimal: Q dividing R - Z exactly makes no peck at the bottom (our reading, the reader's too;
+        # in mm the pecks of an inch program can land within rounding above it, fanuc_generator seed 501518)
+        slack = _EPS * max(1.0, abs(bottom))
+        while depth > bottom + (slack if m.ctx.dialect.name in ("fanuc", "haas") else 0.0):
+            rows = "optional" if depth - bottom <= slack else "one"
             for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
                 m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
                 m.pos = m.out[-1].end.copy()

@@ -59,7 +59,7 @@ def test_generator_is_seeded():
     assert generate(7, "fanuc") == generate(7, "fanuc")
     assert generate(7, "fanuc") != generate(8, "fanuc")
     assert generate(7, "haas") != generate(7, "fanuc")
-    assert generate(3, "haas").startswith("%\nO1003 (FUZZ 3)\n")
+    assert generate(3, "haas").startswith("%\nO4003 (FUZZ 3)\n")
 
 
 SUB = "O1000\nG91 G1 X5. F100.\nG90\nM99\n"
@@ -129,3 +129,19 @@ def test_pecks_that_divide_the_depth_end_at_the_bottom():
     feeds = [round(e[2][2] / 25.4, 6) for e in ends(text, FANUC) if e[1] == "line"]
     assert feeds == [0.05, -0.05, -0.15, -0.25, -0.35, -0.45]
     assert ends(text, FANUC)[-1] == (2, "rapid", [0.0, 0.0, 3.81])
+
+
+def test_g73_pecks_that_divide_the_depth_make_no_peck_at_the_bottom_in_increments():
+    # fanuc_generator seed 501518, shrunk: an inch program under DPI = 0 (Z-7000 is 0.7 in), G73 from R 0.1 in
+    # to Z-0.6 in with Q 0.1 in: six pecks of 2.54 mm and the seventh feed reaches the bottom, then back to R
+    # (Fanuc 0i-MF "High-speed peck drilling cycle (G73)"; the control counts in decimal, so no chip break and
+    # re-feed at the bottom). In mm the reference's pecks landed within rounding above the bottom and it expected
+    # that extra peck; it now counts as Fanuc does
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], decimal_point_input="increment",
+                         tools={5: Tool(number=5, length=50.0)}, work_offsets={"G57": (-270.0, -185.0, -393.0)})
+    text = ("%\nO1\nG20 G90 G57 G0 X2. Y-0.5 Z1.\nG43 H5 Z0.5\n"
+            "G91 G99 G73 X-2500 Y2500 Z-7000 R-4000 Q1000 F20\nG80 G90\nM30\n%\n")
+    prog = checked_iso(text, ctx)
+    z = [round(float(b.target[2]) + 393.0 - 50.0, 4) for b in prog.blocks if b.line == 5]
+    pecks = [round(0.1 * 25.4 - 2.54 * k, 4) for k in range(1, 7)]
+    assert z == [12.7, 2.54, *[v for p in pecks for v in (p, round(p + 0.254, 4))], -15.24, 2.54]

@@ -13,7 +13,7 @@ from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
-from tests.interpolators.tnc_generator import generate
+from tests.interpolators.tnc_generator import context, generate
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
@@ -32,18 +32,19 @@ def test_generated_programs_are_read_as_the_reference_reads_them_or_refused_clea
     # 120 seeded programs mixing BEGIN PGM MM/INCH, TOOL DEF/CALL (DL, DR, F), L abs/inc, RL/RR with L or
     # APPR/DEP, CC (also bare, and kept across cycles 7-11 and TOOL CALL)/C (ends rounded off the circle too)/CR/CT/CP
     # (IZ)/LP, RND/CHF, corners down to 0.2 degrees, Q parameters in coordinates and feeds, LBL/CALL LBL REP, cycles
-    # 7/8/9/10/11/32 and 1/200/203/205 by CYCL CALL, M99, POS and PAT, M91/M92/M140. A refusal is a geometry the
+    # 7/8/9/10/11/32 and 1/200/203/205 by CYCL CALL, M99, POS and PAT, pockets 251/252, on a B/C table for a
+    # quarter of the seeds PLANE SPATIAL / RESET and M128 with B C, M91/M92/M140. A refusal is a geometry the
     # tool cannot cut (a gouge, a rounding that does not fit), a GCodeError naming the block's line
     accepted = 0
     for seed in range(120):
         text = generate(seed)
         try:
-            prog = parse_heidenhain(text, source="t.h", context=HOME)
+            prog = parse_heidenhain(text, source="t.h", context=context(seed))
         except GCodeError as e:
             assert str(e).startswith("t.h:"), (seed, str(e))
             assert "expected" in str(e), (seed, str(e))
             continue
-        match = match_blocks(heidenhain_reference(text, HOME), reader_rows(*blocks_table(prog)))
+        match = match_blocks(heidenhain_reference(text, context(seed)), reader_rows(*blocks_table(prog)))
         assert match.mismatch is None, (seed, match.mismatch)
         accepted += 1
     assert accepted >= 100
@@ -130,3 +131,19 @@ def test_pecking_advanced_stop_distance_is_not_scaled():
     assert [(k, round(z, 6)) for k, (_, _, z) in rows(prog, 11) if k != "dwell"] == [
         ("line", 3.0), ("rapid", 5.0), ("rapid", 3.6), ("line", 2.0), ("rapid", 5.0), ("rapid", 2.6),
         ("line", 1.0), ("rapid", 5.0)]
+
+
+def test_pocket_wall_finishing_starts_where_the_roughing_left_the_tool():
+    # cycle 251 (TNC 640 cycle programming manual, "POCKET MILLING (Cycle 251)"): roughing to Q201 = -4 in one
+    # pass (Q202 = 5), up by Q200 = 2 and back over the centre; the wall finished in passes of Q338 = 2, the first
+    # at -2, where the tool already is: no plunge there (the reference expected a zero-length feed), then out to
+    # the finished wall, half side 27.5 - R3 = 24.5 along X, at -2 and -4
+    prog = checked("TOOL DEF 1 L+0 R+3\nTOOL CALL 1 Z S8000\nL X+50 Y+50 Z+20 R0 FMAX\n"
+                   "CYCL DEF 251 RECTANGULAR POCKET Q215=+0 Q218=+55 Q219=+30 Q220=+4 Q368=+0.2 Q224=+0 Q367=+0 "
+                   "Q207=+300 Q351=-1 Q201=-4 Q202=+5 Q369=+0 Q206=+150 Q338=+2 Q200=+2 Q203=+0 Q204=+50 Q370=+1 "
+                   "Q366=+0 Q385=+500\nCYCL CALL")
+    call = rows(prog, 6)
+    k = call.index(("rapid", [50.0, 50.0, -2.0]))
+    assert call[k + 1:k + 3] == [("line", [74.5, 50.0, -2.0]), ("line", [74.5, 39.0, -2.0])]
+    assert ("line", [50.0, 50.0, -4.0]) in call[k + 3:] and ("line", [74.5, 50.0, -4.0]) in call[k + 3:]
+    assert call[-2:] == [("rapid", [50.0, 50.0, 2.0]), ("rapid", [50.0, 50.0, 50.0])]

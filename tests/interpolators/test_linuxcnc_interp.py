@@ -5,6 +5,7 @@ the end points are the STRAIGHT_TRAVERSE/STRAIGHT_FEED X, Y, Z of the ``expected
 from __future__ import annotations
 
 import io
+import math
 import os
 import re
 import shutil
@@ -504,3 +505,17 @@ def test_linuxcnc_interp_case_refused(case, tmp_path):
     for p in programs:
         with pytest.raises(GCodeError):
             load_program(p, context=context)
+
+
+def test_a_printed_point_turned_by_g10_l2_r_keeps_its_rounding():
+    # rs274 prints the point before the canon turns it by G10 L2 R (emccanon.cc rotate_and_offset_pos), each
+    # coordinate to 4 decimals; turned 45 degrees a machine coordinate carries both roundings: (sqrt 2 - 1) x half
+    # a digit more than unturned (fuzz seed 306464, a G41 arc end under R-45 in inch, 1.8 um off, matched)
+    head = "    1 N..... USE_LENGTH_UNITS(CANON_UNITS_INCHES)\n"
+    feed = "    3 N..... STRAIGHT_FEED(1.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+    (turned,) = canonical_moves(head + "    2 N..... SET_XY_ROTATION(-45.0000)\n" + feed)
+    (plain,) = canonical_moves(head + feed)
+    assert turned.slack == pytest.approx((math.sqrt(2.0) - 1.0) * 0.5e-4 * 25.4)
+    assert plain.slack == 0.0
+    r = math.sqrt(0.5) * 25.4
+    assert turned.xyz.tolist() == pytest.approx([3.0 * r, r, 0.0])

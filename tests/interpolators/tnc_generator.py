@@ -6,7 +6,9 @@ compensated contours entered and left by ``L`` or ``APPR``/``DEP``, ``F``/``FMAX
 incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/IPA), ``RND``/``CHF``, Q parameters
 (``FN 0``-``FN 4``, formulas) in coordinates and feeds, ``LBL``/``CALL LBL REP`` (nested, and a subprogram after
 ``M30``), cycles 7 (absolute and incremental), 9, 32, drilling 1/200/203/205 called by ``CYCL CALL``, ``M99``,
-``CYCL CALL POS`` and ``CYCL CALL PAT``, ``M91``/``M92`` and ``M140 MB``.
+``CYCL CALL POS`` and ``CYCL CALL PAT``, pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``;
+on a B/C table (:func:`context`, a quarter of the seeds) ``PLANE SPATIAL``/``PLANE RESET`` and ``M128`` with B C
+(:meth:`_Gen.tilted`).
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
 Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
@@ -22,7 +24,27 @@ from __future__ import annotations
 import math
 import random
 
-__all__ = ["generate"]
+from interpolators.context import MachineContext
+from interpolators.tilted import Kinematics, RotaryAxis
+
+__all__ = ["generate", "context", "five_axis"]
+
+#: The tilting table of the five-axis seeds: B about Y round (0, 0, -50), C about Z through the machine zero.
+BC_TABLE = Kinematics(axes=(RotaryAxis(name="b", pivot=(0.0, 0.0, -50.0), limits=(-120.0, 120.0)),
+                            RotaryAxis(name="c")))
+
+
+def five_axis(seed: int) -> bool:
+    """The program of ``seed`` runs on :data:`BC_TABLE` (about a quarter of the seeds)."""
+    return random.Random(f"{seed}:five").random() < 0.25
+
+
+def context(seed: int) -> MachineContext:
+    """The machine the program of ``seed`` runs on: the machine-defined position (M92, MB MAX) at Z 300, and on
+    the five-axis seeds the B/C table."""
+    if five_axis(seed):
+        return MachineContext(home=(0.0, 0.0, 300.0), extra_axes=("b", "c"), kinematics=BC_TABLE)
+    return MachineContext(home=(0.0, 0.0, 300.0))
 
 
 #: Whole vectors of length 25 in all directions (C arc ends exactly on their circle).
@@ -39,6 +61,7 @@ def _n(v: float) -> str:
 class _Gen:
     def __init__(self, seed: int):
         self.r = random.Random(seed)
+        self.five = five_axis(seed)
         self.blocks: list[list[str]] = []
         self.pos = [0.0, 0.0, 50.0]  # program coordinates, known after the first absolute XYZ move
         self.known = False
@@ -245,6 +268,79 @@ class _Gen:
                 self.emit("PATTERN DEF ~", f"POS1 (X{x} Y{y} Z+0) ~", f"POS2 (IX+{r.choice([5, 12])} Y{y} Z+0)")
                 self.emit("CYCL CALL PAT FMAX")
         self.known = False
+
+    def reset_transforms(self) -> None:
+        """Cycles 10 ROTATION, 8 MIRROR IMAGE and 11 SCALING reset, each its own block."""
+        for block in ("CYCL DEF 10.0 ROTATION", "CYCL DEF 10.1 ROT+0", "CYCL DEF 8.0 MIRROR IMAGE", "CYCL DEF 8.1",
+                      "CYCL DEF 11.0 SCALING", "CYCL DEF 11.1 SCL1"):
+            self.emit(block)
+
+    def tilted(self) -> None:
+        """On the five-axis seeds (:func:`five_axis`), the B/C table :data:`BC_TABLE`: a tilted working plane
+        (iTNC 530 user's manual, "The PLANE function": ``PLANE SPATIAL SPA SPB SPC TURN MB MAX FMAX``, lines in the
+        tilted plane, ``PLANE RESET TURN MB MAX FMAX``) or tool centre point control (TNC 640 user's manual, M128
+        "Retaining the position of the tool tip when positioning tilting axes": lines with B and C under
+        ``M128``, ``M129`` after), after the transformations 8/10/11 are reset. Elsewhere a plain move."""
+        r = self.r
+        if not self.five:
+            self.move()
+            return
+        self.reset_transforms()
+        self.emit("L Z+100 R0 FMAX")
+        if r.random() < 0.5:
+            self.emit(f"PLANE SPATIAL SPA+0 SPB{_n(r.choice([-30, 15, 45, 90]))} SPC{_n(r.choice([0, 30, -90]))} "
+                      "TURN MB MAX FMAX")
+            self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z+20 R0 FMAX")
+            for _ in range(r.randint(1, 3)):
+                self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z{_n(r.choice([0, 5]))}{self.feed()}")
+            self.emit("L Z+50 R0 FMAX")
+            self.emit("PLANE RESET TURN MB MAX FMAX")
+        else:
+            self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z+50 B+0 C+0 R0 FMAX")
+            self.emit("L Z+20 R0 FMAX M128")
+            for _ in range(r.randint(1, 4)):
+                self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z{_n(r.choice([0, 5, 20]))} "
+                          f"B{_n(r.choice([-30, 0, 20, 45]))} C{_n(r.choice([0, 45, -90, 180]))}{self.feed()}")
+            self.emit("L Z+50 R0 FMAX M129")
+            self.emit("L B+0 C+0 R0 FMAX")
+        self.known = False
+        self.polar_ok = False
+        self.pole_kept = self.cc is not None
+
+    def pocket(self) -> None:
+        """Cycle 251 RECTANGULAR POCKET or 252 CIRCULAR POCKET (TNC 640 cycle programming manual, "POCKET MILLING
+        (Cycle 251)", "CIRCULAR POCKET (Cycle 252)": the pocket centred on the tool position, Q367 = 0), roughing
+        and finishing (Q215 = 0), plunging vertically (Q366 = 0), after the transformations 8/10/11 are reset (the
+        reference models the pockets without them), called by ``CYCL CALL``, ``M99`` or ``CYCL CALL POS``."""
+        r = self.r
+        self.reset_transforms()
+        self.emit(f"L X{_n(r.uniform(20, 80))} Y{_n(r.uniform(20, 80))} Z+20 R0 FMAX")
+        kind = r.choice([251, 252])
+        if kind == 251:
+            lines = ["CYCL DEF 251 RECTANGULAR POCKET ~", "  Q215=+0 ;MACHINING OPERATION ~",
+                     f"  Q218=+{r.choice([30, 40, 55])} ;FIRST SIDE LENGTH ~",
+                     f"  Q219=+{r.choice([20, 25, 30])} ;2ND SIDE LENGTH ~",
+                     f"  Q220=+{r.choice([4, 6])} ;CORNER RADIUS ~",
+                     f"  Q368=+{r.choice([0, 0.2])} ;ALLOWANCE FOR SIDE ~",
+                     f"  Q224=+{r.choice([0, 30, 90])} ;ANGLE OF ROTATION ~", "  Q367=+0 ;POCKET POSITION ~"]
+        else:
+            lines = ["CYCL DEF 252 CIRCULAR POCKET ~", "  Q215=+0 ;MACHINING OPERATION ~",
+                     f"  Q223=+{r.choice([20, 32, 50])} ;CIRCLE DIAMETER ~",
+                     f"  Q368=+{r.choice([0, 0.2])} ;ALLOWANCE FOR SIDE ~"]
+        lines += [f"  Q207=+{r.choice([300, 500])} ;FEED RATE FOR MILLING ~",
+                  f"  Q351={r.choice(['+1', '-1'])} ;CLIMB OR UP-CUT ~", f"  Q201=-{r.choice([4, 6, 10])} ;DEPTH ~",
+                  f"  Q202=+{r.choice([2, 3, 5])} ;PLUNGING DEPTH ~",
+                  f"  Q369=+{r.choice([0, 0.1])} ;ALLOWANCE FOR FLOOR ~", "  Q206=+150 ;FEED RATE FOR PLNGNG ~",
+                  f"  Q338=+{r.choice([0, 2])} ;INFEED FOR FINISHING ~", "  Q200=+2 ;SET-UP CLEARANCE ~",
+                  f"  Q203=+{r.choice([0, 1])} ;SURFACE COORDINATE ~", "  Q204=+50 ;2ND SET-UP CLEARANCE ~",
+                  f"  Q370=+{r.choice([1, 0.8])} ;TOOL PATH OVERLAP ~", "  Q366=+0 ;PLUNGE ~",
+                  "  Q385=+500 ;FINISHING FEED RATE"]
+        self.emit(*lines)
+        x, y = _n(r.uniform(20, 80)), _n(r.uniform(20, 80))
+        self.emit(r.choice(["CYCL CALL", f"L X{x} Y{y} R0 FMAX M99", f"CYCL CALL POS X{x} Y{y} Z+0 FMAX"]))
+        self.known = False
+        self.polar_ok = False
+        self.pole_kept = self.cc is not None
 
     # -- contours ------------------------------------------------------------------------------
     def step(self, length: float, turn: float) -> tuple[float, float]:
@@ -593,6 +689,10 @@ def generate(seed: int) -> str:
         elif k < 0.9:
             g.emit("L Z+50 R0 FMAX")
             g.tool_call()
+        elif k < 0.94:
+            g.pocket()
+        elif k < 0.97:
+            g.tilted()
         else:
             g.move()
     g.emit("L Z+50 R0 FMAX M30" if not g.subs else "L Z+50 R0 FMAX")
