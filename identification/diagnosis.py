@@ -492,7 +492,7 @@ HELD_OUT_DAMPING = (0.0, 1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0, 100.0)
 #: Relative drop of the training error below which a held-out refit stops iterating [-].
 HELD_OUT_TOL = 1e-4
 #: Least share of the active record's sensitivity (norm along a direction) the training samples must carry for
-#: a held-out refit to move along that direction [-] (:func:`_training_basis`); with 4 folds an evenly
+#: a held-out refit to move along that direction [-] (:func:`_damped_refit`); with 4 folds an evenly
 #: determined direction has sqrt(3/4) = 0.87.
 HELD_OUT_SHARE = 0.1
 
@@ -542,55 +542,39 @@ def _held_out_sensitivities(lay: _Layout, z: np.ndarray, y0: np.ndarray) -> np.n
     return J
 
 
-def _training_basis(J_train: np.ndarray, J_active: np.ndarray) -> np.ndarray:
-    """(len(z), k): the directions of ``z`` a held-out fold's refit may move along, those in which the training
-    samples (``J_train``, the sensitivities there) carry at least :data:`HELD_OUT_SHARE` of the active record's
-    sensitivity (``J_active``): the right singular vectors of the column-scaled ``J_train``, kept by the norm of
-    ``J_train v`` over that of ``J_active v``.
-
-    A direction the held-out fold alone determines is left at the full fit: the singular-value cut of
-    :func:`identification.least_squares.damped_steps` (1e-3 of the largest) is relative to the training samples
-    and misses it when it is just above. ident_fuzz seed 1 case 79 (fadal-ppi's y, a saturation, 0.82 s): the
-    Coulomb levels' common mode (d0 and d1 together, a constant load that the loop's integral action shows only
-    while it builds up at the record's start) had a scaled singular value of 1.007e-3 on folds 2-4, which carry
-    0.6 % of the record's sensitivity along it; the refit moved d0/a2 and d1/a2 by -0.91 each and the first
-    fold's held-out error was 311 um for 2.9 um on all samples. Our reading of approximate leave-a-block-out
-    cross-validation (:func:`_judge`): a parameter the training samples do not determine cannot be re-estimated
-    from them.
-    """
-    sc = np.linalg.norm(J_active, axis=0)
-    sc[sc == 0] = 1.0
-    _, sv, Vt = np.linalg.svd(J_train / sc, full_matrices=False)
-    full = np.linalg.norm((J_active / sc) @ Vt.T, axis=0)
-    keep = sv >= HELD_OUT_SHARE * full
-    return Vt[keep].T / sc[:, None]
-
-
 def _damped_refit(lay: _Layout, J: np.ndarray, z: np.ndarray, y: np.ndarray, train: np.ndarray, first: int,
-                  basis: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, int] | None:
+                  G_all: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, int] | None:
     """One Levenberg-Marquardt iteration from ``z`` (simulated ``y`` over the record) on the samples ``train``
     (``J`` the sensitivities there): the lightest damping of :data:`HELD_OUT_DAMPING` from index ``first`` whose
-    step lowers the error on them, as (z, its simulation, the damping's index), or None. ``basis``
-    (:func:`_training_basis`): the directions the step is taken in (default: every parameter).
+    step lowers the error on them, as (z, its simulation, the damping's index), or None.
 
     A parameter on its bound that a step would push beyond it is held there and the step fitted on the others (the
     active set of a bounded least-squares solver): clipped afterwards, EMPS' step of |2-3| in the scaled parameters,
     nearly all beyond p's 1 mHz bound, raised the training error at every length; held, it lowers it.
+
+    ``G_all``: the Gram matrix of the sensitivities on all active samples. A direction along which the training
+    samples carry less than :data:`HELD_OUT_SHARE` of it (norm) is left at the full fit
+    (:func:`identification.least_squares.damped_steps`' ``reference``): the held-out fold alone determines it.
+    ident_fuzz seed 1 case 79 (fadal-ppi's y, a saturation, 0.82 s): the Coulomb levels' common mode (d0 and d1
+    together, a constant load that the loop's integral action shows only while it builds up at the record's start)
+    had a scaled singular value of 1.007e-3 on folds 2-4, just above the relative cut, which carry 0.6 % of the
+    record's sensitivity along it; the refit moved d0/a2 and d1/a2 by -0.91 each and the first fold's held-out
+    error was 311 um for 2.9 um on all samples. Our reading of approximate leave-a-block-out cross-validation
+    (:func:`_judge`): a parameter the training samples do not determine cannot be re-estimated from them.
     """
     x = lay.data.x[train]
     r = x - y[train]
     c0 = float(r @ r)
-    B = np.eye(z.size) if basis is None else basis
-    JB = J @ B
+    G, b = J.T @ J, J.T @ r
+    share = HELD_OUT_SHARE * HELD_OUT_SHARE
     damping = HELD_OUT_DAMPING[first:]
-    for k, u in enumerate(damped_steps(JB.T @ JB, JB.T @ r, damping)):
-        delta = B @ u
+    for k, delta in enumerate(damped_steps(G, b, damping, reference=G_all, share=share)):
         held = ((z <= lay.lo_pad) & (delta < 0)) | ((z >= lay.hi_pad) & (delta > 0))
         if held.any():
-            Bf = B.copy()
-            Bf[held] = 0.0
-            Jf = J @ Bf
-            delta = Bf @ damped_steps(Jf.T @ Jf, Jf.T @ r, (damping[k],))[0]
+            free = ~held
+            delta = np.zeros_like(delta)
+            ref = None if G_all is None else G_all[np.ix_(free, free)]
+            delta[free] = damped_steps(G[np.ix_(free, free)], b[free], (damping[k],), reference=ref, share=share)[0]
         zz = np.clip(z + delta, lay.lo_pad, lay.hi_pad)
         yy = lay.simulate(zz)
         e = x - yy[train]
@@ -624,6 +608,7 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
     z = lay.z0
     y0 = lay.simulate(z)
     J = _held_out_sensitivities(lay, z, y0)
+    G_all = J[plan.active].T @ J[plan.active]
 
     def held_out(i):
         """(RMS, max) [um] on fold i of the model refitted on the other folds, and whether it moved (False: the
@@ -631,11 +616,10 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
         held = plan.mask(i)
         train = plan.active & ~held
         Jt = J[train]
-        basis = _training_basis(Jt, J[plan.active])
         zi, yi, first = z, y0, 0
         c = float(np.sum((data.x - y0)[train] ** 2))
         for _ in range(HELD_OUT_ITERATIONS):
-            got = _damped_refit(lay, Jt, zi, yi, train, first, basis)
+            got = _damped_refit(lay, Jt, zi, yi, train, first, G_all)
             if got is None:
                 break
             zi, yi, k = got
