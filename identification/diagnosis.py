@@ -595,9 +595,10 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
     cross-validation (Rad and Maleki, "A scalable estimate of the out-of-sample prediction error via approximate
     leave-one-out cross-validation", JRSS B 82, 2020); the others take it on towards the training fit where the
     error is not quadratic in the parameters (a position-periodic load's period: a TNCscope trace's folds needed a
-    Gauss-Newton step shortened to 1/8 to 1/64). Directions whose singular value is below 1e-3 of the largest are
-    left at the full fit (a parameter only the held-out fold determines, such as a constant load seen only at the
-    start of the record, must not wander).
+    Gauss-Newton step shortened to 1/8 to 1/64). Directions whose singular value is below 1e-3 of the largest, or
+    along which the other folds carry under :data:`HELD_OUT_SHARE` of the active samples' sensitivity, are left at
+    the full fit (a parameter only the held-out fold determines, such as a constant load seen only at the start of
+    the record, must not wander).
 
     A fold that no iteration helps keeps the full fit, which saw it, and is named (:func:`in_sample_warnings`).
     Cost: ``2 n_parameters`` simulations for the sensitivities and about 2 to 10 a fold.
