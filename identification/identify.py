@@ -156,14 +156,15 @@ def fit_reduced_model(
         xr, x, T = check_capture(capture, axis, options=opt)
     frame = _frame_samples(original.t.size, x.size, delay_s / T)
     stats, sol, centred = _equation_error(xr, x, T, opt, b, method=method, seed=seed, ga_options=ga_options)
-    widened = None
+    widened, narrow = None, sol
     if bounds is None and not offset.applied:  # after a removed offset, what is left of it puts p on the bound
-        narrow = sol
         sol, b, widened = _widen_for_p(stats, sol, b, xr, x, T, method=method, seed=seed, ga_options=ga_options)
     fit = _equation_error_fit(sol, xr, x, T, opt, delay_fit=delay_fit, offset=offset, centred=centred, start=start,
                               widened=widened)
     params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit, opt=opt,
                                         offset=offset.applied, first=frame.start)
+    if bounds is None and widened is None and label.endswith("+oe") and not offset.applied:
+        params, poles, err, b, widened = _widen_refined(params, poles, err, xr, x, T, b, fit)
     if widened is not None and label.endswith("+oe") and not fit["offset"]["applied"] and "initial_state" not in fit:
         params, poles, err = _offset_for_slow_pole(narrow, xr, x, T, b, params, poles, err, fit)
     if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
@@ -687,11 +688,7 @@ def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, x
     record)`` with ``record`` None when the box stays.
     """
     lo = b.p_hz[0]
-    pl = sol.poles
-    zeta = pl["zeta"]
-    pair_slow = pl["omega_n_hz"] * (zeta - math.sqrt(zeta * zeta - 1.0)) if zeta >= 1.0 else pl["omega_n_hz"]
-    slow = min(pl["p_hz"], pair_slow)
-    if not (slow <= lo * 1.5 and lo > WIDE_P_MIN_HZ):
+    if not (_slowest_pole_hz(sol.poles) <= lo * 1.5 and lo > WIDE_P_MIN_HZ):
         return sol, b, None
     wide = dataclasses.replace(b, p_hz=(WIDE_P_MIN_HZ, b.p_hz[1]))
     sol2 = solve_statistics(stats, bounds=wide, method=method, seed=seed, ga_options=ga_options, identifiability=True)
@@ -702,6 +699,45 @@ def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, x
              WIDE_P_MIN_HZ, rms[0] * 1e3, rms[1] * 1e3)
     return sol2, wide, {"p_hz_from": lo, "p_hz_to": WIDE_P_MIN_HZ, "rms_before_um": rms[0] * 1e3,
                         "rms_after_um": rms[1] * 1e3}
+
+
+def _slowest_pole_hz(poles: dict) -> float:
+    """The slowest closed-loop pole [Hz]: p, or the slow root of the pair when all three poles are real."""
+    zeta = poles["zeta"]
+    pair_slow = poles["omega_n_hz"] * (zeta - math.sqrt(zeta * zeta - 1.0)) if zeta >= 1.0 else poles["omega_n_hz"]
+    return min(poles["p_hz"], pair_slow)
+
+
+def _widen_refined(params: dict, poles: dict, err: np.ndarray, xr: np.ndarray, x: np.ndarray, T: float,
+                   b: PoleBounds, fit: dict) -> tuple[dict, dict, np.ndarray, PoleBounds, dict | None]:
+    """``(parameters, poles, error [mm], box, record)``: :func:`_widen_for_p` for the refined model.
+
+    Noise biases the equation-error solution off the 0.2 Hz bound, and only the output-error refinement
+    puts p on it: EMPS with 1 um noise and a 2 um encoder (18 moves of +-3 mm, 1.3 s) is solved at
+    35.7 Hz / 0.21 / p 0.51 Hz, refined to 20.7 Hz / 0.37 / p 0.2 Hz (1.96 um RMS), where without noise
+    the box is widened and p ends at 0.012 Hz. Left on the bound, the slow pole's integral action
+    pulls the rest error of a loop without one to zero, and the diagnosis named a ``drift`` that is not
+    there (2.5 um/s; ``benchmarks/ident_fuzz.py``). The refinement is run again from there with p down to
+    :data:`identification.bounds.WIDE_P_MIN_HZ` and kept, as in :func:`_widen_for_p`, when it predicts at
+    least 1 % better (``fit.bounds_widened`` with ``after: "output-error"``). A fitted initial state is
+    left as it is (it imitates a slow pole's free response, :func:`_refined`).
+    """
+    lo = b.p_hz[0]
+    if not (_slowest_pole_hz(poles) <= lo * 1.5 and lo > WIDE_P_MIN_HZ) or "initial_state" in fit:
+        return params, poles, err, b, None
+    wide = dataclasses.replace(b, p_hz=(WIDE_P_MIN_HZ, b.p_hz[1]))
+    oe = refine_output_error(params, poles, xr, x, T, bounds=wide)
+    err2 = x - simulate_record(oe["parameters"], xr, T)
+    rms = [float(np.sqrt(np.mean(e * e))) for e in (err, err2)]
+    if not rms[1] <= 0.99 * rms[0]:
+        return params, poles, err, b, None
+    log.info("refined slow pole on the %.3g Hz bound; p allowed down to %.3g Hz (prediction %.4g -> %.4g um RMS)",
+             lo, WIDE_P_MIN_HZ, rms[0] * 1e3, rms[1] * 1e3)
+    fit["output_error"].update(nfev=fit["output_error"]["nfev"] + oe["nfev"], cost_mm2=oe["cost"])
+    widened = {"p_hz_from": lo, "p_hz_to": WIDE_P_MIN_HZ, "rms_before_um": rms[0] * 1e3,
+               "rms_after_um": rms[1] * 1e3, "after": "output-error"}
+    fit["bounds_widened"] = widened
+    return oe["parameters"], oe["poles"], err2, wide, widened
 
 
 def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds,

@@ -75,8 +75,8 @@ def solve_gram(G: np.ndarray, b: np.ndarray) -> np.ndarray | None:
     return (V @ ((V.T @ (b / sc)) / w)) / sc
 
 
-def damped_steps(G: np.ndarray, b: np.ndarray, damping: tuple[float, ...], relative: float = 1e-3
-                 ) -> list[np.ndarray]:
+def damped_steps(G: np.ndarray, b: np.ndarray, damping: tuple[float, ...], relative: float = 1e-3, *,
+                 reference: np.ndarray | None = None, share: float = 0.0) -> list[np.ndarray]:
     """Levenberg-Marquardt steps ``x`` minimising ``|A x - y|^2 + lam |S x|^2`` from the Gram matrix ``G = A'A``
     and ``b = A'y``, one per ``lam`` of ``damping`` (relative to the largest eigenvalue of the scaled Gram matrix;
     ``S`` the column norms, Marquardt's scaling), all from one eigen-decomposition.
@@ -85,6 +85,10 @@ def damped_steps(G: np.ndarray, b: np.ndarray, damping: tuple[float, ...], relat
     largest are left out: with no damping the step is the truncated-SVD least-squares solution. The scaled Gram
     matrix' eigenvalues are the singular values squared, exact up to rounding relative to the largest, ~1e-16,
     far below the cut at ``relative^2``.
+
+    ``reference`` (a Gram matrix of the same parameters on more samples, e.g. a refit's training samples and the
+    whole record's): a direction whose curvature in ``G`` is below ``share`` times its curvature in ``reference``
+    is left out too (the samples of ``G`` do not determine it; ``share`` a ratio of squared norms).
 
     Notes
     -----
@@ -98,6 +102,8 @@ def damped_steps(G: np.ndarray, b: np.ndarray, damping: tuple[float, ...], relat
     w, V = np.linalg.eigh(G / np.outer(sc, sc))
     top = w[-1]
     keep = w > (relative * relative) * top if top > 0 else np.zeros(w.size, bool)
+    if reference is not None:
+        keep &= w >= share * np.einsum("ij,ik,kj->j", V, reference / np.outer(sc, sc), V)
     Vk, wk = V[:, keep], w[keep]
     c = Vk.T @ (b / sc)
     return [(Vk @ (c / (wk + lam * top))) / sc for lam in damping]

@@ -125,6 +125,24 @@ def test_damped_steps_run_from_gauss_newton_to_a_short_steepest_descent():
     assert np.linalg.norm(far * sc) < 1e-5 * np.linalg.norm(gn * sc)
 
 
+
+def test_damped_steps_leave_a_direction_the_training_rows_do_not_determine():
+    # two parameters; the sum is seen almost only by the last 10 rows (the "held-out fold"), the difference by all
+    t = np.linspace(0.0, 1.0, 100)
+    A = np.column_stack([np.sin(9 * t) + np.where(t > 0.9, 1.0, 1e-3), -np.sin(9 * t) + np.where(t > 0.9, 1.0, 1e-3)])
+    y = np.sin(9 * t) * 2.0 + 0.05
+    train = t <= 0.9
+    At, yt = A[train], y[train]
+    G, b, G_all = At.T @ At, At.T @ yt, A.T @ A
+    free = damped_steps(G, b, (0.0,))[0]
+    assert free == pytest.approx(np.linalg.lstsq(At, yt, rcond=None)[0], rel=1e-9)
+    assert free.sum() > 10.0  # the training rows' 1e-3 column fits the 0.05 offset with a large sum
+    kept = damped_steps(G, b, (0.0,), reference=G_all, share=0.01)[0]
+    assert abs(kept.sum()) < 1e-2  # the sum is left (nearly) where it was
+    assert kept[0] - kept[1] == pytest.approx(2.0, rel=0.02)  # the difference fitted
+    assert damped_steps(G, b, (0.0,), reference=G, share=0.5)[0] == pytest.approx(free, rel=1e-9)
+
+
 # ------------------------------------------------------------------------------ which samples each number covers
 
 
