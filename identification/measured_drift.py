@@ -28,6 +28,7 @@ from identification.capture_checks import NO_INTEGRAL_P_HZ
 from identification.loop_frame import loop_frame, offset_of
 from identification.regressor import RegressorOptions, regressor
 from vcnc.core.capture import Capture
+from vcnc.core.errors import IdentificationError
 
 __all__ = ["estimate_drift", "measured_drift", "drift_curve", "without_drift", "drift_record", "fit_with_drift",
            "drift_left_in",
@@ -153,7 +154,8 @@ def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
     """``(capture, model)``: ``fit(capture)``, and with the measured channel's drift (:func:`measured_drift`, in
     that fit's loop frame) taken off and fitted again as ``mode`` says (:data:`DRIFT_MODES`); the model's
     ``fit.drift`` records it (:func:`drift_record`; with ``rms_kept_um`` and ``rms_removed_um`` when the refit
-    was made). The capture returned is the one the model was fitted to."""
+    was made). The capture returned is the one the model was fitted to. Under ``"auto"`` a refit the identification
+    refuses (its own loop frame leaving too few samples) keeps the first fit, its reason in ``refit_refused``."""
     if mode not in DRIFT_MODES:
         raise ValueError(f"drift must be one of {DRIFT_MODES}, got {mode!r}")
     model = fit(capture)
@@ -161,12 +163,18 @@ def fit_with_drift(capture: Capture, axis: str, fit, mode: str = "auto"):
     record = drift_record(capture, drift, float(model.fit["rms_um"]), float(model.poles["p_hz"]))
     if mode == "remove" or (mode == "auto" and record["named"]):
         corrected = without_drift(capture, axis, drift)
-        refit = fit(corrected)
-        kept, removed = float(model.fit["rms_um"]), float(refit.fit["rms_um"])
-        record.update(rms_kept_um=kept, rms_removed_um=removed)
-        if mode == "remove" or kept >= DRIFT_GAIN * removed:
-            capture, model = corrected, refit
-            record["removed"] = True
+        try:
+            refit = fit(corrected)
+        except IdentificationError as exc:  # the refit's own frame refused (fewer samples left in it, ...)
+            if mode == "remove":
+                raise
+            record["refit_refused"] = str(exc)
+        else:
+            kept, removed = float(model.fit["rms_um"]), float(refit.fit["rms_um"])
+            record.update(rms_kept_um=kept, rms_removed_um=removed)
+            if mode == "remove" or kept >= DRIFT_GAIN * removed:
+                capture, model = corrected, refit
+                record["removed"] = True
     model.fit["drift"] = record
     return capture, model
 

@@ -23,7 +23,7 @@ import pytest
 
 import toolpaths
 import vcnc
-from identification import identify
+from identification import PoleBounds, identify
 from identification.capture_checks import INTERPOLATED_SHARE, RESPONSE_SHARE, check_capture, polynomial_share
 from identification.dead_time import delay_reference, follow_lag
 from identification.loop_frame import starts_at_rest
@@ -33,6 +33,7 @@ from identification.segments import settled_start, starts_from_standstill
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
 from vcnc.capture import Capture
 from vcnc.cli import main
+from vcnc.commands.identify import drift_lines
 from vcnc.errors import IdentificationError
 
 T = 1e-3
@@ -272,3 +273,23 @@ def test_vcnc_identify_names_a_drift_instead_of_advising_the_p_bound(capture, tm
     assert main(["identify", str(path), "--no-diagnose"]) == 0  # by default taken out
     out = capsys.readouterr().out
     assert "taken out before the fit (prediction" in out and "lower bound" not in out
+
+
+def test_a_drift_refit_the_identification_refuses_keeps_the_first_fit():
+    """A short record (902 samples, 12 moves) whose drift-corrected refit crops its loop frame below the 500
+    samples identification needs: the first fit is kept, the refusal recorded (``fit.drift.refit_refused``) and
+    said, instead of the whole identification failing (hypothesis found it in test_properties, seed 377)."""
+    params = {"a1": 69.11503837897544, "a2": 1381.7446161525102, "a3": 6201.255336059963, "b0": 0.0, "b1": 0.0,
+              "b2": 690.8723080762551, "d0": 521.0, "d1": -646.0}
+    xr = random_moves_reference(moves=12, span=5.0, seed=377)
+    cap = synthetic_capture(params, xr, noise=0.0, seed=377)
+    bounds = PoleBounds(p_hz=(1.0, 500.0), omega_n_hz=(1.0, 500.0), zeta=(0.2, 2.0))
+    m = identify(cap, bounds=bounds, refine="none", diagnose=False)
+    rec = m.fit["drift"]
+    assert m.is_stable() and bounds.contains(m.poles, rtol=1e-9)
+    assert rec["named"] and not rec["removed"] and "only 465 samples" in rec["refit_refused"]
+    assert "rms_removed_um" not in rec
+    (line,) = drift_lines(m)
+    assert "the fit with it taken out was refused (only 465 samples" in line
+    with pytest.raises(IdentificationError, match="only 465 samples"):
+        identify(cap, bounds=bounds, refine="none", diagnose=False, drift="remove")

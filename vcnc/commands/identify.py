@@ -197,6 +197,8 @@ def drift_lines(model) -> list[str]:
     if tried:
         return [f"drift: {what}; left in: taking it out predicts {how}, less than twice better (--drift remove takes "
                 "it out)"]
+    if "refit_refused" in rec:
+        return [f"drift: {what}; left in: the fit with it taken out was refused ({rec['refit_refused']})"]
     return [f"warning: {what}, {rec['ratio']:.3g} times the prediction error: thermal growth of a scale or laser "
             "logged beside the loop's own encoder, or an offset that creeps; the reduced model has no term for it and "
             "bends its slow pole p to imitate it; fit again with --drift remove"]
