@@ -263,6 +263,13 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
     # a u of 0 outside the band broke the mass away at the first sample by the band's offset, which the active
     # samples do not see (a TNCscope trace at 3 ms: Coulomb levels 480598 / 480487 mm/s^2, 850 um over the record)
     u0 = min(max(0.0, lo), hi) if lo < hi else 0.0
+    if two_mass:
+        # the spring carries u0 from the motor to the stuck table, the measured mass at the reference (a spring
+        # unstretched moved the motor of a 60 Hz mode by 85 um at the start under a load of 1 g)
+        if meas_table:
+            xm += u0 / kspr
+        else:
+            xt -= u0 / kspr
     integ = (u0 - ff * xr[0]) / a3
     ubuf = np.full(delay + 1, u0)
     held = 0.0
