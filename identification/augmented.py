@@ -35,7 +35,10 @@ sample over which the table slides on beyond the Stribeck range is one exact ste
 on the (table) mass as it does on a machine: kinetic friction of the direction of motion (Coulomb
 d0/d1 plus the Stribeck and asymmetric viscous terms) while it moves, and stiction at rest: a
 mass that stops stays at rest while the force on it lies between the static levels d1 (+ s-) and
-d0 (+ s+), and breaks away against them (Karnopp). Switching w on a sampled sign(v) instead
+d0 (+ s+), and breaks away against them (Karnopp); from rest, the law's output at the first sample (and the
+delay line's) is the level of that band nearest 0, which holds the mass there, the two-mass plant's spring stretched
+to carry it to the stuck table (a load the integral action holds, or Coulomb levels of one sign, no longer break it
+away at the first sample). Switching w on a sampled sign(v) instead
 lets a stopped mass chatter and biases every element that acts near reversals (a 60 Hz mode on
 the PID machine came out at 63 Hz with a third of its damping). The other terms of w
 (w_ext, position_periodic) are loads, evaluated every step. The elements are then the physical

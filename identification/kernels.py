@@ -258,8 +258,20 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
     xt = xr[0]
     vt = 0.0
     xb = xr[0]
-    integ = -ff * xr[0] / a3
-    ubuf = np.zeros(delay + 1)
+    # from rest: the law's output at the first sample holds the mass there, the level of the static band [lo, hi]
+    # nearest 0 (0 when the band holds it, as for Coulomb levels of opposite signs), and the delay line carries it;
+    # a u of 0 outside the band broke the mass away at the first sample by the band's offset, which the active
+    # samples do not see (a TNCscope trace at 3 ms: Coulomb levels 480598 / 480487 mm/s^2, 850 um over the record)
+    u0 = min(max(0.0, lo), hi) if lo < hi else 0.0
+    if two_mass:
+        # the spring carries u0 from the motor to the stuck table, the measured mass at the reference (a spring
+        # unstretched moved the motor of a 60 Hz mode by 85 um at the start under a load of 1 g)
+        if meas_table:
+            xm += u0 / kspr
+        else:
+            xt -= u0 / kspr
+    integ = (u0 - ff * xr[0]) / a3
+    ubuf = np.full(delay + 1, u0)
     held = 0.0
     eprev = 0.0
     yprev = xr[0]
@@ -296,7 +308,7 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
         vrprev = vr
         if delay > 0:
             ubuf[k % (delay + 1)] = u
-            u = ubuf[(k + 1) % (delay + 1)] if k >= delay else 0.0
+            u = ubuf[(k + 1) % (delay + 1)] if k >= delay else u0
         if u > umax:
             u = umax
         elif u < -umax:
