@@ -224,20 +224,18 @@ def simulate_augmented(
     T = spec.sample_time
     p = parameters
     wext = np.ascontiguousarray(spec.wext, dtype=float)
-    pos = np.empty_like(xr)
-    vel = np.empty_like(xr)
     pp_coef = np.ascontiguousarray(np.atleast_2d(spec.pp_coef), dtype=float)
     st = np.ascontiguousarray(spec.stribeck, dtype=float)
+    # at the record's sub-steps where ``held`` gives them (the split form's law sampled there, a delay of whole
+    # samples kept in seconds), wext held over each sample
+    f = held.substeps if held is not None else 1
+    ref, w = xr, wext
+    if f > 1:
+        ref = held.fine[:(xr.size - 1) * f + 1]
+        w = np.ascontiguousarray(np.repeat(wext, f)[:ref.size])
+    pos, vel = np.empty_like(ref), np.empty_like(ref)
     if spec.structured:
         res = np.ascontiguousarray(spec.resonance, dtype=float)
-        # the law sampled at the record's sub-steps where ``held`` gives them (a delay of whole samples kept in
-        # seconds), wext held over each sample
-        f = held.substeps if held is not None else 1
-        ref, w = xr, wext
-        if f > 1:
-            ref = held.fine[:(xr.size - 1) * f + 1]
-            w = np.ascontiguousarray(np.repeat(wext, f)[:ref.size])
-            pos, vel = np.empty_like(ref), np.empty_like(ref)
         # the rigid plant is integrated exactly over a sample (u held; a stop inside it is found
         # and the rest of the sample stuck or broken away): steps only for the play operator and
         # the two-mass plant, more for a fast mode
@@ -248,20 +246,12 @@ def simulate_augmented(
                   int(spec.delay) * f, float(spec.saturation), bool(spec.anti_windup),
                   float(spec.integral_lead), float(spec.backlash), res, tm,
                   pos, vel)
-        if f > 1:
-            pos, vel = pos[::f].copy(), vel[::f].copy()
-    else:  # the exact loop; at the record's sub-steps where ``held`` gives them, wext held over each sample
-        m = held.substeps if held is not None else 1
-        ref, w = xr, wext
-        if m > 1:
-            ref = held.fine[:(xr.size - 1) * m + 1]
-            w = np.ascontiguousarray(np.repeat(wext, m)[:ref.size])
-            pos, vel = np.empty_like(ref), np.empty_like(ref)
-        dm = discretize(p, T / m)
+    else:  # the exact loop
+        dm = discretize(p, T / f)
         run_exact(dm.phi, dm.gamma, dm.c, dm.d, dm.cv, dm.dv, dm.dvs, dm.d0, dm.d1, ref, w, st,
                   float(spec.asym), float(spec.pp_period), pp_coef, pos, vel)
-        if m > 1:
-            pos, vel = pos[::m].copy(), vel[::m].copy()
+    if f > 1:
+        pos, vel = pos[::f].copy(), vel[::f].copy()
     if spec.offset is not None:
         pos = pos + spec.offset
     return (pos, vel) if return_velocity else pos
