@@ -209,6 +209,26 @@ def _play(mech, xb, half):  # pragma: no cover - compiled
     return xb
 
 
+@numba.njit(cache=True, nogil=True, inline='always')
+def _rest_start(x0, lo, hi, two_mass, meas_table, kspr):  # pragma: no cover - compiled
+    """``(u0, xm, xt)``: the split form at rest at ``x0``. The law's output at the first sample holds the mass
+    there, the level of the static band [lo, hi] nearest 0 (0 when the band holds it, as for Coulomb levels of
+    opposite signs), and the delay line carries it; a u of 0 outside the band broke the mass away at the first
+    sample by the band's offset, which the active samples do not see (a TNCscope trace at 3 ms: Coulomb levels
+    480598 / 480487 mm/s^2, 850 um over the record). A two-mass plant's spring carries u0 from the motor to the
+    stuck table, the measured mass at the reference (a spring unstretched moved the motor of a 60 Hz mode by
+    85 um at the start under a load of 1 g)."""
+    u0 = min(max(0.0, lo), hi) if lo < hi else 0.0
+    xm = x0
+    xt = x0
+    if two_mass:
+        if meas_table:
+            xm += u0 / kspr
+        else:
+            xt -= u0 / kspr
+    return u0, xm, xt
+
+
 @numba.njit(cache=True, nogil=True)
 def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp_period, pp_coef,
               delay, umax, aw, lead, bl, res, tm, pos, vel):  # pragma: no cover - compiled
@@ -253,23 +273,10 @@ def run_split(xr, T, m, a1, a2, a3, b0, b1, b2, cvis, d0, d1, wext, st, asym, pp
     vguard = 3.0 * st[0] if st[0] > 0.0 else 0.0
     half = 0.5 * bl
     tm_sub, tm_whole, tm_stuck = tm[0], tm[1], tm[2]
-    xm = xr[0]
+    u0, xm, xt = _rest_start(xr[0], lo, hi, two_mass, meas_table, kspr)
     vm = 0.0
-    xt = xr[0]
     vt = 0.0
     xb = xr[0]
-    # from rest: the law's output at the first sample holds the mass there, the level of the static band [lo, hi]
-    # nearest 0 (0 when the band holds it, as for Coulomb levels of opposite signs), and the delay line carries it;
-    # a u of 0 outside the band broke the mass away at the first sample by the band's offset, which the active
-    # samples do not see (a TNCscope trace at 3 ms: Coulomb levels 480598 / 480487 mm/s^2, 850 um over the record)
-    u0 = min(max(0.0, lo), hi) if lo < hi else 0.0
-    if two_mass:
-        # the spring carries u0 from the motor to the stuck table, the measured mass at the reference (a spring
-        # unstretched moved the motor of a 60 Hz mode by 85 um at the start under a load of 1 g)
-        if meas_table:
-            xm += u0 / kspr
-        else:
-            xt -= u0 / kspr
     integ = (u0 - ff * xr[0]) / a3
     ubuf = np.full(delay + 1, u0)
     held = 0.0
