@@ -687,25 +687,34 @@ def _widen_for_p(stats: SufficientStatistics, sol: SolveResult, b: PoleBounds, x
     error: the two disagree when a bound is active) at least 1 % better. Returns ``(solution, box,
     record)`` with ``record`` None when the box stays.
     """
-    lo = b.p_hz[0]
-    if not (_slowest_pole_hz(sol.poles) <= lo * 1.5 and lo > WIDE_P_MIN_HZ):
+    wide = _wide_box(sol.poles, b)
+    if wide is None:
         return sol, b, None
-    wide = dataclasses.replace(b, p_hz=(WIDE_P_MIN_HZ, b.p_hz[1]))
     sol2 = solve_statistics(stats, bounds=wide, method=method, seed=seed, ga_options=ga_options, identifiability=True)
     rms = [_prediction_rms_from(s.parameters, xr, x, T, moving=False) for s in (sol, sol2)]
     if not rms[1] <= 0.99 * rms[0]:
         return sol, b, None
-    log.info("slow pole on the %.3g Hz bound; p allowed down to %.3g Hz (prediction %.4g -> %.4g um RMS)", lo,
-             WIDE_P_MIN_HZ, rms[0] * 1e3, rms[1] * 1e3)
-    return sol2, wide, {"p_hz_from": lo, "p_hz_to": WIDE_P_MIN_HZ, "rms_before_um": rms[0] * 1e3,
-                        "rms_after_um": rms[1] * 1e3}
+    log.info("slow pole on the %.3g Hz bound; p allowed down to %.3g Hz (prediction %.4g -> %.4g um RMS)",
+             b.p_hz[0], WIDE_P_MIN_HZ, rms[0] * 1e3, rms[1] * 1e3)
+    return sol2, wide, _widened_record(b, rms)
 
 
-def _slowest_pole_hz(poles: dict) -> float:
-    """The slowest closed-loop pole [Hz]: p, or the slow root of the pair when all three poles are real."""
-    zeta = poles["zeta"]
+def _wide_box(poles: dict, b: PoleBounds) -> PoleBounds | None:
+    """The box with p allowed down to :data:`identification.bounds.WIDE_P_MIN_HZ` when the slowest closed-loop
+    pole (p, or the slow root of the pair when all three poles are real) lies within 1.5x of p's lower bound,
+    else None."""
+    lo, zeta = b.p_hz[0], poles["zeta"]
     pair_slow = poles["omega_n_hz"] * (zeta - math.sqrt(zeta * zeta - 1.0)) if zeta >= 1.0 else poles["omega_n_hz"]
-    return min(poles["p_hz"], pair_slow)
+    if not (min(poles["p_hz"], pair_slow) <= lo * 1.5 and lo > WIDE_P_MIN_HZ):
+        return None
+    return dataclasses.replace(b, p_hz=(WIDE_P_MIN_HZ, b.p_hz[1]))
+
+
+def _widened_record(b: PoleBounds, rms: list[float]) -> dict:
+    """``fit.bounds_widened``: p's lower bound before and after, and the prediction RMS before and after (``rms`` in
+    mm, recorded in um)."""
+    return {"p_hz_from": b.p_hz[0], "p_hz_to": WIDE_P_MIN_HZ, "rms_before_um": rms[0] * 1e3,
+            "rms_after_um": rms[1] * 1e3}
 
 
 def _widen_refined(params: dict, poles: dict, err: np.ndarray, xr: np.ndarray, x: np.ndarray, T: float,
@@ -722,20 +731,18 @@ def _widen_refined(params: dict, poles: dict, err: np.ndarray, xr: np.ndarray, x
     least 1 % better (``fit.bounds_widened`` with ``after: "output-error"``). A fitted initial state is
     left as it is (it imitates a slow pole's free response, :func:`_refined`).
     """
-    lo = b.p_hz[0]
-    if not (_slowest_pole_hz(poles) <= lo * 1.5 and lo > WIDE_P_MIN_HZ) or "initial_state" in fit:
+    wide = None if "initial_state" in fit else _wide_box(poles, b)
+    if wide is None:
         return params, poles, err, b, None
-    wide = dataclasses.replace(b, p_hz=(WIDE_P_MIN_HZ, b.p_hz[1]))
     oe = refine_output_error(params, poles, xr, x, T, bounds=wide)
     err2 = x - simulate_record(oe["parameters"], xr, T)
     rms = [float(np.sqrt(np.mean(e * e))) for e in (err, err2)]
     if not rms[1] <= 0.99 * rms[0]:
         return params, poles, err, b, None
     log.info("refined slow pole on the %.3g Hz bound; p allowed down to %.3g Hz (prediction %.4g -> %.4g um RMS)",
-             lo, WIDE_P_MIN_HZ, rms[0] * 1e3, rms[1] * 1e3)
+             b.p_hz[0], WIDE_P_MIN_HZ, rms[0] * 1e3, rms[1] * 1e3)
     fit["output_error"].update(nfev=fit["output_error"]["nfev"] + oe["nfev"], cost_mm2=oe["cost"])
-    widened = {"p_hz_from": lo, "p_hz_to": WIDE_P_MIN_HZ, "rms_before_um": rms[0] * 1e3,
-               "rms_after_um": rms[1] * 1e3, "after": "output-error"}
+    widened = {**_widened_record(b, rms), "after": "output-error"}
     fit["bounds_widened"] = widened
     return oe["parameters"], oe["poles"], err2, wide, widened
 
