@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+from benchmarks.dense_code import rotary_programs
 from interpolators import interpolate, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.dense import fit_axes
@@ -30,33 +31,11 @@ def _program(lines: list[str]) -> object:
     return parse_program("\n".join([*lines, "M2"]) + "\n", context=CTX)
 
 
-def _helix(with_a: bool) -> list[str]:
-    """400 chords of a two-lap helix of radius 10 mm at F2000 (the A word rising 0 -> 90 deg)."""
-    out = ["G21 G90 G64 P0.01 G0 X10 Y0 Z0 A0", "G1 F2000"]
-    for i in range(1, 401):
-        t = 4 * math.pi * i / 400
-        out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 400:.4f}"
-                   + (f" A{90 * i / 400:.4f}" if with_a else ""))
-    return out
-
-
-def _swarf(with_rotary: bool) -> list[str]:
-    """500 chords of an ellipse rising and falling in Z, with A tilting and C turning once."""
-    out = ["G21 G90 G64 P0.01 G0 X30 Y0 Z0 A0 C0", "G1 F3000"]
-    for i in range(1, 501):
-        t = 2 * math.pi * i / 500
-        out.append(f"X{30 * math.cos(t):.4f} Y{20 * math.sin(t):.4f} Z{2 * math.sin(2 * t):.4f}"
-                   + (f" A{15 * math.sin(t):.4f} C{math.degrees(t):.4f}" if with_rotary else ""))
-    return out
-
-
-def _reversal(with_a: bool) -> list[str]:
-    """400 chords of 0.2 mm along a gentle S in X Y, A swinging +-30 deg (its direction reverses twice)."""
-    out = ["G21 G90 G64 P0.01 G0 X0 Y0 A0", "G1 F2400"]
-    for i in range(1, 401):
-        x = 0.2 * i
-        out.append(f"X{x:.4f} Y{3 * math.sin(x / 8):.4f}" + (f" A{30 * math.sin(x / 10):.4f}" if with_a else ""))
-    return out
+def _lines(shape: str, rotary: bool) -> list[str]:
+    """The lines of :func:`benchmarks.dense_code.rotary_programs` ``shape`` (``helix``: 400 chords of a two-lap R10
+    helix at F2000, A 0 -> 90 deg; ``swarf``: 500 chords of an ellipse rising and falling in Z, A tilting and C
+    turning once; ``reversal``: 400 chords of 0.2 mm along a gentle S, A swinging +-30 deg), without its M2."""
+    return rotary_programs(shape, rotary).splitlines()[:-1]
 
 
 def _axis_deviation(sp, prog, axis: str) -> float:
@@ -96,13 +75,13 @@ def _inner_stops(sp, prog) -> int:
 
 
 @pytest.mark.parametrize("profile", PROFILES)
-@pytest.mark.parametrize("shape, axes", [(_helix, "a"), (_swarf, "ac"), (_reversal, "a")])
+@pytest.mark.parametrize("shape, axes", [("helix", "a"), ("swarf", "ac"), ("reversal", "a")])
 def test_slow_rotary_motion_costs_no_time(shape, axes, profile):
     """Where the rotary axes stay far from their limits (A at most 24 deg/s on the helix, A and C about
     180 deg/s at most on the swarf and the reversal) the run takes about the time of the same run without
     them: before the axes were merged with X, Y, Z the helix took 7.75 s (trapezoid) and 23.8 s (S-curve)
     against 3.93 s and 4.01 s without A."""
-    plain, rotary = _program(shape(False)), _program(shape(True))
+    plain, rotary = _program(_lines(shape, False)), _program(_lines(shape, True))
     sp0 = interpolate(plain, profile=profile)
     sp = interpolate(rotary, profile=profile)
     assert sp.duration <= 1.06 * sp0.duration
@@ -234,7 +213,7 @@ def test_a_run_that_fits_no_spline_leaves_the_other_runs_merged(profile):
     spline left the whole chain unmerged: 8.09 s trapezoid, 24.6 s S-curve against 4.27 s and 4.78 s)."""
     def program(zigzag: bool):
         tail = [f"X{10 + 0.2 * i:.4f} Y0 Z-0.5 A{90 + (0.5 * (i % 2) if zigzag else 0):.4f}" for i in range(1, 11)]
-        return _program([*_helix(True), *tail])
+        return _program([*_lines("helix", True), *tail])
 
     line, zig = program(False), program(True)
     sp0, sp = interpolate(line, profile=profile), interpolate(zig, profile=profile)
