@@ -246,17 +246,18 @@ def _gram_banded(first: np.ndarray, values: np.ndarray, m: int) -> np.ndarray:
 
 def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple) -> np.ndarray | None:
     """Coefficients of the clamped cubic spline through the first and last point, least squares to
-    the others; an end tangent fixes the second (second-last) coefficient's direction.
+    the others; an end tangent fixes the second (second-last) coefficient's direction (points in X, Y, Z; without
+    tangents ``points`` may have any number of columns, as the axes beyond X, Y, Z of :func:`fit_axes`).
 
-    The normal equations of the free coefficients are three copies (x, y, z) of one banded matrix
+    The normal equations of the free coefficients are copies (x, y, z) of one banded matrix
     ``G = B_f^T B_f`` bordered by one column per imposed tangent (its length ``alpha``, shared by the three
     coordinates): ``G`` is factored once (banded Cholesky) for all right-hand sides and the tangent
     lengths follow from the Schur complement."""
     import scipy.linalg
 
-    m = len(knots) - 4
+    m, dim = len(knots) - 4, points.shape[1]
     first, values = cubic_basis(u, knots)
-    c = np.zeros((m, 3))
+    c = np.zeros((m, dim))
     c[0], c[-1] = points[0], points[-1]
     dirs = []  # (column, direction): c[column] = its end point + alpha * direction
     t0, t1 = tangents
@@ -272,7 +273,7 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
     cols = first[:, None] + np.arange(4)
     rhs = points - np.einsum("rk,rkd->rd", values, c[cols])
     bt_rhs = np.stack([np.bincount(cols.ravel(), weights=(values * rhs[:, d, None]).ravel(), minlength=m)
-                       for d in range(3)], axis=1)
+                       for d in range(dim)], axis=1)
     ab = _gram_banded(first, values, m)
 
     def gram_col(j: int) -> np.ndarray:
@@ -285,13 +286,13 @@ def _solve(points: np.ndarray, u: np.ndarray, knots: np.ndarray, tangents: tuple
         return col
 
     g_cols = [gram_col(j)[lo:hi] for j, _ in dirs]
-    y = np.zeros((max(hi - lo, 0), 3 + len(dirs)))
+    y = np.zeros((max(hi - lo, 0), dim + len(dirs)))
     if hi > lo:
         try:
             y = scipy.linalg.solveh_banded(ab[:, lo:hi], np.column_stack([bt_rhs[lo:hi], *g_cols]), lower=False)
         except np.linalg.LinAlgError:  # a singular system (too few points per knot) is a failed fit
             return None
-    y_rhs, y_g = y[:, :3], y[:, 3:]
+    y_rhs, y_g = y[:, :dim], y[:, dim:]
     if dirs:
         p = len(dirs)
         schur = np.zeros((p, p))
@@ -337,22 +338,29 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
     from scipy.interpolate import BSpline
 
     u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-    n = len(points) - 1
     f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
     u_eval = np.append((u[:-1, None] + np.diff(u)[:, None] * f).ravel(), u[-1])
-    mean_chord = u[-1] / n
-    q = max(_MIN_POINTS_PER_KNOT, int(MAX_KNOT_SPACING / mean_chord))
-    while True:
-        n_int = max(1, round(n / q))
-        inner = u[np.round(np.linspace(0, n, n_int + 1)[1:-1]).astype(np.int64)]
-        knots = np.concatenate([[0.0] * 4, inner, [u[-1]] * 4])
+    for knots in _knot_vectors(u):
         c = _solve(points, u, knots, tangents) if len(knots) - 4 >= 4 else None
         if c is not None:
             spl = BSpline(knots, c, 3)
             if chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
                 return spl
+    return None
+
+
+def _knot_vectors(u: np.ndarray):
+    """The clamped cubic knot vectors a run's fit tries in turn, on the parameters ``u`` of its points: interior
+    knots every ``q`` points, ``q`` from :data:`MAX_KNOT_SPACING`'s worth of the mean chord halved down to
+    :data:`_MIN_POINTS_PER_KNOT`."""
+    n = len(u) - 1
+    q = max(_MIN_POINTS_PER_KNOT, int(MAX_KNOT_SPACING / (u[-1] / n)))
+    while True:
+        n_int = max(1, round(n / q))
+        inner = u[np.round(np.linspace(0, n, n_int + 1)[1:-1]).astype(np.int64)]
+        yield np.concatenate([[u[0]] * 4, inner, [u[-1]] * 4])
         if q <= _MIN_POINTS_PER_KNOT:
-            return None
+            return
         q = max(_MIN_POINTS_PER_KNOT, q // 2)
 
 
@@ -387,35 +395,20 @@ def fit_axes(s: np.ndarray, values: np.ndarray, tolerance: float) -> BSpline | N
         ``r(s)``, values of shape (m,); None when no knot spacing fits.
     """
     from scipy.interpolate import BSpline
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.linalg import spsolve
 
-    n = len(s) - 1
     f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
     s_eval = np.append((s[:-1, None] + np.diff(s)[:, None] * f).ravel(), s[-1])
     polyline = np.column_stack([np.interp(s_eval, s, col) for col in values.T])
-    q = max(_MIN_POINTS_PER_KNOT, int(MAX_KNOT_SPACING / (s[-1] / n)))
-    while True:
-        n_int = max(1, round(n / q))
-        inner = s[np.round(np.linspace(0, n, n_int + 1)[1:-1]).astype(np.int64)]
-        knots = np.concatenate([[s[0]] * 4, inner, [s[-1]] * 4])
-        m = len(knots) - 4
-        first, basis = cubic_basis(s, knots)
-        design = csr_matrix((basis.ravel(), (np.repeat(np.arange(n + 1), 4), (first[:, None] + np.arange(4)).ravel())),
-                            shape=(n + 1, m))
-        c = np.empty((m, values.shape[1]))
-        c[0], c[-1] = values[0], values[-1]  # clamped: the spline starts and ends on the programmed values
-        free = design[:, 1:-1]
-        rhs = values - design[:, [0]] @ values[[0]] - design[:, [m - 1]] @ values[[-1]]
-        c[1:-1] = np.asarray(spsolve((free.T @ free).tocsc(), free.T @ rhs)).reshape(m - 2, -1)
-        still = np.all(values == values[0], axis=0)
+    still = np.all(values == values[0], axis=0)
+    for knots in _knot_vectors(s):
+        c = _solve(values, s, knots, (None, None))
+        if c is None:
+            continue
         c[:, still] = values[0, still]  # an axis the run does not move: all its coefficients at its value
         spl = BSpline(knots, c, 3)
         if np.max(np.abs(spl(s_eval) - polyline)) <= FIT_SHARE * tolerance:
             return spl
-        if q <= _MIN_POINTS_PER_KNOT:
-            return None
-        q = max(_MIN_POINTS_PER_KNOT, q // 2)
+    return None
 
 
 def _turn(a: np.ndarray, b: np.ndarray) -> float:
