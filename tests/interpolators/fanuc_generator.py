@@ -102,13 +102,18 @@ class _Gen:
     def fanuc(self) -> bool:
         return self.dialect == "fanuc"
 
-    def emit(self, text: str, *, number: int | None = None) -> None:
+    def emit(self, text: str, *, number: int | None = None, skip_after_number: bool = False) -> None:
+        """Append a block, numbered with ``number`` or half of the time with the next N; a block delete slash
+        stands at the head of the block, or with ``skip_after_number`` after its N (``N45 /G1``)."""
         self.n += 5
-        if number is None and self.r.random() < 0.5:
+        if number is None and (skip_after_number or self.r.random() < 0.5):
             number = self.n
-        skip = "/" if text.startswith("/") else ""  # the block delete slash at the head of the block
+        skip = "/" if text.startswith("/") else ""
         text = text.removeprefix("/")
-        self.lines.append(f"{skip}N{number} {text}" if number is not None else skip + text)
+        if number is None:
+            self.lines.append(skip + text)
+        else:
+            self.lines.append(f"N{number} {skip}{text}" if skip_after_number else f"{skip}N{number} {text}")
 
     def v(self, grid: float, *, plain: bool = True) -> str:
         """A distance of ``grid`` steps; under DPI = 0 sometimes as an integer of least input increments."""
@@ -734,9 +739,11 @@ class _Gen:
         self.emit("G50")
 
     def block_delete_section(self) -> None:
-        """``/`` block delete (off: the blocks run), comments with odd characters, blocks with only N."""
+        """``/`` block delete (off: the blocks run), also after the sequence number (``N45 /G1``: vcnc's reading,
+        iso_flow), comments with odd characters, blocks with only N."""
         self.start()
-        self.emit(f"/G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()} (SKIP; IF ON)")
+        self.emit(f"/G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()} (SKIP; IF ON)",
+                  skip_after_number=self.r.random() < 0.5)
         self.emit("(OP 2 - FACE / 5.0MM, \"FINISH\")")
         self.emit(f"G1 {self.xyz(self.pos[0], self.pos[1] + 5)} {self.feed()}")
 

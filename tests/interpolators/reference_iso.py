@@ -520,6 +520,14 @@ def _unabbreviated(s: str) -> str:
     return re.sub(r"(?<![a-z])(" + "|".join(_SHORT_FUNCTIONS) + r")(?=\[)", lambda m: _SHORT_FUNCTIONS[m.group(1)], s)
 
 
+def _unskipped(s: str, *, fanuc: bool) -> str:
+    """A cleaned line without its leading '/': block delete, switch off; Fanuc's optional block skip levels
+    '/1'-'/9' (the additional optional block skip option) alike, '/1' the same as '/'."""
+    if not s.startswith("/"):
+        return s
+    return s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
+
+
 def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(_split(text), start=1):
@@ -535,12 +543,11 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]
             # CNCSimulator Pro's simulation commands ($AddRegPart, $Inches, ...) and #region marks (its user
             # guide, 6.3 "$-commands and regions"): no G-code of any control; the simulator alone reads them
             s = ""
-        if s.startswith("/"):
-            # '/' block delete, switch off; Fanuc's optional block skip levels '/1'-'/9' (the additional optional
-            # block skip option) alike, '/1' the same as '/'
-            s = s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
+        s = _unskipped(s, fanuc=fanuc)
         n = re.match(r"^n(\d+)(\.\d*)?", s)
         s = s[n.end():] if n else s
+        if n:  # a '/' after the sequence number: as at the line's start (Fanuc/Haas/grbl; LinuxCNC refuses it)
+            s = _unskipped(s, fanuc=fanuc)
         s = _unabbreviated(s) if fanuc else s
         seq = int(n.group(1)) if n else None
         if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097

@@ -1,0 +1,59 @@
+"""Open questions of session 31 on the ISO reader, each a program a user may bring: a '/' after the sequence number,
+G53 under G91 (Fanuc/Haas), the corner words ,R ,C under Fanuc DPI = 0, and LinuxCNC's G87/G88."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import MachineContext
+from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
+
+FANUC = MachineContext().with_dialect("fanuc")
+HAAS = MachineContext().with_dialect("haas")
+LINUXCNC = MachineContext().with_dialect("linuxcnc")
+GRBL = MachineContext().with_dialect("grbl")
+INCREMENT = dataclasses.replace(FANUC, decimal_point_input="increment")
+
+
+def _ends(prog) -> list[tuple[float, ...]]:
+    return [tuple(round(float(v), 6) for v in b.target[:3]) for b in prog.blocks if b.kind in ("rapid", "line", "arc")]
+
+
+SKIP_AFTER_N = "G21 G90\nG0 X1 Y0\nN45 /G1 X10 F100\nN46/ Y2\nG0 Z5\nM30\n"
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS, GRBL])
+def test_a_slash_after_the_sequence_number_runs_its_block_with_the_switch_off(context):
+    prog = checked_iso(SKIP_AFTER_N, context)
+    assert _ends(prog) == [(1.0, 0.0, 0.0), (10.0, 0.0, 0.0), (10.0, 2.0, 0.0), (10.0, 2.0, 5.0)]
+    assert any(n.startswith("/ block skip after the sequence number (N45 /G1 ..): the block runs (switch off)")
+               for n in prog.notes)
+
+
+def test_a_fanuc_skip_level_after_the_sequence_number_runs_too():
+    prog = checked_iso("G21 G90\nN10/2 G1 X3 F100\nM30\n", FANUC)
+    assert _ends(prog) == [(3.0, 0.0, 0.0)]
+
+
+def test_a_skip_level_after_the_number_is_named_under_haas():
+    with pytest.raises(GCodeError, match=r":1:5: '/2': optional block skip level 2 \(Fanuc's additional optional "
+                                         r"block skip /2-/9\), which this dialect does not have"):
+        parse_program("N10 /2 G1 X3 F100\nM30\n", context=HAAS)
+
+
+def test_linuxcnc_refuses_a_slash_after_the_line_number_naming_its_rule():
+    # rs274: "Bad character '/' used"; overview.adoc "Format of a Line": the '/' before the line number
+    with pytest.raises(GCodeError, match=r":3:5: '/' after the line number 'N45': LinuxCNC reads block delete only "
+                                         r"as a line's first character, before its line number \(G-code overview, "
+                                         r"\"Format of a Line\"\); expected '/N45 \.\.\.' \(the '/' first\)"):
+        parse_program(SKIP_AFTER_N, context=LINUXCNC)
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS, GRBL, LINUXCNC])
+def test_a_slash_after_another_word_stays_an_error(context):
+    with pytest.raises(GCodeError, match=r":1:13: '/' after the word 'F100': arithmetic on a word's value"):
+        parse_program("G1 X10 F100 /Y5\nM30\n", context=context)
