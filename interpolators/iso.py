@@ -1122,6 +1122,24 @@ def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> N
         st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
 
 
+def _incremental_g53(st: State, notes: Notes) -> bool:
+    """True when a G53 block's words are increments: G53 under G91 in the Fanuc and Haas dialects (LinuxCNC refuses
+    it, grbl's gcode.c takes them as machine positions: "ignore if absolute override is active").
+
+    The Fanuc-style manuals at hand write G53 with absolute words ("(G90) G53 X... Y... Z...", "Absolute dimension
+    word", "The G53 command has to be determined by using absolute values": Siemens' 840D ISO-dialect milling
+    manual, 3.1.1 "Machine coordinate system (G53)"; no Fanuc manual text on G53 under G91 was found). Our
+    reading follows the Fanuc-compatible Mitsubishi M700V
+    programming manual, 14.4 "Basic Machine Coordinate System Selection; G53", (4): "In the incremental value
+    command mode (G91), the G53 command provides movement with the incremental value": the axes move by the
+    words from where they are (as a G91 block without G53 would), noted."""
+    if not (st.incremental and st.context.dialect.name in ("fanuc", "haas")):
+        return False
+    notes.add("G53 under G91: its axis words moved as increments from the current position (Mitsubishi M700V "
+              "14.4; Fanuc gives G53 absolute words only)")
+    return True
+
+
 def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes: Notes) -> bool:  # noqa: C901
     """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
     key, w = gcodes["nonmodal"]
@@ -1141,8 +1159,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
-        target = block_target(seen, axis_words, st, machine=True)
-        motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
+        machine = not _incremental_g53(st, notes)
+        target = block_target(seen, axis_words, st, machine=machine)
+        motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=machine)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
             and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's

@@ -438,6 +438,9 @@ class _Gen:
             self.emit("G91 G28 X0. Y0.")
             self.emit("G90")
         self.emit(f"G53 G0 Z{_num(-self.r.choice((0, 10, 50)) * 1.0 * self.unit)}")
+        if self.r.random() < 0.3:  # G53 under G91: a move by its words (Mitsubishi M700V 14.4, vcnc's reading)
+            self.emit(f"G91 G53 G0 Z{_num(-self.r.choice((5, 10)) * self.unit)}")
+            self.emit("G90")
 
     def dwell_section(self) -> None:
         self.start()

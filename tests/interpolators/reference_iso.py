@@ -1344,11 +1344,13 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if 530 in g and axes:
         if m.motion not in (0, 10):
             raise ReferenceError("G53 without G0/G1 motion")
+        # under G91 Fanuc/Haas move by the words (Mitsubishi M700V 14.4 (4)); grbl keeps them machine positions
+        steps = m.incremental and m.ctx.dialect.name in ("fanuc", "haas")
         end = m.pos.copy()
         for i, a in enumerate("xyz"):
             if a in words:
-                end[i] = words[a][-1] * m.scale
-        m.extra = m.extra_end(words, machine=True)
+                end[i] = end[i] * steps + words[a][-1] * m.scale
+        m.extra = m.extra_end(words, machine=not steps)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")

@@ -57,3 +57,30 @@ def test_linuxcnc_refuses_a_slash_after_the_line_number_naming_its_rule():
 def test_a_slash_after_another_word_stays_an_error(context):
     with pytest.raises(GCodeError, match=r":1:13: '/' after the word 'F100': arithmetic on a word's value"):
         parse_program("G1 X10 F100 /Y5\nM30\n", context=context)
+
+
+G53_INCREMENTAL = "G21 G90 G0 X1 Y1 Z0\nG91 G53 G0 X5 Z-2\nG90 G0 Y3\nM30\n"
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_g53_under_g91_moves_by_its_words_under_fanuc_and_haas(context):
+    prog = checked_iso(G53_INCREMENTAL, context)
+    assert _ends(prog) == [(1.0, 1.0, 0.0), (6.0, 1.0, -2.0), (6.0, 3.0, -2.0)]
+    assert any(n.startswith("G53 under G91: its axis words moved as increments") for n in prog.notes)
+
+
+def test_g53_under_g91_moves_by_its_words_from_a_work_offset_too():
+    context = dataclasses.replace(FANUC, work_offsets={**FANUC.work_offsets, "G54": (100.0, 50.0, -20.0)})
+    prog = checked_iso("G21 G90 G54 G0 X1 Y1 Z0\nG91 G53 G0 X5\nM30\n", context)
+    assert _ends(prog) == [(101.0, 51.0, -20.0), (106.0, 51.0, -20.0)]
+
+
+def test_grbl_keeps_g53_words_machine_positions_under_g91():
+    # grbl gcode.c: "ignore if absolute override is active" (the distance mode is not applied under G53)
+    prog = checked_iso(G53_INCREMENTAL, GRBL)
+    assert _ends(prog) == [(1.0, 1.0, 0.0), (5.0, 1.0, -2.0), (5.0, 3.0, -2.0)]
+
+
+def test_linuxcnc_still_refuses_g53_under_g91():
+    with pytest.raises(GCodeError, match=r"G53 in incremental distance mode \(G91\): LinuxCNC refuses it"):
+        parse_program(G53_INCREMENTAL, context=LINUXCNC)
