@@ -518,7 +518,7 @@ class _Gen:
         x, y = self.pos[0], self.pos[1]
         pts = [(x + 20, y), (x + 20, y + 20), (x, y + 20), (x, y)]
         for k, (px, py) in enumerate(pts):
-            size = self.v(self.r.choice((1, 2, 3)), plain=False)
+            size = self.v(self.r.choice((1, 2, 3)))  # DPI = 0: ,R2000 is 2 mm (vcnc's reading, iso_decimal)
             word = "" if k == len(pts) - 1 else f" ,{self.r.choice('RC')}{size}"
             self.emit(f"G1 {self.xyz(px, py)}{word}")
         self.emit(f"G0 {self.xyz(z=10)}")
@@ -757,7 +757,7 @@ class _Gen:
             return self.corner_words_section()
         self.start()
         self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
-        self.emit(f"G1 {self.xyz(self.pos[0] + 20, self.pos[1])} ,R{self.v(2, plain=False)}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 20, self.pos[1])} ,R{self.v(2)}")
         self.emit(f"G3 {self.xyz(self.pos[0] + 10, self.pos[1] - 10)} I{self.v(10)} J0.")  # turning 90 deg
         self.emit(f"G0 {self.xyz(z=10)}")
 

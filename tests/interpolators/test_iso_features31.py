@@ -84,3 +84,22 @@ def test_grbl_keeps_g53_words_machine_positions_under_g91():
 def test_linuxcnc_still_refuses_g53_under_g91():
     with pytest.raises(GCodeError, match=r"G53 in incremental distance mode \(G91\): LinuxCNC refuses it"):
         parse_program(G53_INCREMENTAL, context=LINUXCNC)
+
+
+def test_a_corner_radius_without_a_decimal_point_counts_increments_under_dpi_0():
+    prog = checked_iso("G21 G90 G0 X0 Y0\nG1 X10000 ,R2000 F100\nY10000\nM30\n", INCREMENT)
+    assert _ends(prog) == [(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (10.0, 2.0, 0.0), (10.0, 10.0, 0.0)]
+    small = checked_iso("G21 G90 G0 X0 Y0\nG1 X10. ,R2 F100\nY10.\nM30\n", INCREMENT)
+    assert _ends(small)[1:3] == [(9.998, 0.0, 0.0), (10.0, 0.002, 0.0)]
+
+
+def test_a_chamfer_with_a_decimal_point_is_in_mm_under_dpi_0():
+    prog = checked_iso("G21 G90 G0 X0 Y0\nG1 X10. ,C2. F100\nY10.\nM30\n", INCREMENT)
+    assert _ends(prog) == [(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (10.0, 2.0, 0.0), (10.0, 10.0, 0.0)]
+
+
+def test_a_corner_radius_without_a_decimal_point_gets_the_calculator_note():
+    prog = checked_iso("G21 G90 G0 X0. Y0.\nG1 X10. ,R2 F100\nY10.\nM30\n", FANUC)
+    assert _ends(prog)[1:3] == [(8.0, 0.0, 0.0), (10.0, 2.0, 0.0)]
+    assert ",R2 without a decimal point read as 2 mm (calculator-type input, Fanuc DPI=1); a Fanuc with DPI=0 " \
+           "reads 0.002 mm" in prog.notes
