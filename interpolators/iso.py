@@ -131,6 +131,7 @@ from interpolators.iso_codes import (
     LAST_ONE_VALID,
     LINUXCNC_ALLOCATED_G,
     LINUXCNC_G,
+    LINUXCNC_UNDEFINED,
     MILL_G,
     NORMAL_DIRECTION,
     PLANE_CODES,
@@ -515,7 +516,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                      "INI, which vcnc does not read)") if dialect == "linuxcnc" and key not in LINUXCNC_ALLOCATED_G \
                 else ""
             if key in G_UNSUPPORTED:
-                where.fail(_unsupported_g(key, words) + remap, column=w.column, text=w.text,
+                where.fail(_unsupported_g(key, words, dialect) + remap, column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in G_CODES:
                 where.fail(f"unknown G code {w.text!r}{remap}", column=w.column, text=w.text,
@@ -875,10 +876,13 @@ def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
     return Word("T", float(tool), w.column, w.text)
 
 
-def _unsupported_g(key: int, words: list[Word]) -> str:
+def _unsupported_g(key: int, words: list[Word], dialect: str) -> str:
     """The error of a G code of :data:`G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
     block) with :data:`UNITS_HINT`; a G8 with P named as Fanuc's look-ahead (Fanuc 0i-MF "AI advanced preview
-    control", :mod:`interpolators.iso_smoothing`)."""
+    control", :mod:`interpolators.iso_smoothing`); under ``linuxcnc`` G87/G88 with what LinuxCNC's g-code.adoc
+    says of them (:data:`LINUXCNC_UNDEFINED`)."""
+    if dialect == "linuxcnc" and key in LINUXCNC_UNDEFINED:
+        return f"{G_UNSUPPORTED[key]}: not supported{LINUXCNC_UNDEFINED[key]}"
     bare = not any(v.letter in "PQUWRIJKL" for v in words)
     if key == 80 and any(v.letter == "P" for v in words):  # LinuxCNC's G8 takes no P; Fanuc's G08 P1 / P0 does
         return (f"{G_UNSUPPORTED[key]}: not supported (G08 P1 / P0 with a P is Fanuc's AI advanced preview "

@@ -103,3 +103,14 @@ def test_a_corner_radius_without_a_decimal_point_gets_the_calculator_note():
     assert _ends(prog)[1:3] == [(8.0, 0.0, 0.0), (10.0, 2.0, 0.0)]
     assert ",R2 without a decimal point read as 2 mm (calculator-type input, Fanuc DPI=1); a Fanuc with DPI=0 " \
            "reads 0.002 mm" in prog.notes
+
+
+@pytest.mark.parametrize(("code", "tail"), [
+    ("G87 X5 Y5 Z-2 R2 I1 J0 K-3", "; --dialect fanuc runs Fanuc's G87 back boring"),
+    ("G88 X5 Y5 Z-2 R2 P1", ""),
+])
+def test_linuxcnc_g87_g88_are_refused_with_what_its_documentation_says(code, tail):
+    with pytest.raises(GCodeError, match=r":3:1: G8[78] .*: not supported \(LinuxCNC's G-code reference: \"currently "
+                                         r"unimplemented in LinuxCNC\. It is accepted, but the behavior is "
+                                         r"undefined\"" + tail):
+        parse_program(f"G21 G90 G0 X0 Y0 Z10\nS1000 M3\n{code} F100\nG80\nM2\n", context=LINUXCNC)
