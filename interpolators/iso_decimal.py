@@ -8,13 +8,14 @@ and ``X10.`` 10 mm); DPI = 1, "calculator-type decimal point input", reads it in
 (``X10`` is 10 mm). The addresses this applies to are those of distances, angles and times: X Y Z,
 U V W, A B C, I J K, Q and R, and the dwell ``G04 X`` (0.001 s); F is a feed in its own unit
 (mm/min, ``F100`` is 100 mm/min either way), and P, L, K as a repeat count, D, H, N, S, T, M are
-integers. The corner words ``,R`` and ``,C`` (0i-MF "Chamfering and corner R") are lengths as R is: under DPI = 0
-``,R2`` is 0.002 mm and ``,R2.`` 2 mm (our reading: a corner's radius or chamfer is a distance like the other
-distance words, and no manual text at hand gives the comma words a unit or an exception of their own). Numbers that come from a variable or an expression (``X#1``, ``X[10]``) carry their own
-decimal point (Mitsubishi M700V programming manual 5.3 "Decimal Point Input", which describes the
-same two types: "Command X1 in the 1 um system is equivalent to command X0.001"; values of variables
-are read "the same way in either" type). The scaling factors of ``G51 I J K`` / ``P`` have their own
-rule (:func:`interpolators.iso_transforms.scaling`; its centre ``X Y Z`` is a position like any other: 0i-MF
+integers. The corner words ``,R`` and ``,C`` (0i-MF "Optional chamfering and corner R") are lengths as R is: under
+DPI = 0 ``,R2`` is 0.002 mm and ``,R2.`` 2 mm (our reading: a corner's radius or chamfer is a distance like the other
+distance words, and no manual text at hand gives the comma words a unit or an exception of their own). Numbers that
+come from a variable or an expression (``X#1``, ``X[10]``) carry their own decimal point (Mitsubishi M700V
+programming manual 5.3 "Decimal Point Input", which describes the same two types: "Command X1 in the 1 um system is
+equivalent to command X0.001"; values of variables are read "the same way in either" type).
+The scaling factors of ``G51 I J K`` / ``P`` have their own rule
+(:func:`interpolators.iso_transforms.scaling`; its centre ``X Y Z`` is a position like any other: 0i-MF
 "Scaling", "absolute command for center coordinate value"), and so do the arguments of ``G65``
 (:mod:`interpolators.iso_flow`: as written under DPI = 1, noted; under DPI = 0 as written for F D H M S T,
 an error for the others, whose increments are not modelled); the switches of ``G05.1 Q1`` and ``G08 P1`` are
