@@ -18,6 +18,7 @@ import pytest
 
 from benchmarks.dense_code import rotary_programs
 from interpolators import interpolate, parse_program
+from interpolators.axis_blends import hermite_axes
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.dense import fit_axes
 from tests.interpolators.setpoint_checks import check_limits, distance_to_path
@@ -256,3 +257,86 @@ def test_inverse_time_chords_merge_at_the_slowest_feed_of_each_piece(profile):
     check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     assert distance_to_path(sp) <= 0.01
     assert _axis_deviation(sp, prog, "a") <= 0.01
+
+
+def _coarse_helix(with_a: bool) -> list[str]:
+    """60 chords of 2.1 mm (turning 0.21 rad each: too coarse to merge) of the two-lap R10 helix at F2000 under
+    G64 P0.05, A 0 -> 90 deg."""
+    out = ["G21 G90 G64 P0.05 G0 X10 Y0 Z0 A0", "G1 F2000"]
+    for i in range(1, 61):
+        t = 4 * math.pi * i / 60
+        out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 60:.4f}"
+                   + (f" A{90 * i / 60:.4f}" if with_a else ""))
+    return out
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_coarse_chords_with_a_blend_their_corners_across_every_axis(profile):
+    """The coarse helix's corners are blended as without A (a tangent arc, S-curve a clothoid pair, within P of the
+    corner) and A follows a quintic across each blend, its rate continuous: the run takes the time it takes
+    without A (before, each corner at the one-sample rule: 4.854 s trapezoid, 7.087 s S-curve against 3.913 s and
+    3.993 s), A within P of its programmed motion, every limit held."""
+    plain, rotary = _program(_coarse_helix(False)), _program(_coarse_helix(True))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
+    assert sp.duration == pytest.approx(sp0.duration, abs=2 * sp.sample_time)
+    assert "programmed_path" in sp.meta
+    assert _inner_stops(sp, rotary) == 0
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert 0.02 <= distance_to_path(sp) <= 0.05  # the corners are cut, within P
+    assert _axis_deviation(sp, rotary, "a") <= 0.05
+    assert np.all(np.diff(sp.block) >= 0)
+    assert np.allclose(sp.position[-1], _end(rotary, sp.axes), rtol=0, atol=1e-12)
+
+
+def _polygon(step: float | None) -> list[str]:
+    """Two laps of a 24-gon of radius 20 mm (sides of 5.2 mm turning 15 deg) at F2000 under G64 P0.05, A up ``step``
+    deg on one side and back on the next (its rate reverses at each corner); no A with ``step`` None."""
+    out = ["G21 G90 G64 P0.05 G0 X20 Y0 A0", "G1 F2000"]
+    for i in range(1, 49):
+        t = 2 * math.pi * i / 24
+        out.append(f"X{20 * math.cos(t):.4f} Y{20 * math.sin(t):.4f}"
+                   + ("" if step is None else f" A{step * (i % 2):.4f}"))
+    return out
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_rate_reversal_shrinks_the_corner_blends_to_keep_a_within_p(profile):
+    """A reversing at 0.19 deg/mm at each corner: across a blend sized for X/Y alone (1.5 mm) A would leave its
+    programmed motion by 1.2 (S-curve 1.8) times 0.9 P, so the blends are made within P scaled down by that: A
+    within P, no stop (before: a stop at every corner, 8.47 s trapezoid, 10.15 s S-curve). The trapezoid takes the
+    time without A (7.72 s); the S-curve's shorter clothoid pairs bend A faster, within its jerk limit."""
+    plain, rotary = _program(_polygon(None)), _program(_polygon(1.0))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
+    assert _inner_stops(sp, rotary) == 0
+    assert sp.duration <= (1.002 if profile == "trapezoid" else 1.3) * sp0.duration
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.05
+    assert 0.03 <= _axis_deviation(sp, rotary, "a") <= 0.05
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_corners_whose_blend_is_slower_than_a_stop_stay_stops(profile):
+    """A reversing by 3 deg per side (0.58 deg/mm): the blends that keep A within P are so short that bending A
+    across them is slower than stopping (A's acceleration and jerk on the blend, judged with the X/Y bound): every
+    corner stays a stop and each sample on its block's chord."""
+    prog = _program(_polygon(3.0))
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" not in sp.meta
+    assert _inner_stops(sp, prog) >= 46
+    assert _axis_deviation(sp, prog, "a") <= 1e-9
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+
+
+def test_hermite_axes_matches_values_rates_and_no_curvature_at_its_ends():
+    """The quintic across a blend of 2 mm: end values and rates as given, second derivative 0 at both ends; equal
+    rates ``(end - start) / length`` give the straight line; an axis at rest keeps all its coefficients at its
+    value."""
+    spl = hermite_axes(2.0, np.array([10.0, 5.0, 1.0]), np.array([12.0, 5.0, 2.0]), np.array([0.5, 0.0, 0.5]),
+                       np.array([1.5, 0.0, 0.5]))
+    ends = np.array([0.0, 2.0])
+    assert np.allclose(spl(ends), [[10.0, 5.0, 1.0], [12.0, 5.0, 2.0]], rtol=0, atol=1e-12)
+    assert np.allclose(spl(ends, 1), [[0.5, 0.0, 0.5], [1.5, 0.0, 0.5]], rtol=0, atol=1e-12)
+    assert np.allclose(spl(ends, 2), 0.0, rtol=0, atol=1e-12)
+    s = np.linspace(0.0, 2.0, 9)
+    assert np.allclose(spl(s)[:, 2], 1.0 + 0.5 * s, rtol=0, atol=1e-12)
+    assert np.all(spl.c[:, 1] == 5.0)
