@@ -15,7 +15,8 @@ merged runs' is along their curve: the polyline through the blend's end values a
 value at the blend's middle (the symmetric arc and clothoid pair pass nearest the corner there).
 
 A blend whose axes leave that tolerance is made again with ``P`` scaled down by the excess
-(:func:`excess`: the deviation grows in proportion to the blend's size, as the XYZ one does), then dropped.
+(:func:`excess`: the deviation grows in proportion to the blend's size, as the XYZ one does), then dropped. The
+derivatives bound the blend's speed (:func:`hermite_bounds`) where the planner judges whether a blend pays.
 """
 
 from __future__ import annotations
@@ -25,14 +26,18 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators.dense import FIT_SHARE
+from interpolators.kinematics import CURVE_BOUND_MARGIN
 
 if TYPE_CHECKING:
     from scipy.interpolate import BSpline
 
-__all__ = ["hermite_axes", "excess"]
+__all__ = ["hermite_axes", "hermite_bounds", "excess"]
 
-#: Points along a blend at which its axes' deviation from their programmed motion is measured.
+#: Points along a blend at which its axes' deviation from their programmed motion and their derivatives are taken.
 _CHECK_POINTS = 33
+#: Power series coefficients (in the share u of the blend) of the quintic Hermite basis with zero second
+#: derivatives at both ends: the end step ``H1`` (``H0 = 1 - H1``), the start rate ``H2`` and the end rate ``H3``.
+_BASIS = np.array([[0, 0, 0, 10, -15, 6], [0, 1, 0, -6, 8, -3], [0, 0, 0, -4, 7, -3]], dtype=float)
 
 
 def hermite_axes(length: float, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray,
@@ -52,13 +57,47 @@ def hermite_axes(length: float, start: np.ndarray, end: np.ndarray, rate_start: 
     return BSpline(np.r_[[0.0] * 6, [length] * 6], c, 5)
 
 
-def excess(spl: BSpline, length: float, corner: np.ndarray, tolerance: float) -> float:
-    """How far the axes ``spl`` (:func:`hermite_axes` over a blend of ``length`` [mm]) leave their programmed
-    motion, as a multiple of ``FIT_SHARE * tolerance`` (at most 1: within it): that motion is the polyline
-    through the blend's end values and ``corner`` (the programmed values at the corner) at its middle."""
-    s = np.linspace(0.0, length, _CHECK_POINTS)
-    ends = spl(np.array([0.0, length]))
-    polyline = np.column_stack([np.interp(s, [0.0, 0.5 * length, length], [e0, c, e1])
-                                for e0, c, e1 in zip(ends[0], corner, ends[1])])
-    dev = float(np.max(np.abs(spl(s) - polyline)))
-    return dev / (FIT_SHARE * tolerance) if tolerance > 0 else np.inf
+def _derivatives(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray,
+                 rate_end: np.ndarray, nu: int, u: np.ndarray) -> np.ndarray:
+    """``d^nu r / ds^nu`` of :func:`hermite_axes` (``nu = 0``: ``r - start``) of m blends of ``length`` (m,), the
+    others (m, k), at the shares ``u`` of their length: shape (m, len(u), k)."""
+    p = _BASIS
+    for _ in range(nu):
+        p = p[:, 1:] * np.arange(1, p.shape[1])
+    h = np.stack([np.polynomial.polynomial.polyval(u, row) for row in p])[:, None, :, None]
+    L = length[:, None, None]
+    return ((end - start)[:, None, :] * h[0] + L * rate_start[:, None, :] * h[1]
+            + L * rate_end[:, None, :] * h[2]) / L**nu
+
+
+def _arrays(*args) -> tuple[np.ndarray, ...]:
+    return tuple(np.asarray(x, dtype=float) for x in args)
+
+
+def hermite_bounds(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray,
+                   rate_end: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Largest first, second and third derivatives along the path (absolute, shape (m, k)) of the quintics of
+    :func:`hermite_axes` of m blends at once (``length`` (m,), the others (m, k)), at :data:`_CHECK_POINTS` points
+    each, by ``CURVE_BOUND_MARGIN`` as the merged runs' splines (for
+    :func:`interpolators.kinematics.extra_curve_bounds`); an axis at rest has exactly 0."""
+    u = np.linspace(0.0, 1.0, _CHECK_POINTS)
+    args = _arrays(length, start, end, rate_start, rate_end)
+    d1, d2, d3 = (np.abs(_derivatives(*args, nu, u)).max(axis=1) * CURVE_BOUND_MARGIN for nu in (1, 2, 3))
+    return d1, d2, d3
+
+
+def excess(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray, rate_end: np.ndarray,
+           corner: np.ndarray, tolerance: np.ndarray) -> np.ndarray:
+    """How far the axes of m blends (:func:`hermite_axes`, arrays as :func:`hermite_bounds`) leave their programmed
+    motion, as a multiple of ``FIT_SHARE * tolerance`` (at most 1: within it; shape (m,)): that motion is the
+    polyline through the blend's end values and ``corner`` (the programmed values at the corner) at its middle."""
+    u = np.linspace(0.0, 1.0, _CHECK_POINTS)
+    length, start, end, rate_start, rate_end, corner, tolerance = _arrays(length, start, end, rate_start, rate_end,
+                                                                          corner, tolerance)
+    r = _derivatives(length, start, end, rate_start, rate_end, 0, u)
+    w = np.minimum(2.0 * u, 1.0)[None, :, None]
+    v = np.maximum(2.0 * u - 1.0, 0.0)[None, :, None]
+    polyline = (corner - start)[:, None, :] * w + (end - corner)[:, None, :] * v
+    dev = np.abs(r - polyline).max(axis=(1, 2))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(tolerance > 0, dev / (FIT_SHARE * tolerance), np.inf)

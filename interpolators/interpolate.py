@@ -6,11 +6,10 @@ import dataclasses
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from interpolators.axis_blends import excess, hermite_axes
+from interpolators.axis_blends import excess, hermite_axes, hermite_bounds
 from interpolators.dense import MergedRun, fit_axes, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
@@ -34,9 +33,6 @@ from toolpaths.packed import HOLD, PackedSegments
 from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 from vcnc.core.errors import InputError, ProgramTooLongError
 from vcnc.core.setpoints import Setpoints
-
-if TYPE_CHECKING:
-    from scipy.interpolate import BSpline
 
 __all__ = ["interpolate", "MAX_SAMPLES"]
 
@@ -583,7 +579,8 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     """The segments and blocks of a chain moving the axes beyond X, Y, Z (``ch``, its runs merged, ``fit_of`` their
     axis splines, :func:`_merged_extra`) with its line/line corners blended as in a chain of X, Y, Z
     (:func:`interpolators.lookahead.blend_corners`, no kink blends), and ``fit_of`` with the axes' splines along
-    each blend and shortened line (:mod:`interpolators.axis_blends`, the segment's own arc length). A blend whose
+    each blend (:mod:`interpolators.axis_blends`, the blend's own arc length; a shortened line's are
+    :func:`_extra_geometry`'s, by :func:`_on_line`). A blend whose
     axes leave the tolerance is made again within the tolerance scaled down by the excess, then dropped; corners
     beside a rapid or a chord under tool centre point control are not blended (its tip would leave ``P``, as
     :func:`_merged_extra`). Without a blend, the chain's own segments and ``fit_of``."""
@@ -594,16 +591,19 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     tol[:-1][kept[:-1] | kept[1:]] = 0.0
     corner_of = {b: k for k, (sg, b) in enumerate(zip(segments, blocks)) if isinstance(sg, Line)}
     blk = program.blocks
+    corner_value = [b.extra_target for b in blk]
 
-    def axes_of(blend, k: int) -> BSpline:  # the axes across the blend of corner k
-        (r0, m0), (r1, m1) = _on_line(blk[blocks[k]], blend.start), _on_line(blk[blocks[k + 1]], blend.end)
-        return hermite_axes(blend.length, r0, r1, m0, m1)
+    def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
+        at = [(*_on_line(blk[blocks[k]], b.start), *_on_line(blk[blocks[k + 1]], b.end))
+              for b, k in zip(blends, corners)]
+        r0, m0, r1, m1 = (np.array([x[i] for x in at]).reshape(-1, len(EXTRA_NAMES)) for i in range(4))
+        return np.array([b.length for b in blends], dtype=float), r0, r1, m0, m1
 
     def cap(blends: CornerBlends) -> np.ndarray:  # the blends' speed bound from those axes' limits
-        fits = {i: (axes_of(b, k), 0.0) for i, (b, k) in enumerate(zip(blends.blends, blends.corner.tolist()))}
-        idx = np.arange(len(fits))
-        return extra_curve_bounds(*_fit_derivatives(fits, idx, blends.length), np.full(len(idx), np.inf), limits,
-                                  share=np.full(len(idx), 1.0 - JUNCTION_SHARE), jerk_limited=jerk_limited)[0]
+        d1, d2, d3 = hermite_bounds(*ends(blends.blends, blends.corner.tolist()))
+        n = len(d1)
+        return extra_curve_bounds(d1, d2, d3, np.full(n, np.inf), limits, share=np.full(n, 1.0 - JUNCTION_SHARE),
+                                  jerk_limited=jerk_limited)[0]
 
     worth = _blend_worth(ch, lim, jerk_limited, Ts, cap)
     for attempt in range(3):
@@ -612,36 +612,19 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
                                    kinks=False)
         if len(segs) == len(segments):
             return segments, blocks, fit_of
-        axes, over = _corner_axes(segments, segs, blks, corner_of, allowed, axes_of,
-                                  [b.extra_target for b in blk])
-        if not over:
-            return segs, blks, {**fit_of, **axes}
-        for k, (ratio, reach) in over.items():
-            tol[k] = 0.0 if attempt == 1 else 0.95 * reach / ratio
+        original = {id(sg) for sg in segments}
+        made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
+        corners = [k for _, k in made]
+        args = ends([sg for sg, _ in made], corners)
+        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners])
+        if np.all(ratio <= 1.0):
+            return segs, blks, {**fit_of, **{id(sg): (hermite_axes(*(x[i] for x in args)), 0.0)
+                                             for i, (sg, _) in enumerate(made)}}
+        for i in np.flatnonzero(ratio > 1.0).tolist():  # the XYZ deviation its size gives, scaled down
+            sg, k = made[i]
+            reach = float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end))
+            tol[k] = 0.0 if attempt == 1 else 0.95 * reach / ratio[i]
     return segments, blocks, fit_of
-
-
-def _corner_axes(segments: list, segs: list, blks: list[int], corner_of: dict[int, int], tol: np.ndarray,
-                 axes_of: Callable, corner_value: Sequence) -> tuple[dict, dict[int, tuple[float, float]]]:
-    """The axes' splines (by ``id`` of the segment: the spline and 0, its arc length at the start) on the blends
-    and shortened lines ``segs`` (blocks ``blks``) of the chain ``segments`` (``corner_of``: the index of each
-    line's block in it, the blend's corner after it), and the blends whose axes leave ``tol``: corner -> (excess,
-    the distance of the blend's middle from the corner, the XYZ deviation its size gives); ``axes_of(blend, k)``:
-    the axes' spline across the blend of corner ``k``; ``corner_value[b]``: their programmed values at the end of
-    block ``b``."""
-    original = {id(sg) for sg in segments}
-    axes: dict = {}
-    over: dict[int, tuple[float, float]] = {}
-    for sg, b in zip(segs, blks):
-        if id(sg) in original or isinstance(sg, Line):  # a shortened line: _extra_geometry, by _on_line
-            continue
-        k = corner_of[b]
-        spl = axes_of(sg, k)
-        ratio = excess(spl, sg.length, np.asarray(corner_value[b], dtype=float), float(tol[k]))
-        if ratio > 1.0:
-            over[k] = (ratio, float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end)))
-        axes[id(sg)] = (spl, 0.0)
-    return axes, over
 
 
 def _on_line(block, point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

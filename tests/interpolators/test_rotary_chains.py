@@ -18,9 +18,10 @@ import pytest
 
 from benchmarks.dense_code import rotary_programs
 from interpolators import interpolate, parse_program
-from interpolators.axis_blends import hermite_axes
+from interpolators.axis_blends import excess, hermite_axes, hermite_bounds
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.dense import fit_axes
+from interpolators.kinematics import CURVE_BOUND_MARGIN
 from tests.interpolators.setpoint_checks import check_limits, distance_to_path
 from tests.interpolators.test_secondary_axes import LIMITS
 
@@ -340,3 +341,12 @@ def test_hermite_axes_matches_values_rates_and_no_curvature_at_its_ends():
     s = np.linspace(0.0, 2.0, 9)
     assert np.allclose(spl(s)[:, 2], 1.0 + 0.5 * s, rtol=0, atol=1e-12)
     assert np.all(spl.c[:, 1] == 5.0)
+    args = (np.array([2.0]), spl(0.0)[None], spl(2.0)[None], spl(0.0, 1)[None], spl(2.0, 1)[None])
+    fine = np.linspace(0.0, 2.0, 2001)
+    for nu, d in zip((1, 2, 3), hermite_bounds(*args)):  # the largest derivatives, by CURVE_BOUND_MARGIN
+        assert d[0] == pytest.approx(np.abs(spl(fine, nu)).max(axis=0) * CURVE_BOUND_MARGIN, rel=1e-3, abs=1e-12)
+        assert d[0, 1] == 0.0 and (nu == 1 or d[0, 2] == 0.0)
+    # A's programmed motion: 10 -> 11 (the corner, at the middle) -> 12; the quintic leaves it by 0.31 deg
+    dev = np.abs(spl(fine)[:, 0] - np.interp(fine, [0.0, 1.0, 2.0], [10.0, 11.0, 12.0])).max()
+    assert excess(*args, np.array([[11.0, 5.0, 1.5]]), np.array([0.1]))[0] == pytest.approx(dev / 0.09, rel=1e-2)
+    assert dev == pytest.approx(0.3125, abs=1e-4)
