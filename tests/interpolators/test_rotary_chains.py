@@ -350,3 +350,29 @@ def test_hermite_axes_matches_values_rates_and_no_curvature_at_its_ends():
     dev = np.abs(spl(fine)[:, 0] - np.interp(fine, [0.0, 1.0, 2.0], [10.0, 11.0, 12.0])).max()
     assert excess(*args, np.array([[11.0, 5.0, 1.5]]), np.array([0.1]))[0] == pytest.approx(dev / 0.09, rel=1e-2)
     assert dev == pytest.approx(0.3125, abs=1e-4)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_inverse_time_chords_of_changing_feeds_blend_at_each_blocks_speed(profile):
+    """A 5-axis CAM program under G93 writes a new F on every block (1/F minutes each): 40 chords of 2 mm on a
+    radius of 20 mm with C following the tangent, F 600 +-30 %. Their feeds differ far beyond
+    ``UNBLENDED_FEED_SPREAD``, so they do not merge; their corners are blended across X, Y and C, each block's
+    speed (its length over its time) a bound of its own, as LinuxCNC's interpreter turns each G93 F into the
+    block's feed (``inverse_time_rate_straight``, src/emc/rs274ngc/interp_inverse.cc) and its planner blends them.
+    The chords take their programmed time (4.136 s) plus the speed changes between blocks, never a block faster
+    than programmed (before: a stop at 8 corners, 5.324 s trapezoid; 38 stops, 7.400 s S-curve)."""
+    lines, programmed = ["G21 G90 G64 P0.02 G0 X20 Y0 Z0 C0", "G93 G1"], 0.0
+    for i in range(1, 41):
+        feed = 600 * (1 + 0.3 * math.sin(i))
+        lines.append(f"X{20 * math.cos(0.1 * i):.4f} Y{20 * math.sin(0.1 * i):.4f} C{math.degrees(0.1 * i):.4f} "
+                     f"F{feed:.4f}")
+        programmed += 60.0 / float(f"{feed:.4f}")
+    prog = _program([*lines, "G94"])
+    sp = interpolate(prog, profile=profile)
+    on_chords = np.sum(sp.block >= 1) * sp.sample_time
+    assert programmed <= on_chords <= (1.02 if profile == "trapezoid" else 1.06) * programmed
+    assert _inner_stops(sp, prog) == 0
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
+    assert distance_to_path(sp) <= 0.02
+    assert _axis_deviation(sp, prog, "c") <= 0.02
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
