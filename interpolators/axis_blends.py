@@ -10,9 +10,15 @@ and, at the S-curve's zero path acceleration, their acceleration too; the XYZ bl
 quintic the second derivative, continuous. It must stay within ``FIT_SHARE * P`` of their programmed motion
 in each axis' unit (deg on A-C, mm on U-W, as :func:`interpolators.dense.fit_axes` reads ``P`` for them;
 our reading of LinuxCNC, which blends every axis of such segments under the one G64 ``P`` with its parabolic
-blends, ``tcRotaryMotionCheck`` in ``src/emc/tp/tp.c``). That motion is measured along the blend as the
-merged runs' is along their curve: the polyline through the blend's end values and the corner's programmed
-value at the blend's middle (the symmetric arc and clothoid pair pass nearest the corner there).
+blends, ``tcRotaryMotionCheck`` in ``src/emc/tp/tp.c``). Under G20 ``P`` is inches, converted to mm as LinuxCNC
+converts it (``SET_MOTION_CONTROL_MODE`` in ``src/emc/task/emccanon.cc``: ``FROM_PROG_LEN(tolerance)``), and that
+number of mm is the tolerance in deg on A-C (our reading: LinuxCNC bounds only the XYZ blend with it,
+``tpComputeBlendVelocity`` in ``tp.c`` takes the angle between the XYZ directions, and LinuxCNC's G-code reference
+gives G64 no angular tolerance; HEIDENHAIN's cycle 32 TA is one, not read here): ``G20 G64 P0.002`` is 0.0508 mm
+on X-Z and U-W, 0.0508 deg on A-C. That motion is measured
+along the blend as the merged runs' is along their curve: the polyline through the blend's end values and the
+corner's programmed value at the blend's middle (the symmetric arc and clothoid pair pass nearest the corner
+there).
 
 A blend whose axes leave that tolerance is made again with ``P`` scaled down by the excess
 (:func:`excess`: the deviation grows in proportion to the blend's size, as the XYZ one does), then dropped. The

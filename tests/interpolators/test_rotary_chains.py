@@ -376,3 +376,21 @@ def test_inverse_time_chords_of_changing_feeds_blend_at_each_blocks_speed(profil
     assert distance_to_path(sp) <= 0.02
     assert _axis_deviation(sp, prog, "c") <= 0.02
     assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_inch_p_is_converted_to_mm_and_read_as_deg_on_a(profile):
+    """``G20 G64 P0.002``: 0.0508 mm on X, Y and, read in deg, on A (our reading, :mod:`interpolators.axis_blends`).
+    The 24-gon with A reversing at each corner, in inches: A's blends use that tolerance (0.9 x 0.0508 deg at most,
+    and well above 0.002 deg), X, Y within 0.0508 mm, no stop."""
+    lines = ["G20 G90 G64 P0.002 G0 X0.7874 Y0 A0", "G1 F80"]
+    for i in range(1, 49):
+        t = 2 * math.pi * i / 24
+        lines.append(f"X{0.7874 * math.cos(t):.5f} Y{0.7874 * math.sin(t):.5f} A{i % 2:.4f}")
+    prog = _program(lines)
+    assert prog.blocks[-1].tolerance == pytest.approx(0.0508)
+    sp = interpolate(prog, profile=profile)
+    assert _inner_stops(sp, prog) == 0
+    assert distance_to_path(sp) <= 0.0508
+    assert 0.02 <= _axis_deviation(sp, prog, "a") <= 0.9 * 0.0508 + 1e-9
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
