@@ -493,8 +493,8 @@ def _extra_geometry(chains: list[_Chain], segments: list, seg_block: list[int], 
         if blk.extra_start is not None:
             start[k] = blk.extra_start
         if chains[c].extra and isinstance(segments[k], Line) and segments[k] is not blk.segment:
-            start[k], rate = _on_line(blk, segments[k].start)  # a line shortened by corner blends
-            delta[k] = rate * segments[k].length
+            value, rate = _on_line([blk], np.asarray(segments[k].start)[None])  # a line shortened by corner blends
+            start[k], delta[k] = value[0], rate[0] * segments[k].length
         elif chains[c].extra:
             delta[k] = blk.extra_delta
             if packed.kind[k] == HOLD:
@@ -594,9 +594,8 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     corner_value = [b.extra_target for b in blk]
 
     def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
-        at = [(*_on_line(blk[blocks[k]], b.start), *_on_line(blk[blocks[k + 1]], b.end))
-              for b, k in zip(blends, corners)]
-        r0, m0, r1, m1 = (np.array([x[i] for x in at]).reshape(-1, len(EXTRA_NAMES)) for i in range(4))
+        r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3))
+        r1, m1 = _on_line([blk[blocks[k + 1]] for k in corners], np.array([b.end for b in blends]).reshape(-1, 3))
         return np.array([b.length for b in blends], dtype=float), r0, r1, m0, m1
 
     def cap(blends: CornerBlends) -> np.ndarray:  # the blends' speed bound from those axes' limits
@@ -627,12 +626,15 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     return segments, blocks, fit_of
 
 
-def _on_line(block, point: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The axes beyond X, Y, Z at ``point`` of the line of ``block`` (a feed line moving them) and their rate per mm
-    of it: they move in proportion to the path (RS274/NGC 3, Sec. 2.1.2.5)."""
-    line = block.segment
-    rate = np.asarray(block.extra_delta, dtype=float) / line.length
-    return np.asarray(block.extra_start, dtype=float) + rate * float(np.linalg.norm(point - line.start)), rate
+def _on_line(blocks: Sequence, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The axes beyond X, Y, Z at ``points`` (n, 3) of the lines of ``blocks`` (feed lines moving them) and their
+    rates per mm of them, shape (n, 6) each: they move in proportion to the path (RS274/NGC 3, Sec. 2.1.2.5)."""
+    n = len(blocks)
+    start = np.array([b.extra_start for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
+    delta = np.array([b.extra_delta for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
+    origin = np.array([b.segment.start for b in blocks], dtype=float).reshape(n, 3)
+    rate = delta / np.array([b.segment.length for b in blocks], dtype=float)[:, None]
+    return start + rate * np.linalg.norm(points - origin, axis=1)[:, None], rate
 
 
 def _restore_runs(ch: _Chain, merged: _Chain, run_of: dict[int, MergedRun], failed: set[int]
