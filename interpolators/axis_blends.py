@@ -27,6 +27,7 @@ derivatives bound the blend's speed (:func:`hermite_bounds`) where the planner j
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -44,23 +45,34 @@ _CHECK_POINTS = 33
 #: Power series coefficients (in the share u of the blend) of the quintic Hermite basis with zero second
 #: derivatives at both ends: the end step ``H1`` (``H0 = 1 - H1``), the start rate ``H2`` and the end rate ``H3``.
 _BASIS = np.array([[0, 0, 0, 10, -15, 6], [0, 1, 0, -6, 8, -3], [0, 0, 0, -4, 7, -3]], dtype=float)
+#: Power series to Bernstein coefficients of degree 5: ``b_i = sum_k C(i, k) / C(5, k) a_k`` for ``k <= i``.
+_TO_BERNSTEIN = np.array([[math.comb(i, k) / math.comb(5, k) if k <= i else 0.0 for k in range(6)] for i in range(6)])
 
 
-def hermite_axes(length: float, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray,
-                 rate_end: np.ndarray) -> BSpline:
-    """The quintic ``r(s)``, ``0 <= s <= length`` [mm], with ``r(0) = start``, ``r(length) = end``, ``r'`` the
-    rates (per mm of path) and ``r'' = 0`` at both ends, as a :class:`scipy.interpolate.BSpline` of degree 5
-    (its Bezier form). Equal rates ``(end - start) / length`` give the straight line exactly; an axis with equal
-    ends and zero rates has all its coefficients at its value (the planner's test of an axis kept still)."""
+def hermite_axes(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray,
+                 rate_end: np.ndarray) -> tuple[BSpline, np.ndarray]:
+    """The quintics ``r(s)`` of m blends (``length`` (m,) [mm], the others (m, k)), each over ``0 <= s <= length``
+    with ``r(0) = start``, ``r(length) = end``, ``r'`` the rates (per mm of path) and ``r'' = 0`` at both ends,
+    as one :class:`scipy.interpolate.BSpline` of degree 5 (one spline evaluated at once for all the blends of a
+    chain) and the parameter of each blend's start in it. Blend ``j`` is the polynomial of the knot interval
+    ``[S_j, S_j + 2 length_j]`` (knots of multiplicity 6: no continuity between blends), so that its end ``S_j +
+    length_j`` lies inside it. Equal rates ``(end - start) / length`` give the straight line; an axis with equal
+    ends and zero rates in every blend has all its coefficients at its value (the planner's test of an axis kept
+    still)."""
     from scipy.interpolate import BSpline
 
-    a0, a1 = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
-    m0 = np.asarray(rate_start, dtype=float) * (length / 5.0)
-    m1 = np.asarray(rate_end, dtype=float) * (length / 5.0)
-    c = np.array([a0, a0 + m0, a0 + 2.0 * m0, a1 - 2.0 * m1, a1 - m1, a1])
-    still = (a0 == a1) & (m0 == 0) & (m1 == 0)
-    c[:, still] = a0[still]
-    return BSpline(np.r_[[0.0] * 6, [length] * 6], c, 5)
+    length = np.asarray(length, dtype=float)
+    a0, a1, m0, m1 = _arrays(start, end, rate_start, rate_end)
+    # power series in w = (s - S_j) / (2 length): the basis' in u = 2 w, times 2^k
+    power = ((a1 - a0)[:, None, :] * _BASIS[0][None, :, None]
+             + (length[:, None] * m0)[:, None, :] * _BASIS[1][None, :, None]
+             + (length[:, None] * m1)[:, None, :] * _BASIS[2][None, :, None]) * (2.0 ** np.arange(6))[None, :, None]
+    power[:, 0] += a0
+    c = np.einsum("ik,jkl->jil", _TO_BERNSTEIN, power)  # (m, 6, k): Bernstein coefficients of each interval
+    still = np.all((a0 == a1) & (m0 == 0) & (m1 == 0), axis=0)
+    c[:, :, still] = a0[0, still]
+    offsets = np.concatenate([[0.0], np.cumsum(2.0 * length)])
+    return BSpline(np.repeat(offsets, 6), c.reshape(-1, c.shape[2]), 5), offsets[:-1]
 
 
 def _derivatives(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_start: np.ndarray,

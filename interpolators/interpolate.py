@@ -579,7 +579,8 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     """The segments and blocks of a chain moving the axes beyond X, Y, Z (``ch``, its runs merged, ``fit_of`` their
     axis splines, :func:`_merged_extra`) with its line/line corners blended as in a chain of X, Y, Z
     (:func:`interpolators.lookahead.blend_corners`, no kink blends), and ``fit_of`` with the axes' splines along
-    each blend (:mod:`interpolators.axis_blends`, the blend's own arc length; a shortened line's are
+    each blend (:mod:`interpolators.axis_blends`, one spline for all, each blend's arc length from its offset; a
+    shortened line's are
     :func:`_extra_geometry`'s, by :func:`_on_line`). A blend whose
     axes leave the tolerance is made again within the tolerance scaled down by the excess, then dropped; corners
     beside a rapid or a chord under tool centre point control are not blended (its tip would leave ``P``, as
@@ -617,8 +618,8 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         args = ends([sg for sg, _ in made], corners)
         ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners])
         if np.all(ratio <= 1.0):
-            return segs, blks, {**fit_of, **{id(sg): (hermite_axes(*(x[i] for x in args)), 0.0)
-                                             for i, (sg, _) in enumerate(made)}}
+            spl, offsets = hermite_axes(*args)  # one spline for the chain's blends
+            return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for (sg, _), o in zip(made, offsets)}}
         for i in np.flatnonzero(ratio > 1.0).tolist():  # the XYZ deviation its size gives, scaled down
             sg, k = made[i]
             reach = float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end))

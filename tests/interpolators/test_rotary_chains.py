@@ -329,19 +329,22 @@ def test_corners_whose_blend_is_slower_than_a_stop_stay_stops(profile):
 
 
 def test_hermite_axes_matches_values_rates_and_no_curvature_at_its_ends():
-    """The quintic across a blend of 2 mm: end values and rates as given, second derivative 0 at both ends; equal
-    rates ``(end - start) / length`` give the straight line; an axis at rest keeps all its coefficients at its
-    value."""
-    spl = hermite_axes(2.0, np.array([10.0, 5.0, 1.0]), np.array([12.0, 5.0, 2.0]), np.array([0.5, 0.0, 0.5]),
-                       np.array([1.5, 0.0, 0.5]))
-    ends = np.array([0.0, 2.0])
-    assert np.allclose(spl(ends), [[10.0, 5.0, 1.0], [12.0, 5.0, 2.0]], rtol=0, atol=1e-12)
-    assert np.allclose(spl(ends, 1), [[0.5, 0.0, 0.5], [1.5, 0.0, 0.5]], rtol=0, atol=1e-12)
-    assert np.allclose(spl(ends, 2), 0.0, rtol=0, atol=1e-12)
-    s = np.linspace(0.0, 2.0, 9)
-    assert np.allclose(spl(s)[:, 2], 1.0 + 0.5 * s, rtol=0, atol=1e-12)
+    """The quintics across two blends (2 mm and 0.5 mm) in one spline: each blend's end values and rates as given
+    at its offset and its offset plus its length, second derivative 0 at both ends; equal rates ``(end - start) /
+    length`` give the straight line; an axis at rest in both keeps all its coefficients at its value."""
+    length = np.array([2.0, 0.5])
+    start, end = np.array([[10.0, 5.0, 1.0], [3.0, 5.0, 0.0]]), np.array([[12.0, 5.0, 2.0], [4.0, 5.0, 1.0]])
+    rate_start, rate_end = np.array([[0.5, 0.0, 0.5], [1.0, 0.0, 2.0]]), np.array([[1.5, 0.0, 0.5], [3.0, 0.0, 2.0]])
+    spl, offset = hermite_axes(length, start, end, rate_start, rate_end)
+    for j in range(2):
+        ends = offset[j] + np.array([0.0, length[j]])
+        assert np.allclose(spl(ends), [start[j], end[j]], rtol=0, atol=1e-12)
+        assert np.allclose(spl(ends, 1), [rate_start[j], rate_end[j]], rtol=0, atol=1e-12)
+        assert np.allclose(spl(ends, 2), 0.0, rtol=0, atol=1e-12)
+        s = np.linspace(0.0, length[j], 9)
+        assert np.allclose(spl(offset[j] + s)[:, 2], start[j, 2] + rate_start[j, 2] * s, rtol=0, atol=1e-12)
     assert np.all(spl.c[:, 1] == 5.0)
-    args = (np.array([2.0]), spl(0.0)[None], spl(2.0)[None], spl(0.0, 1)[None], spl(2.0, 1)[None])
+    args = (length[:1], start[:1], end[:1], rate_start[:1], rate_end[:1])
     fine = np.linspace(0.0, 2.0, 2001)
     for nu, d in zip((1, 2, 3), hermite_bounds(*args)):  # the largest derivatives, by CURVE_BOUND_MARGIN
         assert d[0] == pytest.approx(np.abs(spl(fine, nu)).max(axis=0) * CURVE_BOUND_MARGIN, rel=1e-3, abs=1e-12)
