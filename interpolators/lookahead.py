@@ -355,6 +355,7 @@ def blend_corners(
     worth: Callable[[CornerBlends], np.ndarray] | None = None,
     curvature_continuous: bool = False,
     kink_limits: tuple[float, float] = (1.0, 25.0),
+    kinks: bool = True,
 ) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
     """Blend the corners of a continuous chain (line/line; with ``curvature_continuous`` every kink).
 
@@ -379,6 +380,9 @@ def blend_corners(
     kink_limits : tuple of float
         Path acceleration and jerk limits ``(A, J)`` [mm/s^2, mm/s^3] the kink blends' shapes are chosen
         for (only their ratio matters).
+    kinks : bool
+        False: only the line/line corners, also under ``curvature_continuous`` (a chain moving the axes beyond
+        X, Y, Z, whose motion across a blend :mod:`interpolators.axis_blends` gives for line/line corners only).
 
     Returns
     -------
@@ -404,7 +408,7 @@ def blend_corners(
                 worth(CornerBlends.of(np.array(corners), blends)), dtype=bool).tolist()
             blend_at = {k: b for k, b, ok in zip(corners, blends, accepted) if ok}
     legs: dict[int, float] = {}
-    if curvature_continuous:
+    if curvature_continuous and kinks:
         kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
         cand = np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
         corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits)
