@@ -54,6 +54,7 @@ _VOCABULARY = {
     "japanese": ("{A}\u8ef8\u6307\u4ee4\u4f4d\u7f6e", "{A}\u8ef8\u30d5\u30a3\u30fc\u30c9\u30d0\u30c3\u30af\u4f4d\u7f6e",
                  "{A}\u8ef8\u6e9c\u308a"),
     "ref": ("{a}_ref", "{a}_act", "{a}_lag"),
+    "kuka_rsi": ("{A}_RSol", "{A}_RIst", "{A}_Schleppfehler"),
 }
 #: The same without an axis letter, for a one-axis file (read as x).
 _BARE = {"english": ("Commanded Position", "Actual Position", "Following Error"),
@@ -218,7 +219,7 @@ def _header(spec: _Spec, pos_unit: str) -> tuple[list[str], list[tuple[str, int]
     spec.lay.append(f"names:{'bare' if bare else vocab}" + ("+lag" if spec.use_lag else ""))
     header, cols = [], []
     if spec.time_style in _TIME_UNITS:
-        header.append(rng.choice(_TIME_NAMES))
+        header.append(rng.choice(_TIME_NAMES + ("IPOC",) * (spec.time_style == "ms")))
         cols.append(("t", 0))
     elif spec.time_style == "date-time":
         header.append(rng.choice(["Timestamp", "Time", "Zeitstempel"]))

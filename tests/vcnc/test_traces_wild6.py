@@ -1,7 +1,10 @@
 """Traces in the layouts seen in tracewild6: ECP Executive's "Export Raw Data" (a MATLAB matrix literal under names
 set apart by runs of spaces, positions in encoder counts), a PI controller's data recorder saved as a GCS array
-(``# KEY = value`` header, no time column, no unit) and a TwinCAT 2 Scope View export. Each file is a few lines
-written here after a real export's layout or the tool's documentation, not the export itself."""
+(``# KEY = value`` header, no time column, no unit) and a TwinCAT 2 Scope View export; and of tracewild7, robot
+controllers' logs: KUKA RSI's Cartesian ``RIst``/``RSol`` with its ``IPOC`` millisecond stamp beside a logging PC's
+whole-second time stamp, and Universal Robots RTDE recordings (``target_q_N``/``actual_q_N`` joint positions in rad).
+Each file is a few lines written here after a real export's layout or the tool's documentation, not the export
+itself."""
 
 from __future__ import annotations
 
@@ -186,3 +189,72 @@ def test_gcs_array_of_two_axes_asks_which_without_a_time_column(tmp_path):
     cap = read_capture(f, columns={"y_ref": names[2], "y": names[3]}, unit="mm")
     assert cap.axes == ("y",)
     np.testing.assert_allclose(cap.measured[:, 0], -0.2 * np.arange(10) + 0.02, atol=1e-12)
+
+
+def _rsi_rows(n: int, *, pc_stamp: bool) -> tuple[str, list[float], list[float]]:
+    """A KUKA RSI log as a UDP logger writes it: the PC's time stamp to the second (when ``pc_stamp``), the Cartesian
+    actual (``RIst``) and setpoint (``RSol``) X..C, the controller's ``IPOC`` counting ms in steps of 12 (IPO mode)."""
+    sol = [192.2 - 0.1 * max(k - 2, 0) for k in range(n)]
+    ist = [192.4 - 0.1 * max(k - 3, 0) for k in range(n)]
+    names = ["X_RIst", "Y_RIst", "A_RIst", "X_RSol", "Y_RSol", "A_RSol", "Delay", "IPOC"]
+    rows = [",".join((["2024-09-24 14:05:15"] if pc_stamp else []) + [
+        "1279.5", f"{ist[k]:.1f}", "80.4", "1279.5", f"{sol[k]:.1f}", "80.5", "0", str(1210441551 + 12 * k)])
+        for k in range(n)]
+    return ",".join((["Timestamp"] if pc_stamp else []) + names) + "\n" + "\n".join(rows) + "\n", sol, ist
+
+
+def test_kuka_rsi_log_reads_ist_and_sol_on_the_controllers_ipoc_clock(tmp_path):
+    text, sol, ist = _rsi_rows(12, pc_stamp=True)
+    f = tmp_path / "robot_data.csv"
+    f.write_text(text)
+    cap = read_capture(f)  # IPOC, not the PC's whole seconds (12 rows in one second), is the time
+    assert cap.axes == ("x", "y", "a")
+    assert cap.meta["commanded"] == "x:X_RSol,y:Y_RSol,a:A_RSol" and cap.meta["measured"] == "x:X_RIst,y:Y_RIst,a:A_RIst"
+    assert cap.meta["columns"].startswith("from the header names: t=IPOC, x_ref=X_RSol, x=X_RIst")
+    assert cap.meta["time_unit"] == "ms"
+    np.testing.assert_allclose(cap.t, np.arange(12) * 0.012, atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 1], sol, atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 1], ist, atol=1e-9)
+    assert cap.reference[0, 2] == pytest.approx(80.5) and cap.measured[0, 2] == pytest.approx(80.4)  # deg on a
+
+
+def test_kuka_rsi_ipoc_given_as_the_time_column_counts_milliseconds(tmp_path):
+    text, sol, _ = _rsi_rows(6, pc_stamp=False)
+    f = tmp_path / "rsi.csv"
+    f.write_text(text)
+    cap = read_capture(f, columns={"t": "IPOC", "y_ref": "Y_RSol", "y": "Y_RIst"})
+    assert cap.t[1] == pytest.approx(0.012)  # not 12 s
+    np.testing.assert_allclose(cap.reference[:, 0], sol, atol=1e-9)
+
+
+def _rtde(names: list[str], rows: list[list[float]]) -> str:
+    """UR's RTDE ``record.py`` (``rtde/csv_writer.py``): names and values separated by one space."""
+    return " ".join(names) + "\n" + "".join(" ".join(repr(v) for v in r) + "\n" for r in rows)
+
+
+def test_ur_rtde_joint_positions_are_a_question_never_millimetres(tmp_path):
+    target = [0.5 + 0.01 * k for k in range(8)]
+    actual = [0.5 + 0.01 * max(k - 1, 0) for k in range(8)]
+    f = tmp_path / "robot_data.csv"
+    f.write_text(_rtde(["timestamp", "target_q_0", "actual_q_0"],
+                       [[1234.5 + 0.008 * k, target[k], actual[k]] for k in range(8)]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("(not read from the names: Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N "
+            "(measured), joints [0], in rad: choose a joint and name it as a rotary axis, e.g. --columns "
+            "t=timestamp,a_ref=target_q_0,a=actual_q_0 --unit rad)") in str(err.value)
+    cap = read_capture(f, columns={"t": "timestamp", "a_ref": "target_q_0", "a": "actual_q_0"}, unit="rad")
+    np.testing.assert_allclose(cap.reference[:, 0], np.degrees(target), atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 0], np.degrees(actual), atol=1e-9)
+    np.testing.assert_allclose(cap.t, np.arange(8) * 0.008, atol=1e-9)
+
+
+def test_ur_rtde_question_comes_before_a_repeated_name(tmp_path):
+    # a recipe listing target_current twice writes its columns twice; the joints' question is the useful one
+    names = ["timestamp"] + [f"actual_q_{i}" for i in range(2)] + ["target_current_0", "target_current_0"] + [
+        f"target_q_{i}" for i in range(2)]
+    f = tmp_path / "gui.csv"
+    f.write_text(",".join(names) + "\n" + "".join(f"{0.008 * k},1.3,-1.5,0.0,0.0,1.3,-1.5\n" for k in range(4)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert "joints [0, 1], in rad" in str(err.value) and "repeats a name" not in str(err.value)
