@@ -209,7 +209,8 @@ def test_kuka_rsi_log_reads_ist_and_sol_on_the_controllers_ipoc_clock(tmp_path):
     f.write_text(text)
     cap = read_capture(f)  # IPOC, not the PC's whole seconds (12 rows in one second), is the time
     assert cap.axes == ("x", "y", "a")
-    assert cap.meta["commanded"] == "x:X_RSol,y:Y_RSol,a:A_RSol" and cap.meta["measured"] == "x:X_RIst,y:Y_RIst,a:A_RIst"
+    assert cap.meta["commanded"] == "x:X_RSol,y:Y_RSol,a:A_RSol"
+    assert cap.meta["measured"] == "x:X_RIst,y:Y_RIst,a:A_RIst"
     assert cap.meta["columns"].startswith("from the header names: t=IPOC, x_ref=X_RSol, x=X_RIst")
     assert cap.meta["time_unit"] == "ms"
     np.testing.assert_allclose(cap.t, np.arange(12) * 0.012, atol=1e-12)
@@ -258,3 +259,22 @@ def test_ur_rtde_question_comes_before_a_repeated_name(tmp_path):
     with pytest.raises(CaptureError) as err:
         read_capture(f)
     assert "joints [0, 1], in rad" in str(err.value) and "repeats a name" not in str(err.value)
+
+
+def test_digits_grouped_by_thousands_are_refused_naming_the_cell(tmp_path):
+    # a spreadsheet's "#,##0.00" re-save: with a tab no number reads at all, quoted in a ';' file the cell is text
+    f = tmp_path / "grouped.txt"
+    f.write_text("Time [s]\tX Soll [mm]\tX Ist [mm]\n" + "".join(f"0.00{k}\t4,263.{60 + k}\t4,263.{50 + k}\n"
+                                                             for k in range(4)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("grouped.txt:1: no rows of numbers separated by tab, ';', ',', '|' or spaces: '4,263.60' (line 2) "
+            "writes its digits grouped by thousands (a spreadsheet's number format); vcnc reads no digit grouping: "
+            "save the numbers without thousands separators") in str(err.value)
+    g = tmp_path / "quoted.csv"
+    g.write_text('Time [s];X Soll [mm];X Ist [mm]\n0.000;"1.263,66";1263.60\n0.001;999.76;998.70\n'
+                 '0.002;1000.5;999.80\n')
+    with pytest.raises(CaptureError) as err:
+        read_capture(g)
+    assert ("quoted.csv:2:2: not a number in column 2 ('X Soll [mm]', used as x_ref): '1.263,66' writes its digits "
+            "grouped by thousands") in str(err.value)

@@ -321,7 +321,8 @@ def _table(text: str, src: str) -> _Table:
     if first < 0 or width < 2:
         k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
         first_text = lines[k].strip() if k is not None else ""
-        raise CaptureError("no rows of numbers separated by tab, ';', ',', '|' or spaces" + _hex_dump(lines), file=src,
+        raise CaptureError("no rows of numbers separated by tab, ';', ',', '|' or spaces" + (
+            _hex_dump(lines) or _grouped_hint(lines)), file=src,
                            line=k + 1 if k is not None else None, text=first_text[:80] if k is not None else None)
     rows, row_lines, overruns, text_cells = [], [], [], {}
     nan_cells: dict[int, list[tuple[int, int, str]]] = {}
@@ -437,6 +438,24 @@ def _hex_dump(lines: list[str]) -> str:
     return (f": lines of one hexadecimal number each ({first[0]}) are a hexadecimal dump (Mitsubishi's CNC sampling "
             "with output form 1 writes one channel's sample per line); save the sampling in decimal (output form 0), "
             "a row per sample")
+
+
+#: A number with both marks, digits grouped by thousands before the decimal mark: ``4,263.66``, ``-1.234.567,5``.
+_GROUPED_DECIMAL = re.compile(r"[+-]?[1-9]\d{0,2}(?:,\d{3})+\.\d+|[+-]?[1-9]\d{0,2}(?:\.\d{3})+,\d+")
+
+
+def _grouped_hint(lines: list[str]) -> str:
+    """Why cells such as ``4,263.66`` are no numbers: digits grouped by thousands, which a spreadsheet's number
+    format writes and no trace tool seen does (TwinCAT Scope's export settings choose a separator and a decimal mark,
+    no grouping; TNCscope, SINUMERIK, halscope write plain numbers). vcnc reads no grouping (a ``1,234`` without a
+    decimal part would read as 1.234 with a decimal comma): the hint names the first such cell; else ``""``."""
+    for i, line in enumerate(lines[:200]):
+        cell = next((c for c in re.split(r'[\s;|"]+', line) if _GROUPED_DECIMAL.fullmatch(c)), None)
+        if cell is not None:
+            where = f" (line {i + 1})" if len(lines) > 1 else ""
+            return (f": {cell!r}{where} writes its digits grouped by thousands (a spreadsheet's number format); vcnc "
+                    "reads no digit grouping: save the numbers without thousands separators")
+    return ""
 
 
 def _time_named(header: list[str] | None, units_row: list[str] | None) -> list[str] | None:
@@ -559,8 +578,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     for k, c in idx.items():
         if c in table.text:  # a column of text ('Starting', 'Layer 1 Up') is only an error when used
             line, cell = table.text[c]
-            raise CaptureError(f"not a number in column {c + 1} ({columns[k]!r}, used as {k})", file=src, line=line,
-                               column=c + 1, text=cell)
+            raise CaptureError(f"not a number in column {c + 1} ({columns[k]!r}, used as {k})"
+                               + _grouped_hint([cell]), file=src, line=line, column=c + 1, text=cell)
     stated: dict[str, str] = {}
     if period is not None and ("t" not in idx or (header is not None and is_sample_number(header[idx["t"]]))):
         sample_time = float(period.value)
