@@ -394,14 +394,15 @@ def judge(case: Case, path: Path) -> tuple[str, str]:
 
 
 def _misfit(case: Case, cap, rel: np.ndarray, k0: int, ts: float) -> float:
-    """How far the capture's commanded positions are from the written ones ``k0`` rows on (every axis: one may rest)."""
+    """How far the capture's commanded positions are from the written ones ``k0`` rows on (every axis: one may rest),
+    in each axis' written precision (an axis written to 0.1 deg must not outweigh one written to 0.1 um)."""
     if case.t.size <= k0 or cap.reference.shape[1] != case.ref.shape[1]:
         return math.inf
     if case.jitter:
         want = np.column_stack([np.interp(rel, case.t - case.t[k0], case.ref[:, j]) for j in range(case.ref.shape[1])])
     else:
         want = case.ref[np.clip(k0 + np.round(rel / ts).astype(int), 0, case.t.size - 1)]
-    return float(np.max(np.abs(cap.reference - want)))
+    return float(np.max(np.abs(cap.reference - want) / case.tol))
 
 
 FAILURES = ("traceback", "wrong-axes", "wrong-role", "wrong-unit", "wrong-values", "wrong-time", "error-without-file")

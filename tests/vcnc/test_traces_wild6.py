@@ -278,3 +278,13 @@ def test_digits_grouped_by_thousands_are_refused_naming_the_cell(tmp_path):
         read_capture(g)
     assert ("quoted.csv:2:2: not a number in column 2 ('X Soll [mm]', used as x_ref): '1.263,66' writes its digits "
             "grouped by thousands") in str(err.value)
+
+
+def test_ur_rtde_actual_positions_alone_say_the_command_is_missing(tmp_path):
+    f = tmp_path / "actual.csv"
+    f.write_text(_rtde([f"actual_q_{i}" for i in range(3)] + ["actual_TCP_pose_0"],
+                       [[-1.6007, -1.7271, -2.203, -0.144]] * 4))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f, sample_time=0.008)
+    assert ("Universal Robots RTDE actual_q_N joint positions only (joints [0, 1, 2]), no target_q_N: identification "
+            "needs the commanded and the measured position (record both target_q and actual_q)") in str(err.value)

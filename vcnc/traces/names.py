@@ -245,13 +245,22 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
 
 def rtde_joints(header: Sequence[str]) -> str | None:
     """The question for a header of Universal Robots RTDE joint positions (module docstring), else None."""
-    joints = sorted({int(m.group(2)) for h in header if (m := _RTDE_Q.fullmatch(h.strip()))})
-    if not joints:
-        return None
-    n = joints[0]
-    return (f"Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N (measured), joints {joints}, "
-            f"in rad: choose a joint and name it as a rotary axis, e.g. --columns t=timestamp,a_ref=target_q_{n},"
-            f"a=actual_q_{n} --unit rad")
+    found: dict[str, set[int]] = {"target": set(), "actual": set()}
+    for h in header:
+        if m := _RTDE_Q.fullmatch(h.strip()):
+            found[m.group(1)].add(int(m.group(2)))
+    both = sorted(found["target"] & found["actual"])
+    if both:
+        n = both[0]
+        return (f"Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N (measured), joints "
+                f"{both}, in rad: choose a joint and name it as a rotary axis, e.g. --columns "
+                f"t=timestamp,a_ref=target_q_{n},a=actual_q_{n} --unit rad")
+    for have, lack in (("actual", "target"), ("target", "actual")):
+        if found[have]:
+            return (f"Universal Robots RTDE {have}_q_N joint positions only (joints {sorted(found[have])}), no "
+                    f"{lack}_q_N: identification needs the commanded and the measured position (record both "
+                    "target_q and actual_q)")
+    return None
 
 
 def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
