@@ -286,5 +286,18 @@ def test_ur_rtde_actual_positions_alone_say_the_command_is_missing(tmp_path):
                        [[-1.6007, -1.7271, -2.203, -0.144]] * 4))
     with pytest.raises(CaptureError) as err:
         read_capture(f, sample_time=0.008)
-    assert ("Universal Robots RTDE actual_q_N joint positions only (joints [0, 1, 2]), no target_q_N: identification "
+    assert ("Universal Robots RTDE joint positions actual_q_N only (N = [0, 1, 2]), no target_q_N: identification "
             "needs the commanded and the measured position (record both target_q and actual_q)") in str(err.value)
+
+
+def test_ur_rtde_tool_pose_is_in_metres_never_millimetres(tmp_path):
+    f = tmp_path / "tcp.csv"
+    f.write_text(_rtde(["timestamp", "target_TCP_pose_0", "actual_TCP_pose_0"],
+                       [[0.008 * k, -0.58 + 0.001 * k, -0.58 + 0.001 * max(k - 1, 0)] for k in range(6)]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("Universal Robots RTDE tool (TCP) pose target_TCP_pose_N (commanded) and actual_TCP_pose_N (measured): "
+            "N = 0, 1, 2 are x, y, z in m (3-5 a rotation vector), e.g. --columns "
+            "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m") in str(err.value)
+    cap = read_capture(f, columns={"t": "timestamp", "x_ref": "target_TCP_pose_0", "x": "actual_TCP_pose_0"}, unit="m")
+    assert cap.reference[5, 0] == pytest.approx(-575.0) and cap.measured[5, 0] == pytest.approx(-576.0)

@@ -47,7 +47,8 @@ position, and its ``IPOC``, the controller's interpolation-cycle time stamp, cou
 steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. Universal Robots' RTDE
 recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's target
 and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual joint
-positions"): a robot's joint is no axis of the capture by itself, so such a header is a question naming them and the
+positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
+vector): a robot's joint is no axis of the capture by itself, so such a header is a question naming them and the
 unit (:func:`rtde_joints`), never millimetres.
 
 vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``, ``Encoder 2 Pos``) are in counts
@@ -128,8 +129,8 @@ _PA_COUNTS = ("ssetpos", "commandedmachinepos", "sactmachinepos")
 _ENCODER_COUNTS = re.compile(r"encoder\s*\d+\s*pos", re.IGNORECASE)
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
-#: Universal Robots RTDE's joint positions (module docstring): ``target_q_3``, ``actual_q_0``.
-_RTDE_Q = re.compile(r"(target|actual)_q_(\d+)")
+#: Universal Robots RTDE's joint positions and tool pose (module docstring): ``target_q_3``, ``actual_TCP_pose_0``.
+_RTDE_Q = re.compile(r"(target|actual)_(q|TCP_pose)_(\d+)")
 #: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
 _TIME_LEAVES = frozenset({"t", "time", "timestamp", "zeit"})
 _PATH = re.compile(r"[/.]?(?:[\w#\[\]-]+[/.])+([\w#\[\]-]+)")
@@ -244,22 +245,31 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
 
 
 def rtde_joints(header: Sequence[str]) -> str | None:
-    """The question for a header of Universal Robots RTDE joint positions (module docstring), else None."""
-    found: dict[str, set[int]] = {"target": set(), "actual": set()}
+    """The question for a header of Universal Robots RTDE positions (module docstring), else None: joint positions
+    ``target_q_N``/``actual_q_N`` in rad, or the tool's pose ``target_TCP_pose_N``/``actual_TCP_pose_N`` (N = 0, 1, 2:
+    x, y, z in m; 3-5 a rotation vector in rad, no axis)."""
+    found: dict[tuple[str, str], set[int]] = {}
     for h in header:
         if m := _RTDE_Q.fullmatch(h.strip()):
-            found[m.group(1)].add(int(m.group(2)))
-    both = sorted(found["target"] & found["actual"])
-    if both:
-        n = both[0]
-        return (f"Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N (measured), joints "
-                f"{both}, in rad: choose a joint and name it as a rotary axis, e.g. --columns "
-                f"t=timestamp,a_ref=target_q_{n},a=actual_q_{n} --unit rad")
-    for have, lack in (("actual", "target"), ("target", "actual")):
-        if found[have]:
-            return (f"Universal Robots RTDE {have}_q_N joint positions only (joints {sorted(found[have])}), no "
-                    f"{lack}_q_N: identification needs the commanded and the measured position (record both "
-                    "target_q and actual_q)")
+            found.setdefault((m.group(2), m.group(1)), set()).add(int(m.group(3)))
+    for kind in ("q", "TCP_pose"):
+        target, actual = found.get((kind, "target"), set()), found.get((kind, "actual"), set())
+        both = sorted(target & actual)
+        what = "joint positions" if kind == "q" else "tool (TCP) pose"
+        if both and kind == "q":
+            n = both[0]
+            return (f"Universal Robots RTDE {what} target_q_N (commanded) and actual_q_N (measured), joints {both}, "
+                    f"in rad: choose a joint and name it as a rotary axis, e.g. --columns "
+                    f"t=timestamp,a_ref=target_q_{n},a=actual_q_{n} --unit rad")
+        if both:
+            return (f"Universal Robots RTDE {what} target_TCP_pose_N (commanded) and actual_TCP_pose_N (measured): "
+                    "N = 0, 1, 2 are x, y, z in m (3-5 a rotation vector), e.g. --columns "
+                    "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m")
+        for have, name, lack in ((actual, "actual", "target"), (target, "target", "actual")):
+            if have:
+                return (f"Universal Robots RTDE {what} {name}_{kind}_N only (N = {sorted(have)}), no {lack}_{kind}_N: "
+                        "identification needs the commanded and the measured position (record both "
+                        f"target_{kind} and actual_{kind})")
     return None
 
 
