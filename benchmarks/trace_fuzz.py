@@ -531,6 +531,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.dump is not None:
         case = generate(args.dump)
+        args.out.mkdir(parents=True, exist_ok=True)
         path = args.out / f"fuzz_{case.seed}.csv"
         write(case, path)
         print(path, " ".join(case.layout), case.kwargs, *judge(case, path), sep="\n")

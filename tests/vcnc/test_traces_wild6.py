@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from benchmarks import trace_fuzz
 from vcnc.capture import read_capture
 from vcnc.errors import CaptureError
 from vcnc.traces.delimited import read_delimited
@@ -301,3 +302,26 @@ def test_ur_rtde_tool_pose_is_in_metres_never_millimetres(tmp_path):
             "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m") in str(err.value)
     cap = read_capture(f, columns={"t": "timestamp", "x_ref": "target_TCP_pose_0", "x": "actual_TCP_pose_0"}, unit="m")
     assert cap.reference[5, 0] == pytest.approx(-575.0) and cap.measured[5, 0] == pytest.approx(-576.0)
+
+
+def test_counts_under_a_stated_resolution_with_three_decimals_are_grouped_not_fractions(tmp_path):
+    # trace_fuzz seeds 31000532 / 31001005 (the lead's): a German drive export, tab, decimal comma, '.' grouping
+    # thousands, a stated resolution and --unit given; 19.725 counts was read silently (a thousand times too small)
+    f = tmp_path / "drive.txt"
+    f.write_text("Resolution: 0.5 um\nAbtastzeit: 125 us\nXPosCmd\tXPosLag\t\n"
+                 + "".join(f"{19.725 - 0.071 * k:.3f}\t{-71 * k}\t\n" for k in range(8)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f, unit="0.5um")
+    assert ("drive.txt:4: x_ref='XPosCmd': '19.725' beside counts (line 1 states 'Resolution: 0.5 um') reads as "
+            "digits grouped by thousands as well as a decimal; vcnc reads no digit grouping") in str(err.value)
+    g = tmp_path / "plain.txt"  # the same counts written whole read as counts of 0.5 um
+    g.write_text("Resolution: 0.5 um\nAbtastzeit: 125 us\nXPosCmd\tXPosLag\t\n"
+                 + "".join(f"{19725 - 71 * k}\t{-71 * k}\t\n" for k in range(8)))
+    cap = read_capture(g, unit="0.5um")
+    assert cap.reference[1, 0] == pytest.approx(19654 * 0.5e-3) and cap.t[1] == pytest.approx(125e-6)
+
+
+def test_fuzz_dump_creates_its_folder(tmp_path, capsys):
+    out = tmp_path / "new" / "folder"
+    assert trace_fuzz.main(["--dump", "7", "--out", str(out)]) == 0
+    assert (out / "fuzz_7.csv").is_file() and str(out / "fuzz_7.csv") in capsys.readouterr().out

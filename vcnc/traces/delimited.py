@@ -592,7 +592,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
-                          src, in_counts=_counted_columns(header, units_row, idx))
+                          src, in_counts=_in_counts(header, units_row, idx, above))
     units = _header_units(header, units_row, idx, time_unit, unit)
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
     stated.update(_turn_travel(units, above))
@@ -658,7 +658,8 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
     """An error for a position column whose numbers look grouped by thousands: every cell with a point or comma
     is ``1,234`` / ``1.234`` (three digits after each), beside whole numbers below 1000 (``523``) written
     without one, in a file whose other columns write the other decimal mark (``1.234`` beside ``0,5``), or in a
-    column of counts (``[inc]``: a count is a whole number). A
+    column of counts (``[inc]``, or any position under a stated count size, ``Resolution: 0.5 um``: a count is a whole
+    number, :func:`_in_counts`). A
     spreadsheet's digit grouping writes such a column of counts (``"1,234"`` with the delimiter ``,``, ``1.234`` in
     a German export); read as decimals it is a thousand times too small, and a column of decimals with three places
     always has the mark (tracefuzz; our reading). The cells are only read when the numbers are whole in
@@ -680,7 +681,7 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
         beside = next((c.strip().strip('"') for r in rows for i, c in enumerate(r) if i != idx[k] and other in c), None)
         if whole or beside is not None or k in in_counts:
             like = (f"whole numbers like {whole[0]!r}" if whole else f"{beside!r} in another column" if beside
-                    else f"a count unit ({in_counts[k]!r})")
+                    else in_counts[k])
             raise CaptureError(f"{k}={columns[k]!r}: {col[j]!r} beside {like} reads as digits "
                                "grouped by thousands as well as a decimal; vcnc reads no digit grouping",
                                file=src, line=row_lines[j], text=col[j],
@@ -763,6 +764,20 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
         units[k] = str(size.value)
     return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
                           f"({size.text!r})"}
+
+
+def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
+               above: list[str]) -> dict[str, str]:
+    """The position columns whose values are counts, each with what says so (for a message): a count unit in its name
+    or units row (:func:`_counted_columns`), or, for every position, a count size the preamble states (``Resolution:
+    0.5 um``: the file logs counts, whatever ``--unit`` says; a count is a whole number, so ``19.725`` in every cell
+    there is 19725 grouped by thousands, never 19.725 counts)."""
+    marked = {k: f"a count unit ({c!r})" for k, c in _counted_columns(header, units_row, idx).items()}
+    size = stated_count_size(above)
+    if size is not None:
+        said = f"counts (line {size.line} states {size.text!r})"
+        marked.update({k: said for k in idx if k != "t" and k not in marked})
+    return marked
 
 
 def _counted_columns(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int]) -> dict[str, str]:
