@@ -319,6 +319,8 @@ def test_counts_under_a_stated_resolution_with_three_decimals_are_grouped_not_fr
                  + "".join(f"{19725 - 71 * k}\t{-71 * k}\t\n" for k in range(8)))
     cap = read_capture(g, unit="0.5um")
     assert cap.reference[1, 0] == pytest.approx(19654 * 0.5e-3) and cap.t[1] == pytest.approx(125e-6)
+    cap = read_capture(f, unit="mm")  # a plain unit given: the user says these are mm, not counts
+    assert cap.reference[1, 0] == pytest.approx(19.654)
 
 
 def test_fuzz_dump_creates_its_folder(tmp_path, capsys):

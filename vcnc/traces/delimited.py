@@ -592,7 +592,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
-                          src, in_counts=_in_counts(header, units_row, idx, above))
+                          src, in_counts=_in_counts(header, units_row, idx, above, unit))
     units = _header_units(header, units_row, idx, time_unit, unit)
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
     stated.update(_turn_travel(units, above))
@@ -767,14 +767,15 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
 
 
 def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
-               above: list[str]) -> dict[str, str]:
+               above: list[str], unit: str | None) -> dict[str, str]:
     """The position columns whose values are counts, each with what says so (for a message): a count unit in its name
     or units row (:func:`_counted_columns`), or, for every position, a count size the preamble states (``Resolution:
     0.5 um``: the file logs counts, whatever ``--unit`` says; a count is a whole number, so ``19.725`` in every cell
-    there is 19725 grouped by thousands, never 19.725 counts)."""
+    there is 19725 grouped by thousands, never 19.725 counts). A plain unit given (``--unit mm``, not a count size
+    such as ``0.5um``) says the positions are no counts."""
     marked = {k: f"a count unit ({c!r})" for k, c in _counted_columns(header, units_row, idx).items()}
     size = stated_count_size(above)
-    if size is not None:
+    if size is not None and (unit is None or unit_named(unit, "length") is None):
         said = f"counts (line {size.line} states {size.text!r})"
         marked.update({k: said for k in idx if k != "t" and k not in marked})
     return marked
