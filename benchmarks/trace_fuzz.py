@@ -54,6 +54,7 @@ _VOCABULARY = {
     "japanese": ("{A}\u8ef8\u6307\u4ee4\u4f4d\u7f6e", "{A}\u8ef8\u30d5\u30a3\u30fc\u30c9\u30d0\u30c3\u30af\u4f4d\u7f6e",
                  "{A}\u8ef8\u6e9c\u308a"),
     "ref": ("{a}_ref", "{a}_act", "{a}_lag"),
+    "kuka_rsi": ("{A}_RSol", "{A}_RIst", "{A}_Schleppfehler"),
 }
 #: The same without an axis letter, for a one-axis file (read as x).
 _BARE = {"english": ("Commanded Position", "Actual Position", "Following Error"),
@@ -218,7 +219,7 @@ def _header(spec: _Spec, pos_unit: str) -> tuple[list[str], list[tuple[str, int]
     spec.lay.append(f"names:{'bare' if bare else vocab}" + ("+lag" if spec.use_lag else ""))
     header, cols = [], []
     if spec.time_style in _TIME_UNITS:
-        header.append(rng.choice(_TIME_NAMES))
+        header.append(rng.choice(_TIME_NAMES + ("IPOC",) * (spec.time_style == "ms")))
         cols.append(("t", 0))
     elif spec.time_style == "date-time":
         header.append(rng.choice(["Timestamp", "Time", "Zeitstempel"]))
@@ -393,14 +394,15 @@ def judge(case: Case, path: Path) -> tuple[str, str]:
 
 
 def _misfit(case: Case, cap, rel: np.ndarray, k0: int, ts: float) -> float:
-    """How far the capture's commanded positions are from the written ones ``k0`` rows on (every axis: one may rest)."""
+    """How far the capture's commanded positions are from the written ones ``k0`` rows on (every axis: one may rest),
+    in each axis' written precision (an axis written to 0.1 deg must not outweigh one written to 0.1 um)."""
     if case.t.size <= k0 or cap.reference.shape[1] != case.ref.shape[1]:
         return math.inf
     if case.jitter:
         want = np.column_stack([np.interp(rel, case.t - case.t[k0], case.ref[:, j]) for j in range(case.ref.shape[1])])
     else:
         want = case.ref[np.clip(k0 + np.round(rel / ts).astype(int), 0, case.t.size - 1)]
-    return float(np.max(np.abs(cap.reference - want)))
+    return float(np.max(np.abs(cap.reference - want) / case.tol))
 
 
 FAILURES = ("traceback", "wrong-axes", "wrong-role", "wrong-unit", "wrong-values", "wrong-time", "error-without-file")
@@ -529,6 +531,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.dump is not None:
         case = generate(args.dump)
+        args.out.mkdir(parents=True, exist_ok=True)
         path = args.out / f"fuzz_{case.seed}.csv"
         write(case, path)
         print(path, " ".join(case.layout), case.kwargs, *judge(case, path), sep="\n")

@@ -1,13 +1,17 @@
 """Traces in the layouts seen in tracewild6: ECP Executive's "Export Raw Data" (a MATLAB matrix literal under names
 set apart by runs of spaces, positions in encoder counts), a PI controller's data recorder saved as a GCS array
-(``# KEY = value`` header, no time column, no unit) and a TwinCAT 2 Scope View export. Each file is a few lines
-written here after a real export's layout or the tool's documentation, not the export itself."""
+(``# KEY = value`` header, no time column, no unit) and a TwinCAT 2 Scope View export; and of tracewild7, robot
+controllers' logs: KUKA RSI's Cartesian ``RIst``/``RSol`` with its ``IPOC`` millisecond stamp beside a logging PC's
+whole-second time stamp, and Universal Robots RTDE recordings (``target_q_N``/``actual_q_N`` joint positions in rad).
+Each file is a few lines written here after a real export's layout or the tool's documentation, not the export
+itself."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
+from benchmarks import trace_fuzz
 from vcnc.capture import read_capture
 from vcnc.errors import CaptureError
 from vcnc.traces.delimited import read_delimited
@@ -186,3 +190,140 @@ def test_gcs_array_of_two_axes_asks_which_without_a_time_column(tmp_path):
     cap = read_capture(f, columns={"y_ref": names[2], "y": names[3]}, unit="mm")
     assert cap.axes == ("y",)
     np.testing.assert_allclose(cap.measured[:, 0], -0.2 * np.arange(10) + 0.02, atol=1e-12)
+
+
+def _rsi_rows(n: int, *, pc_stamp: bool) -> tuple[str, list[float], list[float]]:
+    """A KUKA RSI log as a UDP logger writes it: the PC's time stamp to the second (when ``pc_stamp``), the Cartesian
+    actual (``RIst``) and setpoint (``RSol``) X..C, the controller's ``IPOC`` counting ms in steps of 12 (IPO mode)."""
+    sol = [192.2 - 0.1 * max(k - 2, 0) for k in range(n)]
+    ist = [192.4 - 0.1 * max(k - 3, 0) for k in range(n)]
+    names = ["X_RIst", "Y_RIst", "A_RIst", "X_RSol", "Y_RSol", "A_RSol", "Delay", "IPOC"]
+    rows = [",".join((["2024-09-24 14:05:15"] if pc_stamp else []) + [
+        "1279.5", f"{ist[k]:.1f}", "80.4", "1279.5", f"{sol[k]:.1f}", "80.5", "0", str(1210441551 + 12 * k)])
+        for k in range(n)]
+    return ",".join((["Timestamp"] if pc_stamp else []) + names) + "\n" + "\n".join(rows) + "\n", sol, ist
+
+
+def test_kuka_rsi_log_reads_ist_and_sol_on_the_controllers_ipoc_clock(tmp_path):
+    text, sol, ist = _rsi_rows(12, pc_stamp=True)
+    f = tmp_path / "robot_data.csv"
+    f.write_text(text)
+    cap = read_capture(f)  # IPOC, not the PC's whole seconds (12 rows in one second), is the time
+    assert cap.axes == ("x", "y", "a")
+    assert cap.meta["commanded"] == "x:X_RSol,y:Y_RSol,a:A_RSol"
+    assert cap.meta["measured"] == "x:X_RIst,y:Y_RIst,a:A_RIst"
+    assert cap.meta["columns"].startswith("from the header names: t=IPOC, x_ref=X_RSol, x=X_RIst")
+    assert cap.meta["time_unit"] == "ms"
+    np.testing.assert_allclose(cap.t, np.arange(12) * 0.012, atol=1e-12)
+    np.testing.assert_allclose(cap.reference[:, 1], sol, atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 1], ist, atol=1e-9)
+    assert cap.reference[0, 2] == pytest.approx(80.5) and cap.measured[0, 2] == pytest.approx(80.4)  # deg on a
+
+
+def test_kuka_rsi_ipoc_given_as_the_time_column_counts_milliseconds(tmp_path):
+    text, sol, _ = _rsi_rows(6, pc_stamp=False)
+    f = tmp_path / "rsi.csv"
+    f.write_text(text)
+    cap = read_capture(f, columns={"t": "IPOC", "y_ref": "Y_RSol", "y": "Y_RIst"})
+    assert cap.t[1] == pytest.approx(0.012)  # not 12 s
+    np.testing.assert_allclose(cap.reference[:, 0], sol, atol=1e-9)
+
+
+def _rtde(names: list[str], rows: list[list[float]]) -> str:
+    """UR's RTDE ``record.py`` (``rtde/csv_writer.py``): names and values separated by one space."""
+    return " ".join(names) + "\n" + "".join(" ".join(repr(v) for v in r) + "\n" for r in rows)
+
+
+def test_ur_rtde_joint_positions_are_a_question_never_millimetres(tmp_path):
+    target = [0.5 + 0.01 * k for k in range(8)]
+    actual = [0.5 + 0.01 * max(k - 1, 0) for k in range(8)]
+    f = tmp_path / "robot_data.csv"
+    f.write_text(_rtde(["timestamp", "target_q_0", "actual_q_0"],
+                       [[1234.5 + 0.008 * k, target[k], actual[k]] for k in range(8)]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("(not read from the names: Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N "
+            "(measured), joints [0], in rad: choose a joint and name it as a rotary axis, e.g. --columns "
+            "t=timestamp,a_ref=target_q_0,a=actual_q_0 --unit rad)") in str(err.value)
+    cap = read_capture(f, columns={"t": "timestamp", "a_ref": "target_q_0", "a": "actual_q_0"}, unit="rad")
+    np.testing.assert_allclose(cap.reference[:, 0], np.degrees(target), atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 0], np.degrees(actual), atol=1e-9)
+    np.testing.assert_allclose(cap.t, np.arange(8) * 0.008, atol=1e-9)
+
+
+def test_ur_rtde_question_comes_before_a_repeated_name(tmp_path):
+    # a recipe listing target_current twice writes its columns twice; the joints' question is the useful one
+    names = ["timestamp"] + [f"actual_q_{i}" for i in range(2)] + ["target_current_0", "target_current_0"] + [
+        f"target_q_{i}" for i in range(2)]
+    f = tmp_path / "gui.csv"
+    f.write_text(",".join(names) + "\n" + "".join(f"{0.008 * k},1.3,-1.5,0.0,0.0,1.3,-1.5\n" for k in range(4)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert "joints [0, 1], in rad" in str(err.value) and "repeats a name" not in str(err.value)
+
+
+def test_digits_grouped_by_thousands_are_refused_naming_the_cell(tmp_path):
+    # a spreadsheet's "#,##0.00" re-save: with a tab no number reads at all, quoted in a ';' file the cell is text
+    f = tmp_path / "grouped.txt"
+    f.write_text("Time [s]\tX Soll [mm]\tX Ist [mm]\n" + "".join(f"0.00{k}\t4,263.{60 + k}\t4,263.{50 + k}\n"
+                                                             for k in range(4)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("grouped.txt:1: no rows of numbers separated by tab, ';', ',', '|' or spaces: '4,263.60' (line 2) "
+            "writes its digits grouped by thousands (a spreadsheet's number format); vcnc reads no digit grouping: "
+            "save the numbers without thousands separators") in str(err.value)
+    g = tmp_path / "quoted.csv"
+    g.write_text('Time [s];X Soll [mm];X Ist [mm]\n0.000;"1.263,66";1263.60\n0.001;999.76;998.70\n'
+                 '0.002;1000.5;999.80\n')
+    with pytest.raises(CaptureError) as err:
+        read_capture(g)
+    assert ("quoted.csv:2:2: not a number in column 2 ('X Soll [mm]', used as x_ref): '1.263,66' writes its digits "
+            "grouped by thousands") in str(err.value)
+
+
+def test_ur_rtde_actual_positions_alone_say_the_command_is_missing(tmp_path):
+    f = tmp_path / "actual.csv"
+    f.write_text(_rtde([f"actual_q_{i}" for i in range(3)] + ["actual_TCP_pose_0"],
+                       [[-1.6007, -1.7271, -2.203, -0.144]] * 4))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f, sample_time=0.008)
+    assert ("Universal Robots RTDE joint positions actual_q_N only (N = [0, 1, 2]), no target_q_N: identification "
+            "needs the commanded and the measured position (record both target_q and actual_q)") in str(err.value)
+
+
+def test_ur_rtde_tool_pose_is_in_metres_never_millimetres(tmp_path):
+    f = tmp_path / "tcp.csv"
+    f.write_text(_rtde(["timestamp", "target_TCP_pose_0", "actual_TCP_pose_0"],
+                       [[0.008 * k, -0.58 + 0.001 * k, -0.58 + 0.001 * max(k - 1, 0)] for k in range(6)]))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("Universal Robots RTDE tool (TCP) pose target_TCP_pose_N (commanded) and actual_TCP_pose_N (measured): "
+            "N = 0, 1, 2 are x, y, z in m (3-5 a rotation vector), e.g. --columns "
+            "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m") in str(err.value)
+    cap = read_capture(f, columns={"t": "timestamp", "x_ref": "target_TCP_pose_0", "x": "actual_TCP_pose_0"}, unit="m")
+    assert cap.reference[5, 0] == pytest.approx(-575.0) and cap.measured[5, 0] == pytest.approx(-576.0)
+
+
+def test_counts_under_a_stated_resolution_with_three_decimals_are_grouped_not_fractions(tmp_path):
+    # trace_fuzz seeds 31000532 / 31001005 (the lead's): a German drive export, tab, decimal comma, '.' grouping
+    # thousands, a stated resolution and --unit given; 19.725 counts was read silently (a thousand times too small)
+    f = tmp_path / "drive.txt"
+    f.write_text("Resolution: 0.5 um\nAbtastzeit: 125 us\nXPosCmd\tXPosLag\t\n"
+                 + "".join(f"{19.725 - 0.071 * k:.3f}\t{-71 * k}\t\n" for k in range(8)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f, unit="0.5um")
+    assert ("drive.txt:4: x_ref='XPosCmd': '19.725' beside counts (line 1 states 'Resolution: 0.5 um') reads as "
+            "digits grouped by thousands as well as a decimal; vcnc reads no digit grouping") in str(err.value)
+    g = tmp_path / "plain.txt"  # the same counts written whole read as counts of 0.5 um
+    g.write_text("Resolution: 0.5 um\nAbtastzeit: 125 us\nXPosCmd\tXPosLag\t\n"
+                 + "".join(f"{19725 - 71 * k}\t{-71 * k}\t\n" for k in range(8)))
+    cap = read_capture(g, unit="0.5um")
+    assert cap.reference[1, 0] == pytest.approx(19654 * 0.5e-3) and cap.t[1] == pytest.approx(125e-6)
+    cap = read_capture(f, unit="mm")  # a plain unit given: the user says these are mm, not counts
+    assert cap.reference[1, 0] == pytest.approx(19.654)
+
+
+def test_fuzz_dump_creates_its_folder(tmp_path, capsys):
+    out = tmp_path / "new" / "folder"
+    assert trace_fuzz.main(["--dump", "7", "--out", str(out)]) == 0
+    assert (out / "fuzz_7.csv").is_file() and str(out / "fuzz_7.csv") in capsys.readouterr().out

@@ -30,7 +30,7 @@ from vcnc.traces.lag import subtract_following_error
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
            "mapped_axes", "position_scale", "mapping_meta", "check_timing", "on_uniform_grid", "MAX_SAMPLES",
            "unit_in_name", "unit_named", "length_unit", "parse_time_stamp", "is_unit_row", "LAG_SUFFIX", "axis_of",
-           "with_following_errors", "COUNT_UNITS", "ANGLE_UNITS", "REACH", "within_reach"]
+           "IPOC", "with_following_errors", "COUNT_UNITS", "ANGLE_UNITS", "REACH", "within_reach"]
 
 #: Seconds per time unit.
 TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -110,11 +110,18 @@ def parse_number(cell: str, decimal_comma: bool = False) -> float:
     return v
 
 
+#: KUKA.RobotSensorInterface's interpolation-cycle time stamp, a column of milliseconds (names.py's docstring).
+IPOC = "ipoc"
+
+
 def unit_in_name(name: str, kind: str) -> str | None:
     """The unit a column name ends with, ``[ms]`` or ``(µm)`` (or, without brackets, ``Zeit in ms``,
     ``Zeit/ms``, ``time_ms``): a key of :data:`TIME_UNITS`
     (``kind="time"``) or :data:`LENGTH_UNITS` (``kind="length"``), or for a length the size of one count
-    as :func:`length_unit` reads it (``motor_pos [0.1 deg]`` -> ``"0.1deg"``, Mitsubishi's ``B(1μm)``), else None."""
+    as :func:`length_unit` reads it (``motor_pos [0.1 deg]`` -> ``"0.1deg"``, Mitsubishi's ``B(1μm)``), else None.
+    KUKA RSI's ``IPOC`` (:data:`IPOC`) is a time in ms."""
+    if kind == "time" and name.strip().lower() == IPOC:
+        return "ms"
     m = _UNIT.search(name)
     if not m:
         suffix = _SUFFIX_UNIT.search(name)

@@ -321,7 +321,8 @@ def _table(text: str, src: str) -> _Table:
     if first < 0 or width < 2:
         k = next((i for i, line in enumerate(lines) if line.strip()), None)  # what the file holds instead
         first_text = lines[k].strip() if k is not None else ""
-        raise CaptureError("no rows of numbers separated by tab, ';', ',', '|' or spaces" + _hex_dump(lines), file=src,
+        raise CaptureError("no rows of numbers separated by tab, ';', ',', '|' or spaces" + (
+            _hex_dump(lines) or _grouped_hint(lines)), file=src,
                            line=k + 1 if k is not None else None, text=first_text[:80] if k is not None else None)
     rows, row_lines, overruns, text_cells = [], [], [], {}
     nan_cells: dict[int, list[tuple[int, int, str]]] = {}
@@ -437,6 +438,24 @@ def _hex_dump(lines: list[str]) -> str:
     return (f": lines of one hexadecimal number each ({first[0]}) are a hexadecimal dump (Mitsubishi's CNC sampling "
             "with output form 1 writes one channel's sample per line); save the sampling in decimal (output form 0), "
             "a row per sample")
+
+
+#: A number with both marks, digits grouped by thousands before the decimal mark: ``4,263.66``, ``-1.234.567,5``.
+_GROUPED_DECIMAL = re.compile(r"[+-]?[1-9]\d{0,2}(?:,\d{3})+\.\d+|[+-]?[1-9]\d{0,2}(?:\.\d{3})+,\d+")
+
+
+def _grouped_hint(lines: list[str]) -> str:
+    """Why cells such as ``4,263.66`` are no numbers: digits grouped by thousands, which a spreadsheet's number
+    format writes and no trace tool seen does (TwinCAT Scope's export settings choose a separator and a decimal mark,
+    no grouping; TNCscope, SINUMERIK, halscope write plain numbers). vcnc reads no grouping (a ``1,234`` without a
+    decimal part would read as 1.234 with a decimal comma): the hint names the first such cell; else ``""``."""
+    for i, line in enumerate(lines[:200]):
+        cell = next((c for c in re.split(r'[\s;|"]+', line) if _GROUPED_DECIMAL.fullmatch(c)), None)
+        if cell is not None:
+            where = f" (line {i + 1})" if len(lines) > 1 else ""
+            return (f": {cell!r}{where} writes its digits grouped by thousands (a spreadsheet's number format); vcnc "
+                    "reads no digit grouping: save the numbers without thousands separators")
+    return ""
 
 
 def _time_named(header: list[str] | None, units_row: list[str] | None) -> list[str] | None:
@@ -559,8 +578,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     for k, c in idx.items():
         if c in table.text:  # a column of text ('Starting', 'Layer 1 Up') is only an error when used
             line, cell = table.text[c]
-            raise CaptureError(f"not a number in column {c + 1} ({columns[k]!r}, used as {k})", file=src, line=line,
-                               column=c + 1, text=cell)
+            raise CaptureError(f"not a number in column {c + 1} ({columns[k]!r}, used as {k})"
+                               + _grouped_hint([cell]), file=src, line=line, column=c + 1, text=cell)
     stated: dict[str, str] = {}
     if period is not None and ("t" not in idx or (header is not None and is_sample_number(header[idx["t"]]))):
         sample_time = float(period.value)
@@ -573,7 +592,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
-                          src, in_counts=_counted_columns(header, units_row, idx))
+                          src, in_counts=_in_counts(header, units_row, idx, above, unit))
     units = _header_units(header, units_row, idx, time_unit, unit)
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
     stated.update(_turn_travel(units, above))
@@ -639,7 +658,8 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
     """An error for a position column whose numbers look grouped by thousands: every cell with a point or comma
     is ``1,234`` / ``1.234`` (three digits after each), beside whole numbers below 1000 (``523``) written
     without one, in a file whose other columns write the other decimal mark (``1.234`` beside ``0,5``), or in a
-    column of counts (``[inc]``: a count is a whole number). A
+    column of counts (``[inc]``, or any position under a stated count size, ``Resolution: 0.5 um``: a count is a whole
+    number, :func:`_in_counts`). A
     spreadsheet's digit grouping writes such a column of counts (``"1,234"`` with the delimiter ``,``, ``1.234`` in
     a German export); read as decimals it is a thousand times too small, and a column of decimals with three places
     always has the mark (tracefuzz; our reading). The cells are only read when the numbers are whole in
@@ -661,7 +681,7 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
         beside = next((c.strip().strip('"') for r in rows for i, c in enumerate(r) if i != idx[k] and other in c), None)
         if whole or beside is not None or k in in_counts:
             like = (f"whole numbers like {whole[0]!r}" if whole else f"{beside!r} in another column" if beside
-                    else f"a count unit ({in_counts[k]!r})")
+                    else in_counts[k])
             raise CaptureError(f"{k}={columns[k]!r}: {col[j]!r} beside {like} reads as digits "
                                "grouped by thousands as well as a decimal; vcnc reads no digit grouping",
                                file=src, line=row_lines[j], text=col[j],
@@ -744,6 +764,21 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
         units[k] = str(size.value)
     return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
                           f"({size.text!r})"}
+
+
+def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
+               above: list[str], unit: str | None) -> dict[str, str]:
+    """The position columns whose values are counts, each with what says so (for a message): a count unit in its name
+    or units row (:func:`_counted_columns`), or, for every position, a count size the preamble states (``Resolution:
+    0.5 um``: the file logs counts, whatever ``--unit`` says; a count is a whole number, so ``19.725`` in every cell
+    there is 19725 grouped by thousands, never 19.725 counts). A plain unit given (``--unit mm``, not a count size
+    such as ``0.5um``) says the positions are no counts."""
+    marked = {k: f"a count unit ({c!r})" for k, c in _counted_columns(header, units_row, idx).items()}
+    size = stated_count_size(above)
+    if size is not None and (unit is None or unit_named(unit, "length") is None):
+        said = f"counts (line {size.line} states {size.text!r})"
+        marked.update({k: said for k in idx if k != "t" and k not in marked})
+    return marked
 
 
 def _counted_columns(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int]) -> dict[str, str]:

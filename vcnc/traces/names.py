@@ -40,6 +40,17 @@ only within one number, and the one number with a pair is axis x (several such n
 registers as gather tools name them (``Motor present desired position``, ``... actual position``, ``Motor following
 error``) are in counts (:func:`counted`).
 
+vcnc addition (tracewild7, robot controllers): KUKA.RobotSensorInterface names the Cartesian actual position ``RIst``
+and the setpoint ``RSol`` (the controller's XML elements, as ROS' ``kuka_rsi_hw_interface`` ``rsi_state.h`` reads them
+beside ``AIPos``/``ASPos`` and ``IPOC``): a logger's ``X_RIst`` / ``X_RSol`` are axis x's measured and commanded
+position, and its ``IPOC``, the controller's interpolation-cycle time stamp, counts milliseconds (a KR C4 logs it in
+steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. Universal Robots' RTDE
+recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's target
+and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual joint
+positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
+vector): a robot's joint is no axis of the capture by itself, so such a header is a question naming them and the
+unit (:func:`rtde_joints`), never millimetres.
+
 vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``, ``Encoder 2 Pos``) are in counts
 (:func:`counted`), and two of them beside one ``Commanded Pos`` are a question (which encoder closes the loop, the
 collocated or the far one, the file does not say).
@@ -56,16 +67,17 @@ import re
 from collections.abc import Mapping, Sequence
 
 from vcnc.core.axes import AXIS_NAMES
-from vcnc.traces.columns import COUNT_UNITS, LAG_SUFFIX, unit_in_name
+from vcnc.traces.columns import COUNT_UNITS, IPOC, LAG_SUFFIX, unit_in_name
 
-__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions"]
+__all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions",
+           "rtde_joints"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
                    "\u6642\u9593", "\u65f6\u95f4"})  # 時間 (Japanese), 时间 (Chinese)
 _REF = frozenset({"cmd", "command", "commanded", "ref", "reference", "set", "setpoint", "setpos", "soll",
                   "sollwert", "sollposition", "sollpos", "nominal", "noml", "nom", "target", "demand", "demanded",
-                  "dem", "desired", "consigne", "commande", "sp"})
+                  "dem", "desired", "consigne", "commande", "sp", "sol"})
 _ACT = frozenset({"act", "actual", "actl", "actpos", "ist", "istwert", "istposition", "istpos", "fb", "feedback",
                   "meas", "measured", "measurement", "enc", "encoder", "real", "reel", "mesure", "pv"})
 _LAG = frozenset({"lag", "ferror", "ferr", "following", "schleppfehler", "schleppabstand", "posdiff", "deviation",
@@ -117,6 +129,8 @@ _PA_COUNTS = ("ssetpos", "commandedmachinepos", "sactmachinepos")
 _ENCODER_COUNTS = re.compile(r"encoder\s*\d+\s*pos", re.IGNORECASE)
 #: パルス / 脉冲: pulse.
 _CJK_COUNTS = ("\u30d1\u30eb\u30b9", "\u8109\u51b2")
+#: Universal Robots RTDE's joint positions and tool pose (module docstring): ``target_q_3``, ``actual_TCP_pose_0``.
+_RTDE_Q = re.compile(r"(target|actual)_(q|TCP_pose)_(\d+)")
 #: The last element of a signal path (``Test/t``, ``MAIN.Axis.Time``) that names a time column on its own.
 _TIME_LEAVES = frozenset({"t", "time", "timestamp", "zeit"})
 _PATH = re.compile(r"[/.]?(?:[\w#\[\]-]+[/.])+([\w#\[\]-]+)")
@@ -168,7 +182,12 @@ def _is_time(name: str) -> bool:
     if unit_in_name(name, "time") is not None and not _TRAILING_UNIT.search(name):
         words = words[:-1]  # the unit after the name: 'in ms', '/ms', '_s'
     words = [w for w in words if w != "in"]
-    return bool(words) and set(words) <= _TIME or _time_leaf(name)
+    return bool(words) and set(words) <= _TIME or _time_leaf(name) or _is_ipoc(name)
+
+
+def _is_ipoc(name: str) -> bool:
+    """KUKA RSI's ``IPOC`` (module docstring), with or without a unit in brackets."""
+    return _words(name) == [IPOC]
 
 
 def _time_leaf(name: str) -> bool:
@@ -225,12 +244,46 @@ def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> 
     return _columns(header, period_known)
 
 
+def rtde_joints(header: Sequence[str]) -> str | None:
+    """The question for a header of Universal Robots RTDE positions (module docstring), else None: joint positions
+    ``target_q_N``/``actual_q_N`` in rad, or the tool's pose ``target_TCP_pose_N``/``actual_TCP_pose_N`` (N = 0, 1, 2:
+    x, y, z in m; 3-5 a rotation vector in rad, no axis)."""
+    found: dict[tuple[str, str], set[int]] = {}
+    for h in header:
+        if m := _RTDE_Q.fullmatch(h.strip()):
+            found.setdefault((m.group(2), m.group(1)), set()).add(int(m.group(3)))
+    for kind in ("q", "TCP_pose"):
+        target, actual = found.get((kind, "target"), set()), found.get((kind, "actual"), set())
+        both = sorted(target & actual)
+        what = "joint positions" if kind == "q" else "tool (TCP) pose"
+        if both and kind == "q":
+            n = both[0]
+            return (f"Universal Robots RTDE {what} target_q_N (commanded) and actual_q_N (measured), joints {both}, "
+                    f"in rad: choose a joint and name it as a rotary axis, e.g. --columns "
+                    f"t=timestamp,a_ref=target_q_{n},a=actual_q_{n} --unit rad")
+        if both:
+            return (f"Universal Robots RTDE {what} target_TCP_pose_N (commanded) and actual_TCP_pose_N (measured): "
+                    "N = 0, 1, 2 are x, y, z in m (3-5 a rotation vector), e.g. --columns "
+                    "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m")
+        for have, name, lack in ((actual, "actual", "target"), (target, "target", "actual")):
+            if have:
+                return (f"Universal Robots RTDE {what} {name}_{kind}_N only (N = {sorted(have)}), no {lack}_{kind}_N: "
+                        "identification needs the commanded and the measured position (record both "
+                        f"target_{kind} and actual_{kind})")
+    return None
+
+
 def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
     """:func:`columns_from_names` of the names as they are."""
+    rtde = rtde_joints(header)
+    if rtde is not None:
+        return None, rtde
     if len(set(header)) != len(header):
         return None, "the header repeats a name"
     mapping: dict[str, str] = {}
     times = [h for h in header if _is_time(h)]
+    if len(times) > 1 and sum(map(_is_ipoc, times)) == 1:
+        times = [h for h in times if _is_ipoc(h)]  # the controller's clock, not the logging PC's
     if not times and period_known:
         times = [h for h in header if is_sample_number(h)]
         if len(times) > 1:
