@@ -401,7 +401,9 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             segs, blks = blend_corners(ch.segments, ch.blocks, ch.junction_tolerances,
                                        worth=_blend_worth(ch, lim, jerk_limited, Ts),
                                        curvature_continuous=jerk_limited,
-                                       kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))))
+                                       kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))),
+                                       offsets=[run_of[id(s)].deviation if id(s) in run_of else 0.0
+                                                for s in ch.segments])
         blended = blended or len(segs) != len(ch.segments) or bool(run_of)
         feed_of = dict(zip(ch.blocks, ch.feeds))
         rapid_of = dict(zip(ch.blocks, ch.rapid))

@@ -329,16 +329,17 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     return SplineCurve.hermite(*best[0], stretch=best[1]), best[2]
 
 
-def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float]
-                 ) -> tuple[list[int], list[SplineCurve], list[float]]:
+def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float],
+                 offsets: np.ndarray) -> tuple[list[int], list[SplineCurve], list[float]]:
     """The kink blends (:func:`_kink_blend`) of the junctions ``candidates`` (``k``: between segment ``k`` and
     ``k + 1``, both :func:`_kinkable`): the junctions blended, their blends and legs. Beside a merged curve, which
-    may itself lie :data:`interpolators.dense.FIT_SHARE` of the tolerance off the programmed chords, the blend
-    keeps within the rest of it, so that the path stays within the tolerance of the program."""
+    lies up to ``offsets`` [mm] (its fit's deviation; NaN: :data:`interpolators.dense.FIT_SHARE` of the tolerance,
+    what its fit may take) off the programmed chords, the blend keeps within the rest of the tolerance, so that the
+    path stays within the tolerance of the program (the two distances add at most)."""
     corners, blends, legs = [], [], []
     for k in candidates:
-        curve = isinstance(segments[k], SplineCurve) or isinstance(segments[k + 1], SplineCurve)
-        tolerance = float(tolerances[k]) * ((1.0 - FIT_SHARE) if curve else 1.0)
+        tolerance = float(tolerances[k])
+        tolerance -= float(np.nan_to_num(offsets[k:k + 2], nan=FIT_SHARE * tolerance).max())
         made = _kink_blend(segments[k], segments[k + 1], tolerance, limits)
         if made is not None:
             corners.append(k)
@@ -355,6 +356,7 @@ def blend_corners(
     worth: Callable[[CornerBlends], np.ndarray] | None = None,
     curvature_continuous: bool = False,
     kink_limits: tuple[float, float] = (1.0, 25.0),
+    offsets: list[float] | None = None,
 ) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
     """Blend the corners of a continuous chain (line/line; with ``curvature_continuous`` every kink).
 
@@ -379,6 +381,11 @@ def blend_corners(
     kink_limits : tuple of float
         Path acceleration and jerk limits ``(A, J)`` [mm/s^2, mm/s^3] the kink blends' shapes are chosen
         for (only their ratio matters).
+    offsets : list of float, optional
+        Per segment, its largest distance [mm] from the programmed path: a merged curve's fit deviation
+        (:attr:`interpolators.dense.MergedRun.deviation`), 0 for a line or arc; a kink blend keeps within the
+        tolerance less the larger offset of its two segments. By default a curve piece
+        (:class:`toolpaths.geometry.SplineCurve`) takes the :data:`interpolators.dense.FIT_SHARE` its fit may use.
 
     Returns
     -------
@@ -407,7 +414,10 @@ def blend_corners(
     if curvature_continuous:
         kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
         cand = np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
-        corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits)
+        if offsets is None:  # NaN: a curve piece whose fit may take FIT_SHARE of the tolerance
+            offsets = [math.nan if isinstance(sg, SplineCurve) else 0.0 for sg in segments]
+        corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits,
+                                           np.asarray(offsets, dtype=float))
         if kinks:
             accepted = [True] * len(kinks) if worth is None else np.asarray(
                 worth(CornerBlends.of(np.array(corners), kinks)), dtype=bool).tolist()
