@@ -27,6 +27,19 @@ tangent arc would leave a curvature step at both of its ends, which the S-curve'
 hence the quintic (our
 reading). The blend's shape (end-tangent stretch) is the one of a few with the highest speed bound.
 
+The same quintic blends a tangent junction with a curvature step (line/arc, arc/arc of another radius or sense,
+line or arc/merged curve) under the S-curve: it ramps the curvature over ``2 d`` within the tolerance (its leg
+starts from ``d = sqrt(8 tolerance / dk)``, the offset of such a ramp being about ``dk d^2 / 8``), where it
+passes faster than the junction's own one-sample bound (``interpolators.interpolate._blend_worth``). Controls
+treat these junctions as a jerk problem of their own: the ISG kernel (Beckhoff TwinCAT CNC) lowers the speed
+at "tangential block transitions between circles with different radii and circles and linear blocks" only
+where ``corr_v_trans_jerk`` (P-CHAN-00009, default 0: off) is set, with the transition jerk an axis parameter
+(P-AXIS-00340 ``j_trans_c1``, "tangent continuous, non-curvature continuous block transitions", limited to the
+jerk from the acceleration and the cycle time); SINUMERIK lets an axis exceed its jerk there
+(MD32432 ``$MA_PATH_TRANS_JERK_LIM``, Function Manual Axes and Spindles B2, 06/2019, 12.2.16 "Excessive jerk
+for block transitions without constant curvature"). Without such a parameter here, the blend keeps every axis
+within its own jerk limit (our reading: a curvature ramp within P is what G64 allows).
+
 The path then stays tangent-continuous (and, with clothoids, curvature-continuous), and the
 blend's own speed bound (centripetal acceleration and, for the S-curve, jerk including the
 curvature derivative; see :mod:`interpolators.kinematics`) sets the corner speed.
@@ -61,6 +74,8 @@ DEFAULT_TOLERANCE: float = 0.01
 JUNCTION_SHARE: float = 0.1
 #: Smallest corner angle that is blended [rad]; smaller direction changes pass as junctions.
 _MIN_BLEND_ANGLE = 1e-7
+#: Smallest curvature step [1/mm] of a tangent junction that is blended (S-curve; :func:`_kink_blend`).
+_MIN_BLEND_STEP = 1e-6
 #: Largest corner angle that is blended [rad] (sharper corners are near-reversals: stop).
 _MAX_BLEND_ANGLE = math.pi - 1e-3
 
@@ -289,16 +304,22 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     of ``(A / k)^(1/2)`` and ``(J / |dk/ds|)^(1/3)``, :func:`interpolators.kinematics.curved_speed_bound` without
     its coupling term, ``k`` and ``dk/ds`` at :data:`_KINK_CHECK_POINTS` parameters). LinuxCNC sizes its line/arc
     and arc/arc blend arcs alike, the largest the tolerance and the segment lengths allow
-    (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). None where the turn lies outside
-    ``(_MIN_BLEND_ANGLE, _MAX_BLEND_ANGLE)`` or no blend fits."""
+    (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). A tangent junction (turn up to
+    :data:`_MIN_BLEND_ANGLE`) with a curvature step above :data:`_MIN_BLEND_STEP` starts from the leg of a curvature
+    ramp within ``tolerance`` (module docstring). None where the turn is :data:`_MAX_BLEND_ANGLE` or more, where it
+    is tangent without a curvature step, or where no blend fits."""
     la, lb = a.length, b.length
-    t_a, t_b = _frame(a, la)[1], _frame(b, 0.0)[1]
+    (_, t_a, k_a), (_, t_b, k_b) = _frame(a, la), _frame(b, 0.0)
     theta = math.atan2(float(np.linalg.norm(np.cross(t_a, t_b))), float(t_a @ t_b))
-    if not (_MIN_BLEND_ANGLE < theta < _MAX_BLEND_ANGLE) or tolerance <= 0:
+    step = float(np.linalg.norm(k_b - k_a))
+    if theta >= _MAX_BLEND_ANGLE or tolerance <= 0 or (theta <= _MIN_BLEND_ANGLE and step <= _MIN_BLEND_STEP):
         return None
     d_max = 0.49 * min(la, lb)  # under half: an arc or curve piece blended at both ends keeps a piece
-    leg_f, dev_f = ClothoidPair.shape_factors(theta)
-    d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
+    if theta > _MIN_BLEND_ANGLE:
+        leg_f, dev_f = ClothoidPair.shape_factors(theta)
+        d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
+    else:  # a tangent junction with a curvature step: the blend's curvature ramps over 2 d, off by about dk d^2 / 8
+        d_start = min(math.sqrt(8.0 * tolerance / step), d_max)
     u = np.linspace(0.0, 1.0, _KINK_CHECK_POINTS)
     corner = b.point_at(np.zeros(1))
     best, best_v = None, 0.0
