@@ -212,25 +212,35 @@ def rotary_programs(shape: str, rotary: bool) -> str:
     ``helix`` 400 chords of a two-lap R10 helix at F2000 (A 0 -> 90 deg), ``swarf`` 500 chords of an
     ellipse rising and falling in Z at F3000 (A tilting +-15 deg, C turning once), ``reversal`` 400 chords of
     0.2 mm along an S at F2400 (A swinging +-30 deg), ``wrap`` a groove on a cylinder of radius 20 mm, 600
-    chords of 0.1 mm in X at F1500 with A turning up to 19 deg per mm (without A: X alone)."""
+    chords of 0.1 mm in X at F1500 with A turning up to 19 deg per mm (without A: X alone); under G64 P0.05 chords
+    too coarse to merge, their corners blended across every axis: ``coarse`` the helix in 60 chords, ``corners``
+    two laps of a 24-gon of radius 20 mm at F2000, A up 1 deg on one side and back on the next."""
     lines = {"helix": ["G0 X10 Y0 Z0 A0", "G1 F2000"], "swarf": ["G0 X30 Y0 Z0 A0 C0", "G1 F3000"],
-             "reversal": ["G0 X0 Y0 A0", "G1 F2400"], "wrap": ["G0 X0 Y0 A0", "G1 F1500"]}[shape]
-    n = {"helix": 400, "swarf": 500, "reversal": 400, "wrap": 600}[shape]
+             "reversal": ["G0 X0 Y0 A0", "G1 F2400"], "wrap": ["G0 X0 Y0 A0", "G1 F1500"],
+             "coarse": ["G0 X10 Y0 Z0 A0", "G1 F2000"], "corners": ["G0 X20 Y0 A0", "G1 F2000"]}[shape]
+    n = {"helix": 400, "swarf": 500, "reversal": 400, "wrap": 600, "coarse": 60, "corners": 48}[shape]
     for i in range(1, n + 1):
-        if shape == "helix":
+        if shape in ("helix", "coarse"):
             t = 4 * math.pi * i / n
             xyz, rot = f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / n:.4f}", f"A{90 * i / n:.4f}"
         elif shape == "swarf":
             t = 2 * math.pi * i / n
             xyz = f"X{30 * math.cos(t):.4f} Y{20 * math.sin(t):.4f} Z{2 * math.sin(2 * t):.4f}"
             rot = f"A{15 * math.sin(t):.4f} C{math.degrees(t):.4f}"
+        elif shape == "corners":
+            t = 2 * math.pi * i / 24
+            xyz, rot = f"X{20 * math.cos(t):.4f} Y{20 * math.sin(t):.4f}", f"A{i % 2:.4f}"
         elif shape == "reversal":
             xyz, rot = f"X{0.2 * i:.4f} Y{3 * math.sin(0.2 * i / 8):.4f}", f"A{30 * math.sin(0.2 * i / 10):.4f}"
         else:
             w = 40 * math.sin(0.1 * i / 6)
             xyz, rot = f"X{0.1 * i:.4f}", f"A{math.degrees(w / 20):.4f}"
         lines.append(xyz + (" " + rot if rotary else ""))
-    return "\n".join(["G21 G90 G64 P0.01", *lines, "M2"]) + "\n"
+    return "\n".join([f"G21 G90 G64 P{ROTARY_TOLERANCE.get(shape, 0.01)}", *lines, "M2"]) + "\n"
+
+
+#: G64 P of the cases of :func:`rotary_programs` that are not P0.01 [mm].
+ROTARY_TOLERANCE = {"coarse": 0.05, "corners": 0.05}
 
 
 def _rotary_cases(Ts: float) -> None:
@@ -239,10 +249,12 @@ def _rotary_cases(Ts: float) -> None:
     binds at ``V_A / |dA/dx|``) and S-curve over trapezoid, measured in this run.
     Before their runs were merged with the axes beyond X, Y, Z (each chord junction at the one-sample rule):
     helix with A 7.750 s trapezoid, 23.788 s S-curve (3.929 s, 4.011 s without A); wrap 23.275 s, 59.771 s;
-    swarf 8.197 s, 43.789 s (3.464 s, 3.549 s without); reversal 8.110 s, 27.568 s (2.092 s, 2.129 s)."""
+    swarf 8.197 s, 43.789 s (3.464 s, 3.549 s without); reversal 8.110 s, 27.568 s (2.092 s, 2.129 s).
+    Before their corners were blended across every axis (each at the one-sample rule or a stop): coarse 4.854 s,
+    7.087 s (3.913 s, 3.993 s without A); corners 8.472 s, 10.148 s (7.723 s, 7.801 s)."""
     from interpolators.context import INTERPOLATION_CONTEXT
 
-    for shape in ("helix", "swarf", "reversal", "wrap"):
+    for shape in ("helix", "swarf", "reversal", "wrap", "coarse", "corners"):
         took = {}
         for rotary in (False, True):
             prog = parse_program(rotary_programs(shape, rotary), context=INTERPOLATION_CONTEXT)
@@ -262,7 +274,9 @@ def _rotary_cases(Ts: float) -> None:
                           f"{sp.duration:.3f} s, {'A velocity bound' if shape == 'wrap' else 'without'} "
                           f"{took[False, profile]:.3f} s, ratio "
                           f"{sp.duration / took[False, profile]:.3f}; worst deviation from the chords "
-                          f"{_path_deviation(sp) * 1e3:.2f} um (tolerance 10 um); worst v {uv:.3f}, a {ua:.3f}"
+                          f"{_path_deviation(sp) * 1e3:.2f} um "
+                          f"(tolerance {ROTARY_TOLERANCE.get(shape, 0.01) * 1e3:.0f} um); "
+                          f"worst v {uv:.3f}, a {ua:.3f}"
                           + (f", j {uj:.3f}" if profile == "scurve" else "") + f" of the axis limits; {cpu:.2f} s CPU")
         print(f"{shape}: with the rotary axes S-curve / trapezoid time "
               f"{took[True, 'scurve'] / took[True, 'trapezoid']:.3f}")

@@ -46,7 +46,8 @@ segment of the chain with its own speed bound from its largest curvature and cur
 Programs without such runs (every G61 program, lines longer than :data:`DENSE_MAX_LENGTH`) are
 planned exactly as before.
 
-A chain that moves the axes beyond X, Y, Z (A-C, U-W) has no corner blends: its runs (``unblended``) take lines up
+A chain that moves the axes beyond X, Y, Z (A-C, U-W): its runs (``unblended``, from before its corners were blended:
+the corners left between its lines are blended across every axis, :mod:`interpolators.axis_blends`) take lines up
 to :data:`UNBLENDED_MAX_LENGTH` whatever their density, the fit's tolerance check deciding, and those axes follow
 one cubic spline along the merged curve's arc length (:func:`fit_axes`, within the tolerance in each axis' unit).
 """
@@ -91,7 +92,7 @@ __all__ = [
 
 #: Lines at most this long [mm] may be merged.
 DENSE_MAX_LENGTH: float = 1.0
-#: Lines at most this long [mm] may be merged in a chain whose corners are not blended (moving axes beyond X, Y, Z).
+#: Lines at most this long [mm] may be merged in a chain moving axes beyond X, Y, Z (``unblended``).
 UNBLENDED_MAX_LENGTH: float = 5.0
 #: Largest relative difference of a line's feed from the first one of its run in such a chain: inverse time (G93)
 #: feeds, each chord's length over its time, differ by the rounding of the programmed words.
@@ -561,9 +562,9 @@ def merge_dense_runs(
         turn by more than :data:`DENSE_MAX_TURN` inside a run (:func:`curve_junctions`), and coarser
         chords merge (:data:`CURVE_DENSITY` instead of :data:`DENSITY`).
     unblended : bool
-        The chain's corners are not blended (it moves axes beyond X, Y, Z): lines up to
-        :data:`UNBLENDED_MAX_LENGTH` merge whatever their density, the fit's tolerance check decides (a
-        junction left unmerged is passed at the one-sample rule, far slower than a blend), and so do lines
+        The chain moves axes beyond X, Y, Z: lines up to :data:`UNBLENDED_MAX_LENGTH` merge whatever their
+        density, the fit's tolerance check decides (its corners left unmerged are blended with those axes on a
+        quintic, :mod:`interpolators.axis_blends`, within the shorter blends their tolerance allows), and so do lines
         whose feeds differ by up to :data:`UNBLENDED_FEED_SPREAD` (inverse time, G93).
 
     Returns

@@ -5,10 +5,11 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
+from interpolators.axis_blends import excess, hermite_axes, hermite_bounds
 from interpolators.dense import MergedRun, fit_axes, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
@@ -174,9 +175,9 @@ def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int
 
     A feed move with X, Y or Z moving joins the chain of the previous such block when that one
     did not end in exact stop (G64) and was no rapid: look-ahead passes their junction at speed, bounded for
-    every axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); such chains' corners are not
-    blended, the axes follow the programmed segments, but their runs of dense short lines are merged, X, Y, Z
-    and the other axes together (:func:`_merged_extra`). A rapid joins only the rapid before it from
+    every axis (:func:`interpolators.kinematics.extra_junction_speed_limit`); their runs of dense short lines are
+    merged, X, Y, Z and the other axes together (:func:`_merged_extra`), and their line/line corners blended
+    across every axis (:func:`_blended_extra`). A rapid joins only the rapid before it from
     the same source line that did not end in exact stop: the chords of one rapid under tool centre point
     control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord.
     Any other such block (a rapid, a move with X, Y, Z still: a hold at its XYZ position whose profile runs
@@ -263,7 +264,8 @@ def interpolate(
       of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under
       G64 consecutive feed moves of X/Y/Z with these axes are passed at speed where every axis'
       velocity step fits in one sample (:func:`interpolators.kinematics.extra_junction_speed_limit`,
-      see ``_extra_block``; dense runs merged with the other axes, :func:`interpolators.dense.fit_axes`); the
+      see ``_extra_block``; dense runs merged with the other axes, :func:`interpolators.dense.fit_axes`; line/line
+      corners blended with the other axes on a quintic, :mod:`interpolators.axis_blends`); the
       chords of one rapid under tool centre point control likewise; other blocks moving them start and end
       at rest. Setpoint columns ``a, b, c`` are in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
@@ -297,7 +299,7 @@ def interpolate(
     jerk_limited = profile == "scurve"
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
-    g = _geometry(chains, lim, jerk_limited, program, Ts)
+    g = _geometry(chains, lim, jerk_limited, program, Ts, _resolve_limits(limits))
     c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
     del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
@@ -370,9 +372,10 @@ def _axis_limits(chains: list[_Chain], limits: Mapping[str, AxisLimits] | None,
     return lim
 
 
-def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, program: Program, Ts: float) -> _Geom:
+def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, program: Program, Ts: float,
+              limits: Mapping[str, AxisLimits]) -> _Geom:
     """1. The geometry of each chain, its G64 corners blended (``Ts``: the sample time the kinks' junction bounds
-    are judged at, :func:`_blend_worth`)."""
+    are judged at, :func:`_blend_worth`; ``limits``: every axis', for the blends of the axes beyond X, Y, Z)."""
     all_segs: list[Line | Arc | np.ndarray] = []
     seg_block: list[int] = []
     chain_len: list[int] = []  # segments of each chain, blended
@@ -385,6 +388,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
         fit_of: dict = {}
         if ch.extra and ch.hi - ch.lo > 1:
             merged, run_of, fit_of = _merged_extra(ch, jerk_limited, program)
+            segs, blks, fit_of = _blended_extra(merged, fit_of, lim, limits, jerk_limited, Ts, program)
         if not fit_of and (ch.hi - ch.lo == 1 or ch.extra):  # no corner to blend: the chain's own items
             it, lo, hi = ch.items, ch.lo, ch.hi
             all_segs += it.segments[lo:hi]
@@ -393,9 +397,8 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
             seg_rapid += it.rapid[lo:hi]
             chain_len.append(hi - lo)
             continue
-        if fit_of:  # merged runs of a chain moving the axes beyond X, Y, Z: no corner blends
+        if fit_of:  # a chain moving the axes beyond X, Y, Z: its runs merged, its line/line corners blended
             ch = merged
-            segs, blks = ch.segments, ch.blocks
         else:
             ch, run_of = _merged(ch, jerk_limited)
             segs, blks = blend_corners(ch.segments, ch.blocks, ch.junction_tolerances,
@@ -439,7 +442,7 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
     seg_chain = np.repeat(np.arange(len(chains), dtype=np.int64), chain_len)
     extra = None
     if any(b.extra_start is not None for b in program.blocks):
-        extra = _extra_geometry(chains, seg_block, seg_chain, program, packed, fits)
+        extra = _extra_geometry(chains, all_segs, seg_block, seg_chain, program, packed, fits)
     return _Geom(segments=all_segs, block=seg_block, chain=seg_chain,
                  feed=np.asarray(seg_feed, dtype=float), rapid=np.asarray(seg_rapid, dtype=bool),
                  packed=packed, blended=blended, runs=runs, fits=fits, extra=extra)
@@ -478,8 +481,8 @@ def _blend_run(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, n
                      blocks=np.concatenate([before[0], after[0]]).astype(np.int64))
 
 
-def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.ndarray, program: Program,
-                     packed: PackedSegments, fits: dict) -> _Extra:
+def _extra_geometry(chains: list[_Chain], segments: list, seg_block: list[int], seg_chain: np.ndarray,
+                    program: Program, packed: PackedSegments, fits: dict) -> _Extra:
     """Start and motion of the axes beyond X, Y, Z on each segment; only an extra chain's segments
     (one per block, or the pieces of a merged run, ``fits``: their values at the ends) move them."""
     n = len(seg_block)
@@ -491,7 +494,10 @@ def _extra_geometry(chains: list[_Chain], seg_block: list[int], seg_chain: np.nd
         blk = program.blocks[b]
         if blk.extra_start is not None:
             start[k] = blk.extra_start
-        if chains[c].extra:
+        if chains[c].extra and isinstance(segments[k], Line) and segments[k] is not blk.segment:
+            value, rate = _on_line([blk], np.asarray(segments[k].start)[None])  # a line shortened by corner blends
+            start[k], delta[k] = value[0], rate[0] * segments[k].length
+        elif chains[c].extra:
             delta[k] = blk.extra_delta
             if packed.kind[k] == HOLD:
                 pure[k] = True
@@ -568,6 +574,70 @@ def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Ch
     if failed:
         merged, run_of = _restore_runs(ch, merged, run_of, failed)
     return merged, run_of, fit_of
+
+
+def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mapping[str, AxisLimits],
+                   jerk_limited: bool, Ts: float, program: Program) -> tuple[list, list[int], dict]:
+    """The segments and blocks of a chain moving the axes beyond X, Y, Z (``ch``, its runs merged, ``fit_of`` their
+    axis splines, :func:`_merged_extra`) with its line/line corners blended as in a chain of X, Y, Z
+    (:func:`interpolators.lookahead.blend_corners`, no kink blends), and ``fit_of`` with the axes' splines along
+    each blend (:mod:`interpolators.axis_blends`, one spline for all, each blend's arc length from its offset; a
+    shortened line's are
+    :func:`_extra_geometry`'s, by :func:`_on_line`). A blend whose
+    axes leave the tolerance is made again within the tolerance scaled down by the excess, then dropped; corners
+    beside a rapid or a chord under tool centre point control are not blended (its tip would leave ``P``, as
+    :func:`_merged_extra`). Without a blend, the chain's own segments and ``fit_of``."""
+    segments, blocks = ch.segments, ch.blocks
+    allowed = np.array(ch.junction_tolerances, dtype=float)
+    tol = allowed.copy()  # the XYZ tolerance each corner is blended within
+    kept = np.array([program.blocks[b].tcp for b in blocks], dtype=bool) | np.array(ch.rapid, dtype=bool)
+    tol[:-1][kept[:-1] | kept[1:]] = 0.0
+    corner_of = {b: k for k, (sg, b) in enumerate(zip(segments, blocks)) if isinstance(sg, Line)}
+    blk = program.blocks
+    corner_value = [b.extra_target for b in blk]
+
+    def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
+        r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3))
+        r1, m1 = _on_line([blk[blocks[k + 1]] for k in corners], np.array([b.end for b in blends]).reshape(-1, 3))
+        return np.array([b.length for b in blends], dtype=float), r0, r1, m0, m1
+
+    def cap(blends: CornerBlends) -> np.ndarray:  # the blends' speed bound from those axes' limits
+        d1, d2, d3 = hermite_bounds(*ends(blends.blends, blends.corner.tolist()))
+        n = len(d1)
+        return extra_curve_bounds(d1, d2, d3, np.full(n, np.inf), limits, share=np.full(n, 1.0 - JUNCTION_SHARE),
+                                  jerk_limited=jerk_limited)[0]
+
+    worth = _blend_worth(ch, lim, jerk_limited, Ts, cap)
+    for attempt in range(3):
+        segs, blks = blend_corners(segments, blocks, tol.tolist(), worth=worth, curvature_continuous=jerk_limited,
+                                   kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))),
+                                   kinks=False)
+        if len(segs) == len(segments):
+            return segments, blocks, fit_of
+        original = {id(sg) for sg in segments}
+        made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
+        corners = [k for _, k in made]
+        args = ends([sg for sg, _ in made], corners)
+        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners])
+        if np.all(ratio <= 1.0):
+            spl, offsets = hermite_axes(*args)  # one spline for the chain's blends
+            return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for (sg, _), o in zip(made, offsets)}}
+        for i in np.flatnonzero(ratio > 1.0).tolist():  # the XYZ deviation its size gives, scaled down
+            sg, k = made[i]
+            reach = float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end))
+            tol[k] = 0.0 if attempt == 1 else 0.95 * reach / ratio[i]
+    return segments, blocks, fit_of
+
+
+def _on_line(blocks: Sequence, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The axes beyond X, Y, Z at ``points`` (n, 3) of the lines of ``blocks`` (feed lines moving them) and their
+    rates per mm of them, shape (n, 6) each: they move in proportion to the path (RS274/NGC 3, Sec. 2.1.2.5)."""
+    n = len(blocks)
+    start = np.array([b.extra_start for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
+    delta = np.array([b.extra_delta for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
+    origin = np.array([b.segment.start for b in blocks], dtype=float).reshape(n, 3)
+    rate = delta / np.array([b.segment.length for b in blocks], dtype=float)[:, None]
+    return start + rate * np.linalg.norm(points - origin, axis=1)[:, None], rate
 
 
 def _restore_runs(ch: _Chain, merged: _Chain, run_of: dict[int, MergedRun], failed: set[int]
@@ -1092,7 +1162,8 @@ def _with_extra(r: _Extra, seg: np.ndarray, s: np.ndarray, v: np.ndarray, a: np.
 _TANGENT_STEP = 1e-3
 
 
-def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float):
+def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float,
+                 cap: Callable[[CornerBlends], np.ndarray] | None = None):
     """Predicate: is passing each corner through its blend faster than stopping at it?
 
     Model of one corner between lines cruising at ``V`` (their speed bound, or the speed they can
@@ -1111,6 +1182,8 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float
     speed reached over half of either neighbour from rest, underestimates the speed through a contour of
     tangent arcs and lines, where no stop is near (measured: the random tangent contours and the rounded
     rectangles of ``tests/interpolators/test_curvature_junctions.py`` ran up to 13 % slower with the model alone).
+    ``cap(blends)``, when given, lowers each blend's speed bound (the axes beyond X, Y, Z across it,
+    :func:`_blended_extra`).
     """
     share = 1.0 - JUNCTION_SHARE  # the blend's bound in a chain that may reserve the junction share
     segments, feeds, rapid = ch.segments, np.asarray(ch.feeds), np.asarray(ch.rapid)
@@ -1120,6 +1193,8 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float
         A_b = share * np.where(blends.plane, lim.acceleration, np.inf).min(axis=1)
         J_b = share * np.where(blends.plane, lim.jerk, np.inf).min(axis=1)
         v_b = curved_speed_bound(blends.curvature, blends.curvature_rate, A_b, J_b, jerk_limited=jerk_limited)
+        if cap is not None:
+            v_b = np.minimum(v_b, cap(blends))
         V, A, J = np.full(len(k), np.inf), np.full(len(k), np.inf), np.full(len(k), np.inf)
         for i, at in ((k, "end"), (k + 1, "start")):
             lines = [segments[j] for j in i.tolist()]

@@ -131,6 +131,7 @@ from interpolators.iso_codes import (
     LAST_ONE_VALID,
     LINUXCNC_ALLOCATED_G,
     LINUXCNC_G,
+    LINUXCNC_UNDEFINED,
     MILL_G,
     NORMAL_DIRECTION,
     PLANE_CODES,
@@ -421,7 +422,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                 decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
                 on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None,
-                modal_calls=st.modal_calls)
+                modal_calls=st.modal_calls, skip_after_number=dialect.name != "linuxcnc")
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
@@ -515,7 +516,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                      "INI, which vcnc does not read)") if dialect == "linuxcnc" and key not in LINUXCNC_ALLOCATED_G \
                 else ""
             if key in G_UNSUPPORTED:
-                where.fail(_unsupported_g(key, words) + remap, column=w.column, text=w.text,
+                where.fail(_unsupported_g(key, words, dialect) + remap, column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in G_CODES:
                 where.fail(f"unknown G code {w.text!r}{remap}", column=w.column, text=w.text,
@@ -875,10 +876,13 @@ def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
     return Word("T", float(tool), w.column, w.text)
 
 
-def _unsupported_g(key: int, words: list[Word]) -> str:
+def _unsupported_g(key: int, words: list[Word], dialect: str) -> str:
     """The error of a G code of :data:`G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
     block) with :data:`UNITS_HINT`; a G8 with P named as Fanuc's look-ahead (Fanuc 0i-MF "AI advanced preview
-    control", :mod:`interpolators.iso_smoothing`)."""
+    control", :mod:`interpolators.iso_smoothing`); under ``linuxcnc`` G87/G88 with what LinuxCNC's g-code.adoc
+    says of them (:data:`LINUXCNC_UNDEFINED`)."""
+    if dialect == "linuxcnc" and key in LINUXCNC_UNDEFINED:
+        return f"{G_UNSUPPORTED[key]}: not supported{LINUXCNC_UNDEFINED[key]}"
     bare = not any(v.letter in "PQUWRIJKL" for v in words)
     if key == 80 and any(v.letter == "P" for v in words):  # LinuxCNC's G8 takes no P; Fanuc's G08 P1 / P0 does
         return (f"{G_UNSUPPORTED[key]}: not supported (G08 P1 / P0 with a P is Fanuc's AI advanced preview "
@@ -1122,6 +1126,24 @@ def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> N
         st.uncalled_feed = f"{feed.text} of the M98 line {where.line}"
 
 
+def _incremental_g53(st: State, notes: Notes) -> bool:
+    """True when a G53 block's words are increments: G53 under G91 in the Fanuc and Haas dialects (LinuxCNC refuses
+    it, grbl's gcode.c takes them as machine positions: "ignore if absolute override is active").
+
+    The Fanuc-style manuals at hand write G53 with absolute words ("(G90) G53 X... Y... Z...", "Absolute dimension
+    word", "The G53 command has to be determined by using absolute values": Siemens' 840D ISO-dialect milling
+    manual, 3.1.1 "Machine coordinate system (G53)"; no Fanuc manual text on G53 under G91 was found). Our
+    reading follows the Fanuc-compatible Mitsubishi M700V
+    programming manual, 14.4 "Basic Machine Coordinate System Selection; G53", (4): "In the incremental value
+    command mode (G91), the G53 command provides movement with the incremental value": the axes move by the
+    words from where they are (as a G91 block without G53 would), noted."""
+    if not (st.incremental and st.context.dialect.name in ("fanuc", "haas")):
+        return False
+    notes.add("G53 under G91: its axis words moved as increments from the current position (Mitsubishi M700V "
+              "14.4; Fanuc gives G53 absolute words only)")
+    return True
+
+
 def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes: Notes) -> bool:  # noqa: C901
     """G10, G28, G30, G53, G92 family. True when the block is fully handled here."""
     key, w = gcodes["nonmodal"]
@@ -1141,8 +1163,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
-        target = block_target(seen, axis_words, st, machine=True)
-        motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=True)
+        machine = not _incremental_g53(st, notes)
+        target = block_target(seen, axis_words, st, machine=machine)
+        motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=machine)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
             and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's

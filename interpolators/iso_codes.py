@@ -12,7 +12,7 @@ from interpolators.iso_reference import FANUC_CODES, MILL_CODES, NAMED_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES
 
 __all__ = ["G_CODES", "LAST_ONE_VALID", "G_UNSUPPORTED", "MILL_G", "NORMAL_DIRECTION", "DIALECT_G", "LINUXCNC_G",
-           "PLANE_OF", "PLANE_CODES", "UNITS_HINT", "LINUXCNC_M", "LINUXCNC_ALLOCATED_G"]
+           "LINUXCNC_UNDEFINED", "PLANE_OF", "PLANE_CODES", "UNITS_HINT", "LINUXCNC_M", "LINUXCNC_ALLOCATED_G"]
 
 
 #: G codes the reader runs, keyed by round(10 * code): (modal group, name).
@@ -152,6 +152,17 @@ DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
              **EXTENDED_CODES["haas"]},
 }
+
+
+#: G87 and G88 under LinuxCNC: its g-code.adoc, "G87 Back Boring Cycle" and "G88 Boring Cycle, Spindle Stop, Manual
+#: Out": "This code is currently unimplemented in LinuxCNC. It is accepted, but the behavior is undefined" (the
+#: table of codes: "not yet implemented"). rs274 runs motions of its own (G87 wants I J K and moves through the
+#: spindle orientations; G88 feeds to Z, dwells, stops the spindle and the program, and leaves the tool at the
+#: bottom for the operator's manual retract); vcnc refuses them, naming the documentation.
+_UNDEFINED = ("LinuxCNC's G-code reference: \"currently unimplemented in LinuxCNC. It is accepted, but the "
+              "behavior is undefined\"")
+LINUXCNC_UNDEFINED: dict[int, str] = {870: f" ({_UNDEFINED}; --dialect fanuc runs Fanuc's G87 back boring)",
+                                      880: f" ({_UNDEFINED})"}
 
 
 #: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error).

@@ -8,11 +8,14 @@ and ``X10.`` 10 mm); DPI = 1, "calculator-type decimal point input", reads it in
 (``X10`` is 10 mm). The addresses this applies to are those of distances, angles and times: X Y Z,
 U V W, A B C, I J K, Q and R, and the dwell ``G04 X`` (0.001 s); F is a feed in its own unit
 (mm/min, ``F100`` is 100 mm/min either way), and P, L, K as a repeat count, D, H, N, S, T, M are
-integers. Numbers that come from a variable or an expression (``X#1``, ``X[10]``) carry their own
-decimal point (Mitsubishi M700V programming manual 5.3 "Decimal Point Input", which describes the
-same two types: "Command X1 in the 1 um system is equivalent to command X0.001"; values of variables
-are read "the same way in either" type). The scaling factors of ``G51 I J K`` / ``P`` have their own
-rule (:func:`interpolators.iso_transforms.scaling`; its centre ``X Y Z`` is a position like any other: 0i-MF
+integers. The corner words ``,R`` and ``,C`` (0i-MF "Optional chamfering and corner R") are lengths as R is: under
+DPI = 0 ``,R2`` is 0.002 mm and ``,R2.`` 2 mm (our reading: a corner's radius or chamfer is a distance like the other
+distance words, and no manual text at hand gives the comma words a unit or an exception of their own). Numbers that
+come from a variable or an expression (``X#1``, ``X[10]``) carry their own decimal point (Mitsubishi M700V
+programming manual 5.3 "Decimal Point Input", which describes the same two types: "Command X1 in the 1 um system is
+equivalent to command X0.001"; values of variables are read "the same way in either" type).
+The scaling factors of ``G51 I J K`` / ``P`` have their own rule
+(:func:`interpolators.iso_transforms.scaling`; its centre ``X Y Z`` is a position like any other: 0i-MF
 "Scaling", "absolute command for center coordinate value"), and so do the arguments of ``G65``
 (:mod:`interpolators.iso_flow`: as written under DPI = 1, noted; under DPI = 0 as written for F D H M S T,
 an error for the others, whose increments are not modelled); the switches of ``G05.1 Q1`` and ``G08 P1`` are
@@ -31,14 +34,16 @@ import re
 
 from interpolators.iso_words import Word
 
-__all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "integer_literal", "decimal_literal", "decimal_point_words",
-           "decimal_point_note"]
+__all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "CORNER_LETTERS", "integer_literal", "decimal_literal",
+           "decimal_point_words", "decimal_point_note"]
 
 #: Values of ``MachineContext.decimal_point_input``: Fanuc DPI = 1 and DPI = 0.
 DECIMAL_POINT_INPUTS: tuple[str, ...] = ("calculator", "increment")
 #: Addresses whose numbers without a decimal point are counted in least input increments under DPI = 0.
 DECIMAL_LETTERS = frozenset("XYZUVWABCIJKQR")
 
+#: The corner words (:mod:`interpolators.iso_corners`): lengths, read as R (our reading, see the module docstring).
+CORNER_LETTERS = frozenset((",R", ",C"))
 #: Least input increment of IS-B [program unit]: mm, inch, and deg (rotary axes, angles).
 _INCREMENT = {"mm": 0.001, "inch": 0.0001, "deg": 0.001}
 _CYCLE_CODES = {73, 74, 76, 77, 81, 82, 83, 84, 85, 86, 87, 88, 89}
@@ -48,8 +53,8 @@ _OWN_RULES = {65, 51, 5, 5.1, 8}
 
 
 def integer_literal(word: Word) -> bool:
-    """True when the word is written as a plain number without a decimal point (``X10``, ``Y-5``)."""
-    return re.fullmatch(r"[A-Za-z]\s*[+-]?\s*\d+", word.text) is not None
+    """True when the word is written as a plain number without a decimal point (``X10``, ``Y-5``, ``,R2``)."""
+    return re.fullmatch(r",?\s*[A-Za-z]\s*[+-]?\s*\d+", word.text) is not None
 
 
 def decimal_literal(word: Word) -> bool:
@@ -65,7 +70,8 @@ def _scaled(words: list[Word], *, cycle: bool) -> list[Word]:
     if 51 in codes:  # G51's centre X Y Z is a position (0i-MF "Scaling": "absolute command for center coordinate")
         return [w for w in words if w.letter in "XYZ" and integer_literal(w)]
     cycle = cycle or bool(codes & _CYCLE_CODES)
-    return [w for w in words if w.letter in DECIMAL_LETTERS and integer_literal(w) and not (w.letter == "K" and cycle)]
+    return [w for w in words if (w.letter in DECIMAL_LETTERS or w.letter in CORNER_LETTERS) and integer_literal(w)
+            and not (w.letter == "K" and cycle)]
 
 
 def decimal_point_words(words: list[Word], *, mode: str, inch: bool, cycle: bool) -> tuple[list[Word], Word | None]:

@@ -71,7 +71,8 @@ from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_wor
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
 
-__all__ = ["FlowLine", "run", "one_line_end", "sinumerik_construct", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS"]
+__all__ = ["FlowLine", "run", "one_line_end", "sinumerik_construct", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS",
+           "SKIP_AFTER_NUMBER"]
 
 #: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
 #: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
@@ -205,6 +206,8 @@ def _refuse_folder_line(line: str, where: Where) -> None:
 
 
 _SKIP_LEVEL = re.compile(r"[ \t]*/([1-9])")
+#: The sequence number of a line whose next character is '/' ("N45 /G1 X10", "N45/2 G1 X10").
+SKIP_AFTER_NUMBER = re.compile(r"[ \t]*[Nn][ \t]*\d+(?:\.\d*)?[ \t]*(?=/)")
 
 
 def _block_delete(code: str, where: Where, *, levels: bool) -> str:
@@ -222,6 +225,27 @@ def _block_delete(code: str, where: Where, *, levels: bool) -> str:
                    "skip /2-/9), which this dialect does not have (--dialect fanuc reads it)",
                    column=m.start(1), text=f"/{m.group(1)}", expected="'/' block delete")
     return " " * m.end() + code[m.end():]
+
+
+def _skip_after_number(code: str, where: Where, *, levels: bool, reads: bool) -> str:
+    """A '/' right after the line's sequence number (``N45 /G1 X10``), read as the block delete of a line opened
+    by it (:func:`_block_delete`: the block runs, its switch off). grbl's protocol.c drops a '/' wherever it
+    stands ("Block delete NOT SUPPORTED. Ignore character."). Fanuc's "Optional block skip" (0i-MF operator's
+    manual) places the '/' at the head of a block; no text at hand says what a '/' after the sequence number
+    does: our reading, for Fanuc, Haas and Fadal, is that the number labels the block and the '/' still stands
+    before its words, so that with the switch off the whole block runs (noted). Without ``reads`` (LinuxCNC) it
+    is refused: LinuxCNC's G-code overview, "Format of a Line", orders "an optional block delete character,
+    which is a slash '/'" before "an optional line number", and "'/': Block Delete" counts it "when placed first
+    on a line"; rs274 stops with "Bad character '/' used"."""
+    m = SKIP_AFTER_NUMBER.match(code)
+    if m is None:
+        return code
+    if not reads:
+        number = code[:m.end()].strip()
+        where.fail(f"'/' after the line number {number!r}: LinuxCNC reads block delete only as a line's first "
+                   "character, before its line number (G-code overview, \"Format of a Line\")", column=m.end() + 1,
+                   text="/", expected=f"'/{number} ...' (the '/' first) or no '/'")
+    return code[:m.end()] + _block_delete(" " * m.end() + code[m.end():], where, levels=levels)[m.end():]
 
 
 def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
@@ -281,9 +305,10 @@ class _Program:
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
                  subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
-                 abbreviations: bool = False, skip_levels: bool = False) -> None:
+                 abbreviations: bool = False, skip_levels: bool = False, skip_after_number: bool = True) -> None:
         self.source = source
         self.skip_levels = skip_levels
+        self.skip_after_number = skip_after_number
         self.subroutine_path = subroutine_path
         self.tape_leader = tape_leader
         self.raw: list[str] = []
@@ -352,6 +377,8 @@ class _Program:
                            expected="'%' alone")
             if s.startswith("/"):
                 code = _block_delete(code, where, levels=self.skip_levels)
+            elif "/" in code:
+                code = _skip_after_number(code, where, levels=self.skip_levels, reads=self.skip_after_number)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
                 _refuse_colon_block(s, code.index(":") + 1, where)
             if self.macro.add_line(i, code, self.span, where) is not None:
@@ -621,7 +648,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         on_comment: Callable[[str, str, Where], None] | None = None,
         on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None,
         on_call_words: Callable[[list[Word], Where], None] | None = None,
-        modal_calls: ModalCalls | None = None) -> Iterator[FlowLine]:
+        modal_calls: ModalCalls | None = None, skip_after_number: bool = True) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
@@ -637,6 +664,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     executed, go to it (LinuxCNC, :func:`_call_words_only`); without it they run before the call (Fanuc, Haas).
     ``modal_calls``: G66, G66.1 and G67 run as Fanuc's modal macro calls (:mod:`interpolators.iso_modal_call`),
     in force in it; without it they are yielded as words (which the reader refuses).
+    ``skip_after_number``: a '/' right after the line's sequence number runs as block delete (Fanuc, Haas, grbl);
+    False: refused, as LinuxCNC does (:func:`_skip_after_number`).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -648,7 +677,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     """
     params = Parameters() if params is None else params
     prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
-                    tape_leader=tape_leader, abbreviations=params.fanuc, skip_levels=params.fanuc)
+                    tape_leader=tape_leader, abbreviations=params.fanuc, skip_levels=params.fanuc,
+                    skip_after_number=skip_after_number)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

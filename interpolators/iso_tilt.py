@@ -39,8 +39,11 @@ The P forms (Mazak VORTEX i-series manual, serial 294060, 2013, easymanua.ls):
   two or more non-zero angles are refused, as is a P1 plane with an angle beyond +-360 deg.
 
 Not read here: ``P2`` three points, ``P3`` two vectors, ``P4`` projection angles (no manual text found on
-which point or vector gives the origin, X and the +Z side: refused by name), G68.3/G68.4, and a work offset
-or G92 changed under G68.2 (not modelled: the plane's zero then moves by the change, along the machine's
+which point or vector gives the origin, X and the +Z side: refused by name; the one public implementation, the
+LinuxCNC tilted-work-plane sim remap, configs/sim/axis/vismach/5axis/table-rotary_spindle-rotary-nutating
+python/remap.py, builds P2 over four blocks Q0-Q3 but contradicts itself: its comment makes point 1 the origin,
+its code takes Q0's X Y Z; its P3 takes X from the I J K of Q0 less the origin; it has no P4), G68.3/G68.4, and
+a work offset or G92 changed under G68.2 (not modelled: the plane's zero then moves by the change, along the machine's
 axes).
 """
 

@@ -377,6 +377,7 @@ def blend_corners(
     worth: Callable[[CornerBlends], np.ndarray] | None = None,
     curvature_continuous: bool = False,
     kink_limits: tuple[float, float] = (1.0, 25.0),
+    kinks: bool = True,
     offsets: list[float] | None = None,
 ) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
     """Blend the corners of a continuous chain (line/line; with ``curvature_continuous`` every kink).
@@ -402,6 +403,9 @@ def blend_corners(
     kink_limits : tuple of float
         Path acceleration and jerk limits ``(A, J)`` [mm/s^2, mm/s^3] the kink blends' shapes are chosen
         for (only their ratio matters).
+    kinks : bool
+        False: only the line/line corners, also under ``curvature_continuous`` (a chain moving the axes beyond
+        X, Y, Z, whose motion across a blend :mod:`interpolators.axis_blends` gives for line/line corners only).
     offsets : list of float, optional
         Per segment, its largest distance [mm] from the programmed path: a merged curve's fit deviation
         (:attr:`interpolators.dense.MergedRun.deviation`), 0 for a line or arc; a kink blend keeps within the
@@ -432,7 +436,7 @@ def blend_corners(
                 worth(CornerBlends.of(np.array(corners), blends)), dtype=bool).tolist()
             blend_at = {k: b for k, b, ok in zip(corners, blends, accepted) if ok}
     legs: dict[int, float] = {}
-    if curvature_continuous:
+    if curvature_continuous and kinks:
         kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
         cand = np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
         if offsets is None:  # NaN: a curve piece whose fit may take FIT_SHARE of the tolerance

@@ -102,13 +102,18 @@ class _Gen:
     def fanuc(self) -> bool:
         return self.dialect == "fanuc"
 
-    def emit(self, text: str, *, number: int | None = None) -> None:
+    def emit(self, text: str, *, number: int | None = None, skip_after_number: bool = False) -> None:
+        """Append a block, numbered with ``number`` or half of the time with the next N; a block delete slash
+        stands at the head of the block, or with ``skip_after_number`` after its N (``N45 /G1``)."""
         self.n += 5
-        if number is None and self.r.random() < 0.5:
+        if number is None and (skip_after_number or self.r.random() < 0.5):
             number = self.n
-        skip = "/" if text.startswith("/") else ""  # the block delete slash at the head of the block
+        skip = "/" if text.startswith("/") else ""
         text = text.removeprefix("/")
-        self.lines.append(f"{skip}N{number} {text}" if number is not None else skip + text)
+        if number is None:
+            self.lines.append(skip + text)
+        else:
+            self.lines.append(f"N{number} {skip}{text}" if skip_after_number else f"{skip}N{number} {text}")
 
     def v(self, grid: float, *, plain: bool = True) -> str:
         """A distance of ``grid`` steps; under DPI = 0 sometimes as an integer of least input increments."""
@@ -433,6 +438,9 @@ class _Gen:
             self.emit("G91 G28 X0. Y0.")
             self.emit("G90")
         self.emit(f"G53 G0 Z{_num(-self.r.choice((0, 10, 50)) * 1.0 * self.unit)}")
+        if self.r.random() < 0.3:  # G53 under G91: a move by its words (Mitsubishi M700V 14.4, vcnc's reading)
+            self.emit(f"G91 G53 G0 Z{_num(-self.r.choice((5, 10)) * self.unit)}")
+            self.emit("G90")
 
     def dwell_section(self) -> None:
         self.start()
@@ -510,7 +518,7 @@ class _Gen:
         x, y = self.pos[0], self.pos[1]
         pts = [(x + 20, y), (x + 20, y + 20), (x, y + 20), (x, y)]
         for k, (px, py) in enumerate(pts):
-            size = self.v(self.r.choice((1, 2, 3)), plain=False)
+            size = self.v(self.r.choice((1, 2, 3)))  # DPI = 0: ,R2000 is 2 mm (vcnc's reading, iso_decimal)
             word = "" if k == len(pts) - 1 else f" ,{self.r.choice('RC')}{size}"
             self.emit(f"G1 {self.xyz(px, py)}{word}")
         self.emit(f"G0 {self.xyz(z=10)}")
@@ -734,9 +742,11 @@ class _Gen:
         self.emit("G50")
 
     def block_delete_section(self) -> None:
-        """``/`` block delete (off: the blocks run), comments with odd characters, blocks with only N."""
+        """``/`` block delete (off: the blocks run), also after the sequence number (``N45 /G1``: vcnc's reading,
+        iso_flow), comments with odd characters, blocks with only N."""
         self.start()
-        self.emit(f"/G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()} (SKIP; IF ON)")
+        self.emit(f"/G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()} (SKIP; IF ON)",
+                  skip_after_number=self.r.random() < 0.5)
         self.emit("(OP 2 - FACE / 5.0MM, \"FINISH\")")
         self.emit(f"G1 {self.xyz(self.pos[0], self.pos[1] + 5)} {self.feed()}")
 
@@ -747,7 +757,7 @@ class _Gen:
             return self.corner_words_section()
         self.start()
         self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
-        self.emit(f"G1 {self.xyz(self.pos[0] + 20, self.pos[1])} ,R{self.v(2, plain=False)}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 20, self.pos[1])} ,R{self.v(2)}")
         self.emit(f"G3 {self.xyz(self.pos[0] + 10, self.pos[1] - 10)} I{self.v(10)} J0.")  # turning 90 deg
         self.emit(f"G0 {self.xyz(z=10)}")
 

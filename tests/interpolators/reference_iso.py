@@ -520,6 +520,14 @@ def _unabbreviated(s: str) -> str:
     return re.sub(r"(?<![a-z])(" + "|".join(_SHORT_FUNCTIONS) + r")(?=\[)", lambda m: _SHORT_FUNCTIONS[m.group(1)], s)
 
 
+def _unskipped(s: str, *, fanuc: bool) -> str:
+    """A cleaned line without its leading '/': block delete, switch off; Fanuc's optional block skip levels
+    '/1'-'/9' (the additional optional block skip option) alike, '/1' the same as '/'."""
+    if not s.startswith("/"):
+        return s
+    return s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
+
+
 def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(_split(text), start=1):
@@ -535,12 +543,11 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]
             # CNCSimulator Pro's simulation commands ($AddRegPart, $Inches, ...) and #region marks (its user
             # guide, 6.3 "$-commands and regions"): no G-code of any control; the simulator alone reads them
             s = ""
-        if s.startswith("/"):
-            # '/' block delete, switch off; Fanuc's optional block skip levels '/1'-'/9' (the additional optional
-            # block skip option) alike, '/1' the same as '/'
-            s = s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
+        s = _unskipped(s, fanuc=fanuc)
         n = re.match(r"^n(\d+)(\.\d*)?", s)
         s = s[n.end():] if n else s
+        if n:  # a '/' after the sequence number: as at the line's start (Fanuc/Haas/grbl; LinuxCNC refuses it)
+            s = _unskipped(s, fanuc=fanuc)
         s = _unabbreviated(s) if fanuc else s
         seq = int(n.group(1)) if n else None
         if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097
@@ -1337,11 +1344,13 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if 530 in g and axes:
         if m.motion not in (0, 10):
             raise ReferenceError("G53 without G0/G1 motion")
+        # under G91 Fanuc/Haas move by the words (Mitsubishi M700V 14.4 (4)); grbl keeps them machine positions
+        steps = m.incremental and m.ctx.dialect.name in ("fanuc", "haas")
         end = m.pos.copy()
         for i, a in enumerate("xyz"):
             if a in words:
-                end[i] = words[a][-1] * m.scale
-        m.extra = m.extra_end(words, machine=True)
+                end[i] = end[i] * steps + words[a][-1] * m.scale
+        m.extra = m.extra_end(words, machine=not steps)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return
     arc_alone = m.motion in (20, 30) and any(c in (20, 30) for c in g) and any(k in words for k in "ijkr")
@@ -1656,7 +1665,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
 def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None:
     """Fanuc DPI = 0 (0i-MF operator's manual B-64604EN "Decimal point programming", parameter No. 3401#0): a
     distance or angle written without a decimal point counts least input increments of IS-B, 0.001 mm / deg or
-    0.0001 in (X Y Z U V W A B C I J K Q R; ``G04 X`` 0.001 s; K of a cycle block is its repeat count); in a G51
+    0.0001 in (X Y Z U V W A B C I J K Q R and the corner words ,R ,C; ``G04 X`` 0.001 s; K of a cycle block is
+    its repeat count); in a G51
     block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 arguments without a decimal point are not
     modelled (ReferenceError)."""
     letters = "xyz" if 510 in g else "xyzuvwabcijkqr"  # G51: the centre; its factors have their own rule
@@ -1672,12 +1682,13 @@ def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None
         depth += (ch == "[") - (ch == "]")
         if not ch.isalpha() or depth:
             continue
-        letter = ch
+        letter = "," + ch if k and text[k - 1] == "," else ch  # ",r" ",c": corner lengths, as r (our reading)
         index = seen.get(letter, 0)
         seen[letter] = index + 1
         literal = re.match(r"[+-]?\d+(?![\d.#\[])", text[k + 1:])
-        if letter not in letters or literal is None or (k and text[k - 1].isalpha()) or \
-                letter == "k" and cycle or letter not in words or index >= len(words[letter]):
+        if letter not in letters and (510 in g or letter not in (",r", ",c")) or literal is None or \
+                (k and text[k - 1].isalpha()) or letter == "k" and cycle or letter not in words or \
+                index >= len(words[letter]):
             continue
         unit = 0.001 if letter in "abc" or not inch or (40 in g and letter == "x") else 0.0001
         words[letter][index] *= unit

@@ -18,8 +18,10 @@ import pytest
 
 from benchmarks.dense_code import rotary_programs
 from interpolators import interpolate, parse_program
+from interpolators.axis_blends import excess, hermite_axes, hermite_bounds
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.dense import fit_axes
+from interpolators.kinematics import CURVE_BOUND_MARGIN
 from tests.interpolators.setpoint_checks import check_limits, distance_to_path
 from tests.interpolators.test_secondary_axes import LIMITS
 
@@ -256,3 +258,142 @@ def test_inverse_time_chords_merge_at_the_slowest_feed_of_each_piece(profile):
     check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
     assert distance_to_path(sp) <= 0.01
     assert _axis_deviation(sp, prog, "a") <= 0.01
+
+
+def _coarse_helix(with_a: bool) -> list[str]:
+    """60 chords of 2.1 mm (turning 0.21 rad each: too coarse to merge) of the two-lap R10 helix at F2000 under
+    G64 P0.05, A 0 -> 90 deg."""
+    out = ["G21 G90 G64 P0.05 G0 X10 Y0 Z0 A0", "G1 F2000"]
+    for i in range(1, 61):
+        t = 4 * math.pi * i / 60
+        out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 60:.4f}"
+                   + (f" A{90 * i / 60:.4f}" if with_a else ""))
+    return out
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_coarse_chords_with_a_blend_their_corners_across_every_axis(profile):
+    """The coarse helix's corners are blended as without A (a tangent arc, S-curve a clothoid pair, within P of the
+    corner) and A follows a quintic across each blend, its rate continuous: the run takes the time it takes
+    without A (before, each corner at the one-sample rule: 4.854 s trapezoid, 7.087 s S-curve against 3.913 s and
+    3.993 s), A within P of its programmed motion, every limit held."""
+    plain, rotary = _program(_coarse_helix(False)), _program(_coarse_helix(True))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
+    assert sp.duration == pytest.approx(sp0.duration, abs=2 * sp.sample_time)
+    assert "programmed_path" in sp.meta
+    assert _inner_stops(sp, rotary) == 0
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert 0.02 <= distance_to_path(sp) <= 0.05  # the corners are cut, within P
+    assert _axis_deviation(sp, rotary, "a") <= 0.05
+    assert np.all(np.diff(sp.block) >= 0)
+    assert np.allclose(sp.position[-1], _end(rotary, sp.axes), rtol=0, atol=1e-12)
+
+
+def _polygon(step: float | None) -> list[str]:
+    """Two laps of a 24-gon of radius 20 mm (sides of 5.2 mm turning 15 deg) at F2000 under G64 P0.05, A up ``step``
+    deg on one side and back on the next (its rate reverses at each corner); no A with ``step`` None."""
+    out = ["G21 G90 G64 P0.05 G0 X20 Y0 A0", "G1 F2000"]
+    for i in range(1, 49):
+        t = 2 * math.pi * i / 24
+        out.append(f"X{20 * math.cos(t):.4f} Y{20 * math.sin(t):.4f}"
+                   + ("" if step is None else f" A{step * (i % 2):.4f}"))
+    return out
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_rate_reversal_shrinks_the_corner_blends_to_keep_a_within_p(profile):
+    """A reversing at 0.19 deg/mm at each corner: across a blend sized for X/Y alone (1.5 mm) A would leave its
+    programmed motion by 1.2 (S-curve 1.8) times 0.9 P, so the blends are made within P scaled down by that: A
+    within P, no stop (before: a stop at every corner, 8.47 s trapezoid, 10.15 s S-curve). The trapezoid takes the
+    time without A (7.72 s); the S-curve's shorter clothoid pairs bend A faster, within its jerk limit."""
+    plain, rotary = _program(_polygon(None)), _program(_polygon(1.0))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
+    assert _inner_stops(sp, rotary) == 0
+    assert sp.duration <= (1.002 if profile == "trapezoid" else 1.3) * sp0.duration
+    check_limits(sp, rotary, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.05
+    assert 0.03 <= _axis_deviation(sp, rotary, "a") <= 0.05
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_corners_whose_blend_is_slower_than_a_stop_stay_stops(profile):
+    """A reversing by 3 deg per side (0.58 deg/mm): the blends that keep A within P are so short that bending A
+    across them is slower than stopping (A's acceleration and jerk on the blend, judged with the X/Y bound): every
+    corner stays a stop and each sample on its block's chord."""
+    prog = _program(_polygon(3.0))
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" not in sp.meta
+    assert _inner_stops(sp, prog) >= 46
+    assert _axis_deviation(sp, prog, "a") <= 1e-9
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+
+
+def test_hermite_axes_matches_values_rates_and_no_curvature_at_its_ends():
+    """The quintics across two blends (2 mm and 0.5 mm) in one spline: each blend's end values and rates as given
+    at its offset and its offset plus its length, second derivative 0 at both ends; equal rates ``(end - start) /
+    length`` give the straight line; an axis at rest in both keeps all its coefficients at its value."""
+    length = np.array([2.0, 0.5])
+    start, end = np.array([[10.0, 5.0, 1.0], [3.0, 5.0, 0.0]]), np.array([[12.0, 5.0, 2.0], [4.0, 5.0, 1.0]])
+    rate_start, rate_end = np.array([[0.5, 0.0, 0.5], [1.0, 0.0, 2.0]]), np.array([[1.5, 0.0, 0.5], [3.0, 0.0, 2.0]])
+    spl, offset = hermite_axes(length, start, end, rate_start, rate_end)
+    for j in range(2):
+        ends = offset[j] + np.array([0.0, length[j]])
+        assert np.allclose(spl(ends), [start[j], end[j]], rtol=0, atol=1e-12)
+        assert np.allclose(spl(ends, 1), [rate_start[j], rate_end[j]], rtol=0, atol=1e-12)
+        assert np.allclose(spl(ends, 2), 0.0, rtol=0, atol=1e-12)
+        s = np.linspace(0.0, length[j], 9)
+        assert np.allclose(spl(offset[j] + s)[:, 2], start[j, 2] + rate_start[j, 2] * s, rtol=0, atol=1e-12)
+    assert np.all(spl.c[:, 1] == 5.0)
+    args = (length[:1], start[:1], end[:1], rate_start[:1], rate_end[:1])
+    fine = np.linspace(0.0, 2.0, 2001)
+    for nu, d in zip((1, 2, 3), hermite_bounds(*args)):  # the largest derivatives, by CURVE_BOUND_MARGIN
+        assert d[0] == pytest.approx(np.abs(spl(fine, nu)).max(axis=0) * CURVE_BOUND_MARGIN, rel=1e-3, abs=1e-12)
+        assert d[0, 1] == 0.0 and (nu == 1 or d[0, 2] == 0.0)
+    # A's programmed motion: 10 -> 11 (the corner, at the middle) -> 12; the quintic leaves it by 0.31 deg
+    dev = np.abs(spl(fine)[:, 0] - np.interp(fine, [0.0, 1.0, 2.0], [10.0, 11.0, 12.0])).max()
+    assert excess(*args, np.array([[11.0, 5.0, 1.5]]), np.array([0.1]))[0] == pytest.approx(dev / 0.09, rel=1e-2)
+    assert dev == pytest.approx(0.3125, abs=1e-4)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_inverse_time_chords_of_changing_feeds_blend_at_each_blocks_speed(profile):
+    """A 5-axis CAM program under G93 writes a new F on every block (1/F minutes each): 40 chords of 2 mm on a
+    radius of 20 mm with C following the tangent, F 600 +-30 %. Their feeds differ far beyond
+    ``UNBLENDED_FEED_SPREAD``, so they do not merge; their corners are blended across X, Y and C, each block's
+    speed (its length over its time) a bound of its own, as LinuxCNC's interpreter turns each G93 F into the
+    block's feed (``inverse_time_rate_straight``, src/emc/rs274ngc/interp_inverse.cc) and its planner blends them.
+    The chords take their programmed time (4.136 s) plus the speed changes between blocks, never a block faster
+    than programmed (before: a stop at 8 corners, 5.324 s trapezoid; 38 stops, 7.400 s S-curve)."""
+    lines, programmed = ["G21 G90 G64 P0.02 G0 X20 Y0 Z0 C0", "G93 G1"], 0.0
+    for i in range(1, 41):
+        feed = 600 * (1 + 0.3 * math.sin(i))
+        lines.append(f"X{20 * math.cos(0.1 * i):.4f} Y{20 * math.sin(0.1 * i):.4f} C{math.degrees(0.1 * i):.4f} "
+                     f"F{feed:.4f}")
+        programmed += 60.0 / float(f"{feed:.4f}")
+    prog = _program([*lines, "G94"])
+    sp = interpolate(prog, profile=profile)
+    on_chords = np.sum(sp.block >= 1) * sp.sample_time
+    assert programmed <= on_chords <= (1.02 if profile == "trapezoid" else 1.06) * programmed
+    assert _inner_stops(sp, prog) == 0
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve", feed=True)
+    assert distance_to_path(sp) <= 0.02
+    assert _axis_deviation(sp, prog, "c") <= 0.02
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_inch_p_is_converted_to_mm_and_read_as_deg_on_a(profile):
+    """``G20 G64 P0.002``: 0.0508 mm on X, Y and, read in deg, on A (our reading, :mod:`interpolators.axis_blends`).
+    The 24-gon with A reversing at each corner, in inches: A's blends use that tolerance (0.9 x 0.0508 deg at most,
+    and well above 0.002 deg), X, Y within 0.0508 mm, no stop."""
+    lines = ["G20 G90 G64 P0.002 G0 X0.7874 Y0 A0", "G1 F80"]
+    for i in range(1, 49):
+        t = 2 * math.pi * i / 24
+        lines.append(f"X{0.7874 * math.cos(t):.5f} Y{0.7874 * math.sin(t):.5f} A{i % 2:.4f}")
+    prog = _program(lines)
+    assert prog.blocks[-1].tolerance == pytest.approx(0.0508)
+    sp = interpolate(prog, profile=profile)
+    assert _inner_stops(sp, prog) == 0
+    assert distance_to_path(sp) <= 0.0508
+    assert 0.02 <= _axis_deviation(sp, prog, "a") <= 0.9 * 0.0508 + 1e-9
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
