@@ -85,6 +85,7 @@ __all__ = [
     "cubic_basis",
     "curve_junctions",
     "fit_run",
+    "fit_deviation",
     "fit_axes",
     "merge_dense_runs",
 ]
@@ -136,11 +137,15 @@ class MergedRun:
         Curve parameter of each programmed point of the run (cumulative chord length [mm]).
     blocks : ndarray of int, shape (n,)
         Program block of each chord.
+    deviation : float
+        Largest distance [mm] of the curve from the programmed chords, as :func:`fit_run` checks it
+        (:func:`fit_deviation`); a kink blend beside the curve keeps within the rest of the tolerance.
     """
 
     pieces: tuple[SplineCurve, ...]
     vertex_u: np.ndarray
     blocks: np.ndarray
+    deviation: float = 0.0
 
     def block_at(self, u: np.ndarray) -> np.ndarray:
         """Block of the chord whose parameter range holds each curve parameter ``u``."""
@@ -338,16 +343,28 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
     """
     from scipy.interpolate import BSpline
 
-    u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-    f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
-    u_eval = np.append((u[:-1, None] + np.diff(u)[:, None] * f).ravel(), u[-1])
+    u = _chord_lengths(points)
     for knots in _knot_vectors(u):
         c = _solve(points, u, knots, tangents) if len(knots) - 4 >= 4 else None
         if c is not None:
             spl = BSpline(knots, c, 3)
-            if chord_distance(points, u, spl(u_eval), u_eval) <= FIT_SHARE * tolerance:
+            if fit_deviation(spl, points) <= FIT_SHARE * tolerance:
                 return spl
     return None
+
+
+def _chord_lengths(points: np.ndarray) -> np.ndarray:
+    """Cumulative chord length [mm] at each of ``points``: the curve parameter of a run's programmed points."""
+    return np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+
+
+def fit_deviation(spl: BSpline, points: np.ndarray) -> float:
+    """Largest distance [mm] of the curve ``spl`` (parametrised by chord length) from the chords through
+    ``points``, at :data:`CHECK_POINTS` parameters per chord (the check of :func:`fit_run`)."""
+    u = _chord_lengths(points)
+    f = (np.arange(CHECK_POINTS) / CHECK_POINTS)[None, :]
+    u_eval = np.append((u[:-1, None] + np.diff(u)[:, None] * f).ravel(), u[-1])
+    return chord_distance(points, u, spl(u_eval), u_eval)
 
 
 def _knot_vectors(u: np.ndarray):
@@ -484,9 +501,8 @@ def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float
     if spl is None and (t0 is not None or t1 is not None):
         spl = fit_run(points, tolerance)
     if spl is not None:
-        u = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-        run = MergedRun(pieces=_pieces(spl, points[0], points[-1], by_bound=by_bound), vertex_u=u,
-                        blocks=np.asarray(blocks[lo:hi], dtype=np.int64))
+        run = MergedRun(pieces=_pieces(spl, points[0], points[-1], by_bound=by_bound), vertex_u=_chord_lengths(points),
+                        blocks=np.asarray(blocks[lo:hi], dtype=np.int64), deviation=fit_deviation(spl, points))
         return [(lo, hi, run)]
     k = lo + 1 + int(np.argmax(turns[lo:hi - 1]))
     return (_merge(segments, lo, k, blocks, tolerance, (before, None), turns, by_bound=by_bound)

@@ -27,6 +27,19 @@ tangent arc would leave a curvature step at both of its ends, which the S-curve'
 hence the quintic (our
 reading). The blend's shape (end-tangent stretch) is the one of a few with the highest speed bound.
 
+The same quintic blends a tangent junction with a curvature step (line/arc, arc/arc of another radius or sense,
+line or arc/merged curve) under the S-curve: it ramps the curvature over ``2 d`` within the tolerance (its leg
+starts from ``d = sqrt(8 tolerance / dk)``, the offset of such a ramp being about ``dk d^2 / 8``), where it
+passes faster than the junction's own one-sample bound (``interpolators.interpolate._blend_worth``). Controls
+treat these junctions as a jerk problem of their own: the ISG kernel (Beckhoff TwinCAT CNC) lowers the speed
+at "tangential block transitions between circles with different radii and circles and linear blocks" only
+where ``corr_v_trans_jerk`` (P-CHAN-00009, default 0: off) is set, with the transition jerk an axis parameter
+(P-AXIS-00340 ``j_trans_c1``, "tangent continuous, non-curvature continuous block transitions", limited to the
+jerk from the acceleration and the cycle time); SINUMERIK lets an axis exceed its jerk there
+(MD32432 ``$MA_PATH_TRANS_JERK_LIM``, Function Manual Axes and Spindles B2, 06/2019, 12.2.16 "Excessive jerk
+for block transitions without constant curvature"). Without such a parameter here, the blend keeps every axis
+within its own jerk limit (our reading: a curvature ramp within P is what G64 allows).
+
 The path then stays tangent-continuous (and, with clothoids, curvature-continuous), and the
 blend's own speed bound (centripetal acceleration and, for the S-curve, jerk including the
 curvature derivative; see :mod:`interpolators.kinematics`) sets the corner speed.
@@ -61,6 +74,8 @@ DEFAULT_TOLERANCE: float = 0.01
 JUNCTION_SHARE: float = 0.1
 #: Smallest corner angle that is blended [rad]; smaller direction changes pass as junctions.
 _MIN_BLEND_ANGLE = 1e-7
+#: Smallest curvature step [1/mm] of a tangent junction that is blended (S-curve; :func:`_kink_blend`).
+_MIN_BLEND_STEP = 1e-6
 #: Largest corner angle that is blended [rad] (sharper corners are near-reversals: stop).
 _MAX_BLEND_ANGLE = math.pi - 1e-3
 
@@ -289,16 +304,22 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     of ``(A / k)^(1/2)`` and ``(J / |dk/ds|)^(1/3)``, :func:`interpolators.kinematics.curved_speed_bound` without
     its coupling term, ``k`` and ``dk/ds`` at :data:`_KINK_CHECK_POINTS` parameters). LinuxCNC sizes its line/arc
     and arc/arc blend arcs alike, the largest the tolerance and the segment lengths allow
-    (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). None where the turn lies outside
-    ``(_MIN_BLEND_ANGLE, _MAX_BLEND_ANGLE)`` or no blend fits."""
+    (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). A tangent junction (turn up to
+    :data:`_MIN_BLEND_ANGLE`) with a curvature step above :data:`_MIN_BLEND_STEP` starts from the leg of a curvature
+    ramp within ``tolerance`` (module docstring). None where the turn is :data:`_MAX_BLEND_ANGLE` or more, where it
+    is tangent without a curvature step, or where no blend fits."""
     la, lb = a.length, b.length
-    t_a, t_b = _frame(a, la)[1], _frame(b, 0.0)[1]
+    (_, t_a, k_a), (_, t_b, k_b) = _frame(a, la), _frame(b, 0.0)
     theta = math.atan2(float(np.linalg.norm(np.cross(t_a, t_b))), float(t_a @ t_b))
-    if not (_MIN_BLEND_ANGLE < theta < _MAX_BLEND_ANGLE) or tolerance <= 0:
+    step = float(np.linalg.norm(k_b - k_a))
+    if theta >= _MAX_BLEND_ANGLE or tolerance <= 0 or (theta <= _MIN_BLEND_ANGLE and step <= _MIN_BLEND_STEP):
         return None
     d_max = 0.49 * min(la, lb)  # under half: an arc or curve piece blended at both ends keeps a piece
-    leg_f, dev_f = ClothoidPair.shape_factors(theta)
-    d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
+    if theta > _MIN_BLEND_ANGLE:
+        leg_f, dev_f = ClothoidPair.shape_factors(theta)
+        d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
+    else:  # a tangent junction with a curvature step: the blend's curvature ramps over 2 d, off by about dk d^2 / 8
+        d_start = min(math.sqrt(8.0 * tolerance / step), d_max)
     u = np.linspace(0.0, 1.0, _KINK_CHECK_POINTS)
     corner = b.point_at(np.zeros(1))
     best, best_v = None, 0.0
@@ -329,16 +350,17 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     return SplineCurve.hermite(*best[0], stretch=best[1]), best[2]
 
 
-def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float]
-                 ) -> tuple[list[int], list[SplineCurve], list[float]]:
+def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float],
+                 offsets: np.ndarray) -> tuple[list[int], list[SplineCurve], list[float]]:
     """The kink blends (:func:`_kink_blend`) of the junctions ``candidates`` (``k``: between segment ``k`` and
     ``k + 1``, both :func:`_kinkable`): the junctions blended, their blends and legs. Beside a merged curve, which
-    may itself lie :data:`interpolators.dense.FIT_SHARE` of the tolerance off the programmed chords, the blend
-    keeps within the rest of it, so that the path stays within the tolerance of the program."""
+    lies up to ``offsets`` [mm] (its fit's deviation; NaN: :data:`interpolators.dense.FIT_SHARE` of the tolerance,
+    what its fit may take) off the programmed chords, the blend keeps within the rest of the tolerance, so that the
+    path stays within the tolerance of the program (the two distances add at most)."""
     corners, blends, legs = [], [], []
     for k in candidates:
-        curve = isinstance(segments[k], SplineCurve) or isinstance(segments[k + 1], SplineCurve)
-        tolerance = float(tolerances[k]) * ((1.0 - FIT_SHARE) if curve else 1.0)
+        tolerance = float(tolerances[k])
+        tolerance -= float(np.nan_to_num(offsets[k:k + 2], nan=FIT_SHARE * tolerance).max())
         made = _kink_blend(segments[k], segments[k + 1], tolerance, limits)
         if made is not None:
             corners.append(k)
@@ -356,6 +378,7 @@ def blend_corners(
     curvature_continuous: bool = False,
     kink_limits: tuple[float, float] = (1.0, 25.0),
     kinks: bool = True,
+    offsets: list[float] | None = None,
 ) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
     """Blend the corners of a continuous chain (line/line; with ``curvature_continuous`` every kink).
 
@@ -383,6 +406,11 @@ def blend_corners(
     kinks : bool
         False: only the line/line corners, also under ``curvature_continuous`` (a chain moving the axes beyond
         X, Y, Z, whose motion across a blend :mod:`interpolators.axis_blends` gives for line/line corners only).
+    offsets : list of float, optional
+        Per segment, its largest distance [mm] from the programmed path: a merged curve's fit deviation
+        (:attr:`interpolators.dense.MergedRun.deviation`), 0 for a line or arc; a kink blend keeps within the
+        tolerance less the larger offset of its two segments. By default a curve piece
+        (:class:`toolpaths.geometry.SplineCurve`) takes the :data:`interpolators.dense.FIT_SHARE` its fit may use.
 
     Returns
     -------
@@ -411,7 +439,10 @@ def blend_corners(
     if curvature_continuous and kinks:
         kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
         cand = np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
-        corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits)
+        if offsets is None:  # NaN: a curve piece whose fit may take FIT_SHARE of the tolerance
+            offsets = [math.nan if isinstance(sg, SplineCurve) else 0.0 for sg in segments]
+        corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits,
+                                           np.asarray(offsets, dtype=float))
         if kinks:
             accepted = [True] * len(kinks) if worth is None else np.asarray(
                 worth(CornerBlends.of(np.array(corners), kinks)), dtype=bool).tolist()

@@ -141,16 +141,18 @@ def test_arc_arc_kink_passes_at_speed():
 
 
 def test_line_into_merged_chords_with_a_kink():
-    """S-curve / trapezoid time: 1.064 with the kinks as stops, now 1.042."""
+    """S-curve / trapezoid time: 1.064 with the kinks as stops, 1.038 with the kink blends in the (1 - FIT_SHARE)
+    of the tolerance the fit left them, now 1.027: they take what the fit's own deviation leaves (0.1 mm less
+    about 0.002 mm here), passing the kinks at 15.0 mm/s instead of 13.0."""
     prog = parse_program(_line_into_chords())
     sp = interpolate(prog, profile="scurve", limits=LIMITS)
     check_limits(sp, prog, LIMITS, jerk=True, feed=True)
-    # the merged curve keeps its share of the tolerance (FIT_SHARE), the kink blends beside it the rest
+    # the merged curve keeps within its fit's deviation, the kink blends beside it within the rest
     assert _distance_from_program(sp, prog).max() <= 0.1 * (1 + 1e-6)
     first, last = prog.blocks[3].segment, prog.blocks[-2].segment
-    assert _speed_near(sp, tuple(first.end[:2])) > 2.0
-    assert _speed_near(sp, tuple(last.start[:2])) > 2.0
-    assert sp.duration < 1.05 * interpolate(prog, profile="trapezoid", limits=LIMITS).duration
+    assert _speed_near(sp, tuple(first.end[:2]), 0.1) > 14.0  # the blend passes within P = 0.1 of the kink
+    assert _speed_near(sp, tuple(last.start[:2]), 0.1) > 14.0
+    assert sp.duration < 1.035 * interpolate(prog, profile="trapezoid", limits=LIMITS).duration
     assert np.all(np.diff(sp.block) >= 0)
 
 
