@@ -397,3 +397,27 @@ def test_inch_p_is_converted_to_mm_and_read_as_deg_on_a(profile):
     assert distance_to_path(sp) <= 0.0508
     assert 0.02 <= _axis_deviation(sp, prog, "a") <= 0.9 * 0.0508 + 1e-9
     check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_an_axis_at_rest_at_another_value_in_each_blend_keeps_each_value(profile):
+    """C at rest across the first blended corner (at 0) and the last (at 10), moved between them by a line whose
+    corners are reversals (never blended): each blend keeps C at its own value. Before, C counted as still in the
+    chain's one spline and took the first blend's value in both: a 10 deg jump in one sample at the last blend."""
+    prog = _program(["G21 G90 G64 P0.05 G0 X0 Y0 Z0 A0 C0", "G1 F3000 X10 Y0 A1 C0", "X20 Y5 A2 C0",
+                     "X10 Y5 A3 C10", "X20 Y5 A4 C10", "X30 Y0 A5 C10", "X40 Y5 A6 C10"])
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" in sp.meta  # the two corners blended
+    c = sp.position[:, sp.axes.index("c")]
+    assert np.all(c[sp.block <= 2] == 0.0) and np.all(c[sp.block >= 4] == pytest.approx(10.0, abs=1e-12))
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert _axis_deviation(sp, prog, "c") <= 1e-9
+    assert distance_to_path(sp) <= 0.05
+
+
+def test_hermite_axes_keeps_an_axis_at_rest_at_a_value_of_each_blend():
+    """An axis at rest in two blends at 0 and at 10: each blend's polynomial at its own value (not the first's)."""
+    zero = np.zeros((2, 1))
+    spl, offset = hermite_axes(np.array([1.0, 1.0]), np.array([[0.0], [10.0]]), np.array([[0.0], [10.0]]), zero, zero)
+    assert spl(offset[1] + np.array([0.0, 0.5, 1.0]))[:, 0] == pytest.approx([10.0] * 3, abs=1e-12)
+    assert spl(offset[0] + 0.5)[0] == 0.0
