@@ -261,21 +261,20 @@ def interpolate(
       profile runs along the XYZ path at its feed; with X, Y, Z still along the U V W distance at
       the feed [mm/s], or with U, V, W still too along the rotary distance at the feed [deg/s]
       (RS274/NGC 3, Sec. 2.1.2.5; ``Block.extra_length``). The path bounds are capped so that each
-      of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under
-      G64 consecutive feed moves of X/Y/Z with these axes are passed at speed where every axis'
-      velocity step fits in one sample (:func:`interpolators.kinematics.extra_junction_speed_limit`,
-      see ``_extra_block``; dense runs merged with the other axes, :func:`interpolators.dense.fit_axes`; line/line
-      corners blended with the other axes on a quintic, :mod:`interpolators.axis_blends`); the
-      chords of one rapid under tool centre point control likewise; other blocks moving them start and end
-      at rest. Setpoint columns ``a, b, c`` are in deg, ``u, v, w`` in mm.
+      of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under G64 consecutive feed
+      moves of X/Y/Z with these axes are passed at speed where every axis' velocity step fits in one sample
+      (:func:`interpolators.kinematics.extra_junction_speed_limit`, see ``_extra_block``; dense runs merged with the
+      other axes, :func:`interpolators.dense.fit_axes`; line/line corners blended with the other axes on a quintic,
+      :mod:`interpolators.axis_blends`); the chords of one rapid under tool centre point control likewise; other blocks
+      moving them start and end at rest. Setpoint columns ``a, b, c`` are in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
       :data:`NEGLIGIBLE_SHARE`) plan with the full axis limits; chains that pass a discontinuity
-      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve: tangent
-      curvature jumps are passed where each axis' acceleration step fits in one sample
-      (:func:`interpolators.kinematics.curvature_step_speed_limit`); kinks beside arcs and merged curves
-      are blended within ``P`` by a G2 quintic where that pays (:func:`interpolators.lookahead.blend_corners`).
+      at speed reserve :data:`interpolators.lookahead.JUNCTION_SHARE` of them for it. S-curve: kinks beside arcs and
+      merged curves, and tangent junctions with a curvature step, are blended within ``P`` by a G2 quintic where that
+      pays (:func:`interpolators.lookahead.blend_corners`); a tangent curvature jump left unblended is passed where each
+      axis' acceleration step fits in one sample (:func:`interpolators.kinematics.curvature_step_speed_limit`).
     * G64, dense code: runs of short lines (CAM output) are merged into one smooth curve within
       the tolerance (:mod:`interpolators.dense`; under the S-curve also the chords of tight curves,
       :func:`interpolators.dense.curve_junctions`), planned with the curve's curvature bounds; the

@@ -397,9 +397,9 @@ def blend_corners(
     curvature_continuous : bool
         Blend every corner with a clothoid pair (G2); otherwise with a circular arc where the
         corner lies in a principal plane and with a clothoid pair elsewhere. With it, the kinks
-        (tangent steps) of line/arc, arc/line, arc/arc, line or arc/merged-curve and curve/curve junctions
-        are blended too, by a G2 quintic (:func:`_kink_blend`) that shortens both neighbours; ``worth`` judges them
-        as well.
+        (tangent steps) of line/arc, arc/line, arc/arc, line or arc/merged-curve and curve/curve junctions, and
+        those junctions where tangent with a curvature step, are blended too, by a G2 quintic (:func:`_kink_blend`)
+        that shortens both neighbours; ``worth`` judges them as well.
     kink_limits : tuple of float
         Path acceleration and jerk limits ``(A, J)`` [mm/s^2, mm/s^3] the kink blends' shapes are chosen
         for (only their ratio matters).
