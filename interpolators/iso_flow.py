@@ -651,21 +651,19 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         modal_calls: ModalCalls | None = None, skip_after_number: bool = True) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
-    ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or
-    backward GOTO sends execution back (:mod:`interpolators.iso_macro`): guards against endless loops.
-    ``subroutine_path`` lists further folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH).
-    ``tape_leader``: the text after the first ``%`` of each file, to its line end, is skipped (Fanuc).
-    ``decimal_point_input``: Fanuc's DPI setting (``MachineContext.decimal_point_input``, the ``fanuc`` dialect)
-    for the G65 arguments written without a decimal point (:func:`_plain_argument`); None: they are errors.
-    ``on_comment(keyword, text, where)`` receives each active comment the run reaches but ABORT
-    (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it they are
-    comments. ``on_note(text)`` receives what the run read in a form its manuals do not give (``M98 Q``).
-    ``on_call_words(words, where)``: when given, an M98 block only calls and its other words, read and not
-    executed, go to it (LinuxCNC, :func:`_call_words_only`); without it they run before the call (Fanuc, Haas).
-    ``modal_calls``: G66, G66.1 and G67 run as Fanuc's modal macro calls (:mod:`interpolators.iso_modal_call`),
-    in force in it; without it they are yielded as words (which the reader refuses).
-    ``skip_after_number``: a '/' right after the line's sequence number runs as block delete (Fanuc, Haas, grbl);
-    False: refused, as LinuxCNC does (:func:`_skip_after_number`).
+    ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or backward GOTO sends
+    execution back (:mod:`interpolators.iso_macro`): guards against endless loops. ``subroutine_path`` lists further
+    folders searched for ``<name>.ngc`` (LinuxCNC SUBROUTINE_PATH). ``tape_leader``: the text after the first ``%`` of
+    each file, to its line end, is skipped (Fanuc). ``decimal_point_input``: Fanuc's DPI setting
+    (``MachineContext.decimal_point_input``, the ``fanuc`` dialect) for the G65 arguments written without a decimal
+    point (:func:`_plain_argument`); None: they are errors. ``on_comment(keyword, text, where)`` receives each active
+    comment the run reaches but ABORT (:func:`interpolators.iso_messages.comment_output`: the text as shown); without it
+    they are comments. ``on_note(text)`` receives what the run read in a form its manuals do not give (``M98 Q``).
+    ``on_call_words(words, where)``: when given, an M98 block only calls and its other words, read and not executed, go
+    to it (LinuxCNC, :func:`_call_words_only`); without it they run before the call (Fanuc, Haas). ``modal_calls``: G66,
+    G66.1 and G67 run as Fanuc's modal macro calls (:mod:`interpolators.iso_modal_call`), in force in it; without it
+    they are yielded as words (which the reader refuses). ``skip_after_number``: a '/' right after the line's sequence
+    number runs as block delete (Fanuc, Haas, grbl); False: refused, as LinuxCNC does (:func:`_skip_after_number`).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -682,7 +680,6 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}
-    modal = modal_calls
     pc = 0
     executed = 0
     while pc < len(prog.code) and (frames or pc < prog.main_end):
@@ -700,7 +697,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             continue
         code = prog.code[pc]
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
-        if words is not None and not _may_call(code, words) and not (modal and modal.calls):  # most CAM output
+        if words is not None and not _may_call(code, words) and not (modal_calls and modal_calls.calls):  # CAM output
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
             line.__dict__.update(line=pc - prog.first_line[prog.sources[pc]] + 1, raw=prog.raw[pc].strip(), words=words,
                                  file=prog.sources[pc])
@@ -722,9 +719,9 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc += 1
             continue
         calls = _calls(words)
-        modal_code = next((w for w in calls if w.letter == "G" and w.value != 65), None) if modal else None
+        modal_code = next((w for w in calls if w.letter == "G" and w.value != 65), None) if modal_calls else None
         if modal_code is not None:
-            words = _modal_code(prog, pc, words, modal_code, modal, frames, decimal_point_input, on_note)
+            words = _modal_code(prog, pc, words, modal_code, modal_calls, frames, decimal_point_input, on_note)
             calls = _calls(words)
             if not words:
                 pc += 1
@@ -736,7 +733,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         m98 = next((w for w in calls if w.letter == "M" and w.value in (97, 98)), None)
         m99 = next((w for w in calls if w.letter == "M" and w.value == 99), None)
         if m98 is None and m99 is None:
-            pc = yield from _block(prog, pc, words, where, None if modal_code else modal, params, frames,
+            pc = yield from _block(prog, pc, words, where, None if modal_code else modal_calls, params, frames,
                                    decimal_point_input, on_note)
             continue
         if m98 is not None and on_call_words is not None:
