@@ -327,3 +327,15 @@ def test_fuzz_dump_creates_its_folder(tmp_path, capsys):
     out = tmp_path / "new" / "folder"
     assert trace_fuzz.main(["--dump", "7", "--out", str(out)]) == 0
     assert (out / "fuzz_7.csv").is_file() and str(out / "fuzz_7.csv") in capsys.readouterr().out
+
+
+def test_a_stated_resolution_leaves_columns_in_mm_with_three_decimals_read(tmp_path):
+    # a drive tool states its encoder's resolution above columns it names in mm: 19.725 there is 19.725 mm, not a
+    # count grouped by thousands (refused as such after tracewild7; read before it)
+    f = tmp_path / "mm.txt"
+    f.write_text("Resolution: 0.5 um\nTime [s]\tX Soll [mm]\tX Ist [mm]\n"
+                 + "".join(f"{0.001 * k:.3f}\t{19.725 + 0.013 * k:.3f}\t{19.720 + 0.013 * k:.3f}\n" for k in range(8)))
+    cap = read_capture(f)
+    assert cap.reference[1, 0] == pytest.approx(19.738) and cap.measured[1, 0] == pytest.approx(19.733)
+    with pytest.raises(CaptureError, match="'19.725' beside counts"):  # the user says they are counts of 0.5 um
+        read_capture(f, unit="0.5um")

@@ -772,12 +772,14 @@ def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mappi
     or units row (:func:`_counted_columns`), or, for every position, a count size the preamble states (``Resolution:
     0.5 um``: the file logs counts, whatever ``--unit`` says; a count is a whole number, so ``19.725`` in every cell
     there is 19725 grouped by thousands, never 19.725 counts). A plain unit given (``--unit mm``, not a count size
-    such as ``0.5um``) says the positions are no counts."""
+    such as ``0.5um``) says the positions are no counts, and so does a column's own plain unit without one given
+    (``X Soll [mm]``: the resolution is the encoder's, the column mm)."""
     marked = {k: f"a count unit ({c!r})" for k, c in _counted_columns(header, units_row, idx).items()}
     size = stated_count_size(above)
     if size is not None and (unit is None or unit_named(unit, "length") is None):
         said = f"counts (line {size.line} states {size.text!r})"
-        marked.update({k: said for k in idx if k != "t" and k not in marked})
+        own = _header_units(header, units_row, idx, None, unit)
+        marked.update({k: said for k in idx if k != "t" and k not in marked and own[k] not in LENGTH_UNITS})
     return marked
 
 
