@@ -146,14 +146,13 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     T = capture.sample_time  # the nominal period (time stamps as decimals give 0.0010000000000000009)
     span = float(np.ptp(xr))
     u = axis_unit(axis)  # mm, or deg on a rotary axis
-    if span == 0.0 and float(np.ptp(x)) == 0.0:
-        raise IdentificationError(
-            f"no motion on axis {axis!r}: reference and measurement stay at {float(xr[0])!r} {u}", file=src
-        )
     if span == 0.0:
-        raise IdentificationError(
-            f"no commanded motion on axis {axis!r}: the reference stays at {float(xr[0])!r} {u}", file=src
-        )
+        moving = [a for j, a in enumerate(capture.axes) if j != i and np.ptp(capture.reference[:, j]) > 0.0]
+        hint = f"; the commanded motion is on {', '.join(moving)} (identify one of them: --axis {moving[0]})" \
+            if moving else ""
+        what = "no motion" if float(np.ptp(x)) == 0.0 else "no commanded motion"
+        stays = "reference and measurement stay" if what == "no motion" else "the reference stays"
+        raise IdentificationError(f"{what} on axis {axis!r}: {stays} at {float(xr[0])!r} {u}{hint}", file=src)
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
     if span < 1.0 and vmax < 2.0:
         if capture.meta.get(UNIT_GIVEN):

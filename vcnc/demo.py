@@ -488,14 +488,16 @@ def run_emps_demo(
     import identification
     from identification.diagnosis import diagnose
 
-    folder = Path(emps_dir or os.environ.get("VCNC_EMPS_DIR") or "")
+    given = emps_dir or os.environ.get("VCNC_EMPS_DIR") or ""
+    folder = Path(given)
     files = {"DATA_EMPS": folder / "DATA_EMPS.mat", "DATA_EMPS_PULSES": folder / "DATA_EMPS_PULSES.mat"}
     missing = [str(p) for p in files.values() if not p.is_file()]
-    if missing or not str(folder):
+    if missing or not given:
+        where = ", ".join(missing) if given else "no folder given: --emps without DIR and VCNC_EMPS_DIR unset"
         raise CaptureError(
-            f"EMPS data not found ({', '.join(missing) or 'no folder given'}); download DATA_EMPS.mat and "
+            f"EMPS data not found ({where}); download DATA_EMPS.mat and "
             f"DATA_EMPS_PULSES.mat from {EMPS_URL} and pass their folder (--emps DIR or VCNC_EMPS_DIR)",
-            file=str(folder) if str(folder) else None,
+            file=given or None,
         )
     stages = _Stages(["identify", "diagnose", "report"], progress=progress)
     report = Report("vcnc demo: the real EMPS drive")

@@ -70,3 +70,13 @@ def test_before_after_figure(data):
     assert len(axes) == 4
     labels = axes[0].get_legend_handles_labels()[1]
     assert labels[0].startswith("reduced model")
+    assert labels[1].startswith("+ ")  # the augmented model's effects are named
+    # the spectrum runs to the Nyquist frequency on log axes (a mode above 100 Hz shows)
+    assert axes[3].get_xlim()[1] == pytest.approx(0.5 / TS) and axes[3].get_xscale() == "log"
+    assert "held-out validation RMS" in axes[0].figure._suptitle.get_text()
+
+
+def test_before_after_figure_without_an_effect_says_so(data):
+    xr, x, model, _ = data
+    labels = plot_before_after(xr, x, TS, model, model)[0].get_legend_handles_labels()[1]
+    assert labels[1].startswith("final model: no effect added (RMS ")

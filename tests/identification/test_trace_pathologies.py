@@ -293,3 +293,17 @@ def test_a_drift_refit_the_identification_refuses_keeps_the_first_fit():
     assert "the fit with it taken out was refused (only 465 samples" in line
     with pytest.raises(IdentificationError, match="only 465 samples"):
         identify(cap, bounds=bounds, refine="none", diagnose=False, drift="remove")
+
+
+def test_an_axis_at_rest_names_the_axes_that_move():
+    # a KUKA RSI weld log read without --axis: x stood at 1279.5 mm while y and z moved, and the message named only x
+    t = np.arange(2000) * 1e-3
+    y = 10.0 * np.sin(np.linspace(0.0, 4.0 * np.pi, t.size))
+    ref = np.column_stack([np.full(t.size, 1279.5), y, 0.5 * y])
+    cap = Capture(t=t, axes=("x", "y", "z"), reference=ref, measured=ref - 1e-3)
+    msg = r"no motion on axis 'x': reference and measurement stay at 1279.5 mm; the commanded motion is on y, z "
+    with pytest.raises(IdentificationError, match=msg + r"\(identify one of them: --axis y\)$"):
+        check_capture(cap, "x")
+    still = Capture(t=t, axes=("x", "y"), reference=ref[:, :2] * [1.0, 0.0], measured=ref[:, :2] * [1.0, 0.0])
+    with pytest.raises(IdentificationError, match=r"no motion on axis 'y': reference and measurement stay at 0.0 mm$"):
+        check_capture(still, "y")

@@ -8,6 +8,7 @@ tree, as JSON, and as a page rendered by headless Chromium (Debian's ``chromium`
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -109,4 +110,14 @@ def test_cli_demo_missing_emps_is_bad_input(tmp_path):
     assert r.returncode == 2
     assert r.stderr.startswith("error:")
     assert "nonlinearbenchmark.org" in r.stderr
+    assert not (tmp_path / "vcnc-demo-emps").exists()
+
+
+def test_cli_demo_emps_without_folder_says_none_was_given(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k != "VCNC_EMPS_DIR"}
+    r = subprocess.run([sys.executable, "-m", "vcnc", "demo", "--emps"], capture_output=True, text=True,
+                       cwd=tmp_path, env=env)
+    assert r.returncode == 2
+    assert r.stderr.startswith("error: EMPS data not found (no folder given: --emps without DIR and VCNC_EMPS_DIR "
+                               "unset); download DATA_EMPS.mat")
     assert not (tmp_path / "vcnc-demo-emps").exists()

@@ -93,8 +93,9 @@ def plot_summary(table: pa.Table, *, ax=None):  # noqa: ANN001, ANN201 - matplot
 
 def _draw(rows: list[dict], panels: list[tuple[str, str, str, str, str]], axes: list[Any]) -> None:
     if not panels:
-        axes[0].text(0.5, 0.5, "no finished points to plot", ha="center", va="center",
-                     transform=axes[0].transAxes)
+        message = "no finished points to plot" if not rows else (
+            f"nothing to plot: none of feed, gain, magnitude, noise\nvaries over the {len(rows)} finished points")
+        axes[0].text(0.5, 0.5, message, ha="center", va="center", transform=axes[0].transAxes)
         axes[0].set_axis_off()
         return
     for a, (x, y, by, ylabel, title) in zip(axes, panels):
