@@ -257,7 +257,10 @@ class _Ruckig:
         Ruckig 0.19 raises ``RuckigError`` ("error in step 1") on some inputs exactly at the border
         of two profile types (found by fuzzing: ``V = 2 A^2/J`` and ``L = 2 A^3/J^2`` at once, from
         limits scaled by a rotary axis); the segment is then planned once more with the limits
-        :data:`RUCKIG_RETRY_SHRINK` smaller, which moves it off that border and keeps every limit.
+        :data:`RUCKIG_RETRY_SHRINK` smaller, which moves it off that border and keeps every limit. It raises too on
+        a segment of some nm whose end speeds differ by their rounding (27 nm at 21.7 mm/s, the end speed a few
+        1e-15 mm/s lower: found by fuzzing dense chords under the S-curve); such a segment is then planned at its
+        start speed throughout (speeds within :data:`RUCKIG_RETRY_SHRINK` of each other).
         """
         try:
             res = self._calculate(L, v0, v1, V, A, J)
@@ -267,6 +270,11 @@ class _Ruckig:
                 res = self._calculate(L, v0, v1, max(V * k, v0, v1), A * k, J * k)
             except ruckig.RuckigError:
                 res = None
+            if res is None and v0 != v1 and abs(v0 - v1) <= RUCKIG_RETRY_SHRINK * max(v0, v1):
+                try:
+                    res = self._calculate(L, v0, v0, V, A, J)
+                except ruckig.RuckigError:
+                    res = None
         if res not in (ruckig.Result.Working, ruckig.Result.Finished):
             raise VcncError(
                 f"ruckig found no S-curve profile (result {res}) for length {L!r} mm, speeds {v0!r} -> {v1!r} mm/s, "
