@@ -755,10 +755,6 @@ def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt:
     predicts the measured position at least twice better (RMS of the simulation, on the same
     samples) than the one fitted without it: the regression alone can trade loop lag for a shift
     (fadal-ppi, no shift: the regression's best shift is 13.7 samples; its model predicts 19.4 um RMS, 16.7 without).
-    A negative shift (:mod:`identification.dead_time`: the reference recorded after the loop acted on it) is kept
-    when it predicts better at all: the loop's lag biases the regression's shift positive, never negative
-    (ident_fuzz seed 12 case 72, ballscrew-zpetc at 1 ms with its reference 2 samples late and a saturation: -1.5
-    samples, 6.46 -> 3.50 um, had been dropped, and the fit bent to 94 Hz, zeta 1.05).
     The samples the shift leaves unknown are left out at the end; at the start only when the record
     does not start at rest (:func:`identification.loop_frame.starts_at_rest`; otherwise the
     delayed reference's held first value is right). Cutting the start regardless left chevalier-pdf,
@@ -777,7 +773,7 @@ def _dead_time(delay: str | float, xr: np.ndarray, x: np.ndarray, T: float, opt:
             rms0, rms1 = (_prediction_rms(xr, x, T, d, opt, b, keep=slice(first, x.size - m), free_offset=free_offset)
                           for d in (0.0, est.samples))
             record.update(rms_without_um=rms0 * 1e3, rms_with_um=rms1 * 1e3)
-            if not rms1 <= (0.5 if est.samples > 0 else 1.0) * rms0:
+            if not rms1 <= 0.5 * rms0:
                 record["delay_s"] = 0.0
                 log.info("reference shift of %.3g samples not kept: prediction %.4g -> %.4g um", est.samples,
                          rms0 * 1e3, rms1 * 1e3)

@@ -111,10 +111,10 @@ def _unused_shift(rec: dict) -> str:
         where = "ahead of" if rec["samples"] > 0 else "behind"
         return (f"it lowers the equation error to {100 * ratio:.3g} % only, where a reference recorded {where} the "
                 f"loop lowers it below {100 * MAX_OBJECTIVE_RATIO:g} %")
-    if "rms_with_um" in rec:  # identification.identify._dead_time: kept when it predicts twice better (< 0: better)
+    if "rms_with_um" in rec:  # identification.identify._dead_time: kept when it predicts twice better
         return (f"the exact-solver model fitted on the shifted reference predicts {rec['rms_with_um']:.4g} for "
-                f"{rec['rms_without_um']:.4g} without the shift, not {'twice ' if rec['samples'] > 0 else ''}better "
-                "(both before the output-error refinement; the final prediction is the one above)")
+                f"{rec['rms_without_um']:.4g} without the shift, not twice better (both before the output-error "
+                "refinement; the final prediction is the one above)")
     return "not kept by the fit"
 
 
