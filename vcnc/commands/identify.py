@@ -104,11 +104,12 @@ def _unused_shift(rec: dict) -> str:
     (:func:`identification.dead_time.estimate_delay`'s rule)."""
     from identification.dead_time import MAX_OBJECTIVE_RATIO, MIN_DELAY_SAMPLES
 
-    if abs(rec["samples"]) < MIN_DELAY_SAMPLES:
+    if 0.0 <= rec["samples"] < MIN_DELAY_SAMPLES:
         return (f"shorter than {MIN_DELAY_SAMPLES:g} samples, which the loop model's own lag cannot be told from")
     ratio = rec.get("objective_ratio", float("nan"))
     if not ratio <= MAX_OBJECTIVE_RATIO:
-        return (f"it lowers the equation error to {100 * ratio:.3g} % only, where a reference recorded ahead of the "
+        where = "ahead of" if rec["samples"] > 0 else "behind"
+        return (f"it lowers the equation error to {100 * ratio:.3g} % only, where a reference recorded {where} the "
                 f"loop lowers it below {100 * MAX_OBJECTIVE_RATIO:g} %")
     if "rms_with_um" in rec:  # identification.identify._dead_time: kept when it predicts twice better
         return (f"the exact-solver model fitted on the shifted reference predicts {rec['rms_with_um']:.4g} for "
