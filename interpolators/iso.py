@@ -1136,7 +1136,10 @@ def _incremental_g53(st: State, notes: Notes) -> bool:
     reading follows the Fanuc-compatible Mitsubishi M700V
     programming manual, 14.4 "Basic Machine Coordinate System Selection; G53", (4): "In the incremental value
     command mode (G91), the G53 command provides movement with the incremental value": the axes move by the
-    words from where they are (as a G91 block without G53 would), noted."""
+    words from where they are (as a G91 block without G53 would), noted. Another Fanuc-compatible control reads it
+    otherwise: the Allen-Bradley 8520 9/Series manual, 11.1.1, "the control ignores the G53 code and any axis words
+    in the G53 block" under G91 (no motion); the note says the block was read as increments, so a user of such a
+    control sees where the readings part."""
     if not (st.incremental and st.context.dialect.name in ("fanuc", "haas")):
         return False
     notes.add("G53 under G91: its axis words moved as increments from the current position (Mitsubishi M700V "
