@@ -48,7 +48,7 @@ def test_identify_small_capture(small_capture):
          "not uniform"),
         (lambda c: dataclasses.replace(c, t=np.where(np.arange(len(c)) == 900, 0.0, c.t)), CaptureError,
          "not increasing"),
-        (lambda c: c.slice(0, 400), IdentificationError, "only 400 samples"),
+        (lambda c: c.slice(0, 249), IdentificationError, "only 249 samples; identification needs at least 250"),
         (lambda c: _cap(np.zeros(len(c)), np.zeros(len(c))), IdentificationError, "no motion"),
         (lambda c: _cap(np.abs(c.reference[:, 0]) + 0 * np.maximum.accumulate(c.reference[:, 0]),
                         np.maximum.accumulate(c.measured[:, 0])), IdentificationError, "one direction only"),
@@ -122,9 +122,9 @@ def test_cli_bad_input_exit_2_no_output(tmp_path, capsys, text, match):
 
 def test_cli_too_short_exit_2(tmp_path, small_capture, capsys):
     src = tmp_path / "short.csv"
-    small_capture.slice(0, 300).to_csv(src)
+    small_capture.slice(0, 200).to_csv(src)
     assert main(["identify", str(src), "--json", str(tmp_path / "m.json")]) == 2
-    assert "only 300 samples" in capsys.readouterr().err
+    assert "only 200 samples; identification needs at least 250" in capsys.readouterr().err
     assert not (tmp_path / "m.json").exists()
 
 

@@ -73,11 +73,22 @@ def test_an_8_ms_record_is_fitted_at_8_sub_steps():
 
 
 def test_a_short_record_is_refused_with_the_samples_it_needs():
-    cap = _recording()
-    short = Capture(t=cap.t[:400], axes=("x",), reference=cap.reference[:400], measured=cap.measured[:400],
-                    meta={"source": "shape"})
-    with pytest.raises(IdentificationError, match=r"only 400 samples; identification needs at least 500"):
-        identify(short, axis="x")
+    cap = _recording(logged_s=0.004, moves=20)  # a slow logger: 4 ms
+    with pytest.raises(IdentificationError, match=r"only 249 samples; identification needs at least 250 \(the thesis' "
+                       r"test has 22,000 at 1 ms\)"):
+        identify(cap.slice(0, 249), axis="x")
+
+
+def test_a_record_at_the_floor_is_fitted_and_validated_on_its_folds():
+    # 250 samples of a 4 ms logger (1 s, the first 5 of 20 moves): the poles as from the whole record, the RMS
+    # near the floor, and the diagnosis' validation cuts them into 2 folds that move both ways
+    cap = _recording(logged_s=0.004, moves=20).slice(0, 250)
+    model = identify(cap, axis="x")
+    assert model.fit["substeps"] == 4
+    assert _poles_within(model.poles, 0.01)
+    assert model.fit["rms_um"] == pytest.approx(0.630, rel=0.03)
+    assert len(model.validation["folds"]) == 2
+    assert model.validation["samples"] == {"identification": 250, "validation": 250, "record": 250}
 
 
 def test_an_axis_that_barely_moves_is_told_so_not_that_its_channel_is_another():
