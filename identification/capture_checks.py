@@ -25,8 +25,9 @@ __all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "
            "check_swapped", "polynomial_share", "INTERPOLATED_SHARE", "RESPONSE_SHARE", "through_changes"]
 
 #: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms). Slow loggers (4-8 ms
-#: for a few seconds) give 150-450 samples, and 250 fit as well as 500 (2026-11-25, session 31's floor31
-#: ``evidence.py``): on the 7 built-in machines at 4 and 8 ms (2 seeds each), the first 250 samples' poles are
+#: for a few seconds) give 150-450 samples, and 250 fit as well as 500 (measured 2026-11-25 with the first N samples
+#: of decimated built-in captures against the 1 ms fit): on the 7 built-in machines at 4 and 8 ms (2 seeds each),
+#: the first 250 samples' poles are
 #: within 15 % of the 1 ms fit's and their RMS within 3x the noise floor + 1 um wherever the first 500's are (at
 #: most 6 % off; held-out RMS on the rest of the record 1.00-1.10x the whole record's fit's, 500: 1.01-1.05x), and
 #: where 500 fail so do 250 (ballscrew-zpetc's pole pair +49-54 %, chevalier-pdf's, fadal-pid's RMS at 8 ms). EMPS
