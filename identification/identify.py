@@ -316,6 +316,20 @@ def _refit_without_offset(original: Capture, axis: str, fit: dict, **options) ->
     return model
 
 
+def _checked_frame(capture: Capture, framed: Capture, axis: str, opt: RegressorOptions) -> tuple:
+    """:func:`check_capture` of the capture in the loop's frame; a refusal for its length says how many of the
+    record's samples the frame dropped (a user who gave 250 samples was told "only 131 samples")."""
+    try:
+        return check_capture(framed, axis, options=opt)
+    except IdentificationError as e:
+        dropped = capture.t.size - framed.t.size
+        if not (dropped > 0 and e.message.startswith("only ")):
+            raise
+        raise IdentificationError(f"{e.message}; {dropped} of the record's {capture.t.size} samples were dropped "
+                                  "before the loop's frame starts (the reference's dead time and a start with the "
+                                  "axis not yet settled)", file=e.file) from e
+
+
 def _in_loop_frame(capture: Capture, axis: str, delay: str | float, xr: np.ndarray, x: np.ndarray, T: float,
                    opt: RegressorOptions, b: PoleBounds):
     """``(capture in the loop's frame, samples dropped at its start, OffsetEstimate, delay_s [s],
@@ -324,7 +338,7 @@ def _in_loop_frame(capture: Capture, axis: str, delay: str | float, xr: np.ndarr
     first = _datum_offset(xr, x, T, opt, b)
     delay_s, delay_fit = _dead_time(delay, xr, x - first.offset_mm, T, opt, b, free_offset=first.applied)
     framed, start = loop_frame(capture, axis, offset_mm=first.offset_mm, delay_samples=delay_s / T)
-    second = _datum_offset(*check_capture(framed, axis, options=opt), opt, b)
+    second = _datum_offset(*_checked_frame(capture, framed, axis, opt), opt, b)
     offset = _combined(first, second)
     if offset.offset_mm != first.offset_mm:
         framed, start = loop_frame(capture, axis, offset_mm=offset.offset_mm, delay_samples=delay_s / T)

@@ -12,6 +12,8 @@ import math
 import numpy as np
 import pytest
 
+import toolpaths
+import vcnc
 from identification import identify
 from identification.capture_checks import through_changes
 from identification.diagnosis import before_after_rows, format_before_after
@@ -77,6 +79,22 @@ def test_a_short_record_is_refused_with_the_samples_it_needs():
     with pytest.raises(IdentificationError, match=r"only 249 samples; identification needs at least 250 \(the thesis' "
                        r"test has 22,000 at 1 ms\)"):
         identify(cap.slice(0, 249), axis="x")
+
+
+def test_a_record_short_in_the_loops_frame_says_how_many_samples_were_dropped():
+    # fadal-smc logged at 4 ms for 250 samples: the axis has not settled at the start, the loop's frame drops 119
+    # samples, and the refusal said "only 131 samples" to a user who gave 250
+    m0 = vcnc.machine("fadal-smc")
+    m = m0.with_axis_options("x", noise=3e-4, encoder=2.5e-4)
+    feed = round(0.5 * 60 * m.axis("x").limits.velocity)
+    sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(60, 3.0, feed, seed=1, axes=("x",))), m)
+    cap = m.simulate(sp, seed=1).select_axes(("x",))
+    s = round(4e-3 / m.sample_time)
+    rec = Capture(t=cap.t[::s][:250], axes=("x",), reference=cap.reference[::s][:250], measured=cap.measured[::s][:250])
+    with pytest.raises(IdentificationError, match=r"only 131 samples; identification needs at least 250 \(the thesis' "
+                       r"test has 22,000 at 1 ms\); 119 of the record's 250 samples were dropped before the loop's "
+                       r"frame starts \(the reference's dead time and a start with the axis not yet settled\)"):
+        identify(rec, axis="x", diagnose=False)
 
 
 def test_a_record_at_the_floor_is_fitted_and_validated_on_its_folds():
