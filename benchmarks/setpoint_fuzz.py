@@ -5,9 +5,10 @@ The readers' fuzzers (``benchmarks/linuxcnc_fuzz.py``, ``tests/interpolators/fan
 of random programs: those three generators' programs and CAM-like dense code written here (:func:`cam_program`:
 chords of random curves 1 um - 2 mm long, tangent arc chains, tiny arcs, zig-zags, helices, near-reversals, very
 short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`: the same in TNC conversational
-with cycle 32 tolerances), each run under the trapezoid and the S-curve with random but sane limits per axis
-(:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, rapid rates) and a sample
-time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
+with cycle 32 tolerances; :func:`rotary_cam_program`: coarse chords with A-C swinging and cornering under G94 and
+G93, tangent arc chains of alternating sense, a third in G20), each run under the trapezoid and the S-curve with
+random but sane limits per axis (:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between
+axes, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
 
 * ``nonfinite``: a NaN or infinity in a column;
 * ``limits``: an axis beyond its velocity, acceleration (or, S-curve, jerk) limit by finite differences or in the
