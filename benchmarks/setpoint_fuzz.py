@@ -5,9 +5,10 @@ The readers' fuzzers (``benchmarks/linuxcnc_fuzz.py``, ``tests/interpolators/fan
 of random programs: those three generators' programs and CAM-like dense code written here (:func:`cam_program`:
 chords of random curves 1 um - 2 mm long, tangent arc chains, tiny arcs, zig-zags, helices, near-reversals, very
 short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`: the same in TNC conversational
-with cycle 32 tolerances), each run under the trapezoid and the S-curve with random but sane limits per axis
-(:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, rapid rates) and a sample
-time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
+with cycle 32 tolerances; :func:`rotary_cam_program`: coarse chords with A-C swinging and cornering under G94 and
+G93, tangent arc chains of alternating sense, a third in G20), each run under the trapezoid and the S-curve with
+random but sane limits per axis (:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between
+axes, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
 
 * ``nonfinite``: a NaN or infinity in a column;
 * ``limits``: an axis beyond its velocity, acceleration (or, S-curve, jerk) limit by finite differences or in the
@@ -20,7 +21,9 @@ time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
   cycle 32 T or the dialect's tolerance, ``Block.tolerance``);
 * ``corner``: a programmed block end not passed within the block's tolerance (not on a sample within 1 nm where
   the block ends at rest);
-* ``dwell``: a dwell not held at rest for its time rounded up to whole samples.
+* ``dwell``: a dwell not held at rest for its time rounded up to whole samples;
+* ``axis``: an axis beyond X/Y/Z outside its programmed values over the sample's block and two blocks either side,
+  widened by their largest tolerance (deg on A-C).
 
 ``python -m benchmarks.setpoint_fuzz --count 200 --seed 0`` prints a table of outcomes per source; ``--list``
 names every failing case (source, seed, profile, sample time, kind and detail).
@@ -48,7 +51,7 @@ from vcnc.core.axes import EXTRA_NAMES  # noqa: E402
 from vcnc.errors import GCodeError, ProgramTooLongError  # noqa: E402
 
 #: Sources of programs: name -> (program text, machine context) of a seed.
-SOURCES = ("cam", "tnc_cam", "linuxcnc", "fanuc", "haas", "tnc")
+SOURCES = ("cam", "tnc_cam", "rotary_cam", "linuxcnc", "fanuc", "haas", "tnc")
 #: Largest number of samples a case may take (a longer one is skipped as ``too_long``).
 MAX_SAMPLES = 3_000_000
 #: A point "on" a sample [mm] (exact stops, program start and end).
@@ -65,22 +68,23 @@ def _num(rng: random.Random, v: float) -> str:
 class _Cam:
     """A CAM-like ISO program being written: its lines and the current point [mm]."""
 
-    def __init__(self, rng: random.Random, *, tnc: bool = False):
+    def __init__(self, rng: random.Random, *, tnc: bool = False, unit: float = 1.0):
         self.r = rng
         self.tnc = tnc
+        self.unit = unit  # mm per program unit: 25.4 under G20 (coordinates, feeds and P written in inches)
         self.lines: list[str] = []
         self.pos = np.array([0.0, 0.0, 5.0])
         self.extra = False
 
     def move(self, p, *, rapid: bool = False, feed: float | None = None, extra: str = "") -> None:
         """A straight move to ``p`` (written with the program's rounding; the current point follows it)."""
-        words = [self._coord(a, v) for a, v in zip("XYZ", p)]
-        self.pos = np.array([float(w[1:]) for w in words])
+        words = [self._coord(a, v / self.unit) for a, v in zip("XYZ", p)]
+        self.pos = np.array([float(w[1:]) * self.unit for w in words])
         if self.tnc:
             f = " FMAX" if rapid else (f" F{feed:.0f}" if feed else "")
             self.lines.append(f"L {' '.join(words)} R0{f}")
         else:
-            f = f" F{feed:.0f}" if feed else ""
+            f = f" F{feed / self.unit:.{0 if self.unit == 1.0 else 2}f}" if feed else ""
             self.lines.append(f"{'G0' if rapid else 'G1'} {' '.join(words)}{extra}{f}")
 
     def _coord(self, axis: str, v: float) -> str:
@@ -94,16 +98,16 @@ class _Cam:
         ang = math.atan2(end[1] - c[1], end[0] - c[0])
         end = c + r0 * np.array([math.cos(ang), math.sin(ang)])
         zz = self.pos[2] if z is None else z
-        ex, ey, ez = (f"{v:.6f}" for v in (end[0], end[1], zz))
+        ex, ey, ez = (f"{v / self.unit:.6f}" for v in (end[0], end[1], zz))
         if self.tnc:
             self.lines.append(f"CC X{c[0]:+.6f} Y{c[1]:+.6f}")
             zw = f" Z{float(ez):+.6f}" if z is not None else ""
             self.lines.append(f"C X{float(ex):+.6f} Y{float(ey):+.6f}{zw} DR{'+' if ccw else '-'}")
         else:
-            i, j = c - self.pos[:2]
+            i, j = (c - self.pos[:2]) / self.unit
             zw = f" Z{ez}" if z is not None else ""
             self.lines.append(f"{'G3' if ccw else 'G2'} X{ex} Y{ey}{zw} I{i:.6f} J{j:.6f}")
-        self.pos = np.array([float(ex), float(ey), float(ez)])
+        self.pos = np.array([float(ex), float(ey), float(ez)]) * self.unit
 
     def mode(self) -> None:
         """A path mode: G61, G64, G64 P (TNC: cycle 32 with or without T, or none)."""
@@ -113,7 +117,8 @@ class _Cam:
             if k < 0.6:
                 self.lines += ["CYCL DEF 32.0 TOLERANCE", f"CYCL DEF 32.1 T{tol}" if k < 0.45 else "CYCL DEF 32.1"]
             return
-        self.lines.append("G61" if k < 0.2 else "G64" if k < 0.4 else f"G64 P{tol}")
+        p = tol if self.unit == 1.0 else f"{tol / self.unit:.6f}"
+        self.lines.append("G61" if k < 0.2 else "G64" if k < 0.4 else f"G64 P{p}")
 
     def feed(self) -> float:
         return self.r.choice((100.0, 500.0, 1500.0, 3000.0, 6000.0, 12000.0, 30000.0))
@@ -219,6 +224,82 @@ def _extra_axes(g: _Cam) -> None:
         g.move(g.pos + [r.uniform(-3, 3), r.uniform(-3, 3), 0], extra=f" {axis}{value:.4f}")
 
 
+def _rotary_words(values: dict[str, float]) -> str:
+    return "".join(f" {a}{v:.4f}" for a, v in values.items())
+
+
+def _rotary_chords(g: _Cam, *, inverse_time: bool = False) -> None:
+    """Coarse chords (0.3 - 5 mm) of a gentle curve with one to three of A, B, C swinging beside X/Y/Z, a corner
+    (a turn of 10 - 120 degrees, or a rotary axis reversing) every few chords; with ``inverse_time`` under G93
+    with an F on every block, the chords' speeds differing up to 5x from one block to the next, G94 after."""
+    r = g.r
+    axes = r.sample("ABC", r.randint(1, 3))
+    values = {a: r.uniform(-30, 30) for a in axes}
+    amp = {a: r.uniform(1, 40) for a in axes}
+    step = 10 ** r.uniform(math.log10(0.3), math.log10(5))
+    heading, bend = r.uniform(0, 2 * math.pi), r.uniform(-0.3, 0.3)
+    g.extra = True
+    feed = g.feed()
+    g.move(g.pos, feed=feed, extra=_rotary_words(values))
+    if inverse_time:
+        g.lines.append("G93")
+    for k in range(r.randint(4, 30)):
+        heading += bend if r.random() < 0.8 else math.radians(r.uniform(10, 120)) * r.choice((1, -1))
+        for a in axes:
+            values[a] += amp[a] * step / 10 * (1 if (k // r.randint(1, 4)) % 2 == 0 else -1)
+        p = g.pos + [step * math.cos(heading), step * math.sin(heading), r.choice((0.0, 0.0, r.uniform(-0.3, 0.3)))]
+        if inverse_time:
+            g.move(p, extra=_rotary_words(values))
+            g.lines[-1] += f" F{feed * r.uniform(0.2, 5) / step:.3f}"
+        else:
+            g.move(p, feed=feed if r.random() < 0.1 else None, extra=_rotary_words(values))
+    if inverse_time:
+        g.lines.append("G94")
+        g.move(g.pos + [step, 0, 0], feed=g.feed())
+
+
+def _alternating_arcs(g: _Cam) -> None:
+    """Tangent chains of arcs turning alternately left and right (radii 0.005 - 2 mm), some joined by short
+    tangent lines: line/arc and arc/arc junctions whose curvature changes sign."""
+    r = g.r
+    heading = r.uniform(0, 2 * math.pi)
+    g.move(g.pos + [math.cos(heading), math.sin(heading), 0], feed=g.feed())
+    ccw = r.random() < 0.5
+    for _ in range(r.randint(3, 16)):
+        rad = 10 ** r.uniform(math.log10(0.005), math.log10(2.0))
+        side = 1 if ccw else -1
+        c = g.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * side
+        sweep = r.uniform(0.1, 2.5) * side
+        a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
+        g.arc(c, c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)]), ccw)
+        heading += sweep
+        if r.random() < 0.3:
+            length = 10 ** r.uniform(-2.5, 0)
+            g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0])
+        ccw = not ccw if r.random() < 0.85 else ccw
+
+
+_ROTARY_SECTIONS = (_rotary_chords, _rotary_chords, lambda g: _rotary_chords(g, inverse_time=True),
+                    _alternating_arcs, _extra_axes, _chords, _arc_chain)
+
+
+def rotary_cam_program(seed: int) -> str:
+    """A CAM-like ISO program of ``seed`` for the rotary-axis blends and S-curve tangent junctions: coarse chords
+    with A/B/C swinging and cornering (under G94 or G93 with F changing every block), tangent line/arc and arc/arc
+    chains of alternating sense with small radii, in random path modes, a third of the programs in G20 (inches:
+    coordinates, feeds and P; A-C stay in degrees)."""
+    r = random.Random(f"rotary_cam:{seed}")
+    g = _Cam(r, unit=25.4 if r.random() < 1 / 3 else 1.0)
+    g.lines.append(f"{'G20' if g.unit != 1.0 else 'G21'} G17 G90 G40 G94")
+    g.move([0, 0, 5], rapid=True)
+    for _ in range(r.randint(2, 5)):
+        g.mode()
+        r.choice(_ROTARY_SECTIONS)(g)
+        if r.random() < 0.2:
+            g.move(g.pos + [0, 0, r.uniform(0.5, 5)], rapid=True)
+    return "\n".join([*g.lines, "M2"]) + "\n"
+
+
 _SECTIONS = (_chords, _chords, _chords, _arc_chain, lambda g: _arc_chain(g, tiny=True), _zigzag, _helix,
              _reversals)
 
@@ -252,6 +333,8 @@ def program_of(source: str, seed: int) -> tuple[str, MachineContext]:
         return cam_program(seed), INTERPOLATION_CONTEXT
     if source == "tnc_cam":
         return cam_program(seed, tnc=True), DEFAULT_CONTEXT
+    if source == "rotary_cam":
+        return rotary_cam_program(seed), INTERPOLATION_CONTEXT
     if source == "linuxcnc":
         return linuxcnc_fuzz.generate(seed)[0], INTERPOLATION_CONTEXT
     if source in ("fanuc", "haas"):
@@ -348,6 +431,35 @@ def _jump_failures(sp, limits) -> list[str]:
     return []
 
 
+def _axis_failures(program, sp, tol: np.ndarray) -> list[str]:
+    """Each axis beyond X/Y/Z within its programmed values over the sample's block and the two blocks either side,
+    widened by the largest tolerance among them (read as deg on A-C): a blend or a merged run follows the
+    polyline of those values within 0.9 of it (``axis_blends.excess``, ``dense.fit_axes``), so a sample outside
+    overshot or took another value (a unit, a G93 feed, a blend's end)."""
+    cols = [(k, EXTRA_NAMES.index(a)) for k, a in enumerate(sp.axes) if a not in "xyz"]
+    if not cols:
+        return []
+    zero = np.zeros(len(EXTRA_NAMES))
+    ends = np.array([[zero if b.extra_start is None else b.extra_start, zero if b.extra_target is None
+                      else b.extra_target] for b in program.blocks])
+    lo, hi, wide = ends.min(axis=1), ends.max(axis=1), tol.copy()
+    n = len(program.blocks)
+    for shift in (1, 2):
+        for src in (np.minimum(np.arange(n) + shift, n - 1), np.maximum(np.arange(n) - shift, 0)):
+            lo, hi = np.minimum(lo, ends.min(axis=1)[src]), np.maximum(hi, ends.max(axis=1)[src])
+            wide = np.maximum(wide, tol[src])
+    blk = np.clip(sp.block, 0, None)
+    for k, j in cols:
+        v = sp.position[:, k]
+        out = np.maximum(lo[blk, j] - v, v - hi[blk, j]) - wide[blk] - ALLOWANCE
+        if np.any(out > 0):
+            i = int(np.argmax(out))
+            return [f"axis: {sp.axes[k]} at sample {i} (block {blk[i]}, line {program.blocks[blk[i]].line}) "
+                    f"{v[i]:.6g}, {out[i] + wide[blk[i]] + ALLOWANCE:.3g} beyond its programmed values "
+                    f"{lo[blk[i], j]:.6g} .. {hi[blk[i], j]:.6g}, tolerance {wide[blk[i]]:g}"]
+    return []
+
+
 def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) -> list[str]:
     """The failures of ``sp`` (setpoints of ``program`` under ``limits`` and ``profile``), one line per kind
     (see the module docstring); empty when every invariant holds."""
@@ -386,6 +498,7 @@ def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) ->
     a_xyz = np.linalg.norm([limits[a].acceleration for a in sp.axes if a in "xyz"])
     out += _corner_failures(program, sp, xyz(sp), tol, a_xyz * sp.sample_time**2 / 8)
     out += _dwell_failures(program, sp)
+    out += _axis_failures(program, sp, tol)
     return out
 
 

@@ -56,9 +56,9 @@ def hermite_axes(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_st
     as one :class:`scipy.interpolate.BSpline` of degree 5 (one spline evaluated at once for all the blends of a
     chain) and the parameter of each blend's start in it. Blend ``j`` is the polynomial of the knot interval
     ``[S_j, S_j + 2 length_j]`` (knots of multiplicity 6: no continuity between blends), so that its end ``S_j +
-    length_j`` lies inside it. Equal rates ``(end - start) / length`` give the straight line; an axis at one value
-    with zero rates in every blend has all its coefficients at that value (the planner's test of an axis kept
-    still); one at rest in each blend at another value (moved by an unblended line between them) is no such axis."""
+    length_j`` lies inside it. Equal rates ``(end - start) / length`` give the straight line; an axis with equal
+    ends and zero rates in a blend has that blend's coefficients at its value, so all of them where it keeps one
+    value in every blend (the planner's test of an axis kept still)."""
     from scipy.interpolate import BSpline
 
     length = np.asarray(length, dtype=float)
@@ -69,8 +69,11 @@ def hermite_axes(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_st
              + (length[:, None] * m1)[:, None, :] * _BASIS[2][None, :, None]) * (2.0 ** np.arange(6))[None, :, None]
     power[:, 0] += a0
     c = np.einsum("ik,jkl->jil", _TO_BERNSTEIN, power)  # (m, 6, k): Bernstein coefficients of each interval
-    still = np.all((a0 == a1) & (a0 == a0[:1]) & (m0 == 0) & (m1 == 0), axis=0)  # at one value in every blend
-    c[:, :, still] = a0[0, still]
+    # an axis still across a blend: exactly its value there (its own in each blend: the chain's lines between two
+    # blends may move it, and the first blend's value on all of them put U 1500 mm back to 0 in a G64 P0.05 chain
+    # whose unblended middle line moved it; setpoint fuzzer rotary_cam seed 40599)
+    still = (a0 == a1) & (m0 == 0) & (m1 == 0)
+    c = np.where(still[:, None, :], a0[:, None, :], c)
     offsets = np.concatenate([[0.0], np.cumsum(2.0 * length)])
     return BSpline(np.repeat(offsets, 6), c.reshape(-1, c.shape[2]), 5), offsets[:-1]
 

@@ -677,9 +677,13 @@ class SplineCurve:
     Notes
     -----
     The arc length ``s(u) = int |C'|`` is tabulated with 5-point Gauss-Legendre quadrature on
-    ``subdivisions`` sub-intervals of every knot interval; ``u(s)`` is the cubic Hermite
-    interpolant of the table with the exact slopes ``du/ds = 1/|C'(u)|`` (its error is far below
-    a nanometre for the curves the look-ahead fits: ``|C'|`` is close to 1 and smooth). Tangent
+    ``subdivisions`` sub-intervals of every knot interval; ``u(s)`` is the quintic Hermite
+    interpolant of the table with the exact ``du/ds = 1/|C'(u)|`` and ``d2u/ds2 = -(C'.C'')/|C'|^4``
+    (its error is far below a nanometre for the curves the look-ahead fits: ``|C'|`` is close to 1 and
+    smooth), so the points' second derivative along ``s`` is continuous across the table's nodes: the
+    cubic Hermite of ``u`` matched only ``du/ds``, and its ``d2u/ds2`` stepped at each node, a tangential
+    acceleration step ``v^2 |C'| d(d2u/ds2)`` that finite differences read as jerk (16 mm/s^2 at 11 mm/s on
+    a merged curve: Y 6.6 % over its jerk limit at Ts = 0.28 ms, setpoint fuzzer cam seed 40037). Tangent
     ``t = C'/|C'|`` and curvature vector ``k = (C'' - (C''.t) t)/|C'|^2``; its derivative
     ``dk/ds`` follows from the third derivative (:meth:`bounds`).
     """
@@ -696,25 +700,28 @@ class SplineCurve:
         nodes = _table_nodes(spline.t, u0, u1, subdivisions)
         q = _quadrature_points(nodes)
         speed = np.linalg.norm(d[0](q.ravel()), axis=1).reshape(q.shape)
-        sigma = np.linalg.norm(d[0](nodes), axis=1)
-        self._fill(spline, u0, u1, d, nodes, speed, sigma, spline(u0) if start is None else start,
+        self._fill(spline, u0, u1, d, nodes, speed, d[0](nodes), d[1](nodes), spline(u0) if start is None else start,
                    spline(u1) if end is None else end)
 
-    def _fill(self, spline, u0: float, u1: float, d: tuple, nodes: np.ndarray, speed: np.ndarray, sigma: np.ndarray,
-              start, end) -> None:
+    def _fill(self, spline, u0: float, u1: float, d: tuple, nodes: np.ndarray, speed: np.ndarray, d1: np.ndarray,
+              d2: np.ndarray, start, end) -> None:
         """Set the piece from its table ``nodes``, ``|C'|`` at their quadrature points (``speed``, shape
-        ``(len(nodes) - 1, 5)``) and at the nodes (``sigma``), and its end points."""
+        ``(len(nodes) - 1, 5)``), ``C'`` and ``C''`` at the nodes (``d1``, ``d2``) and its end points."""
         self.spline, self.u0, self.u1, self._d = spline, float(u0), float(u1), d
-        h = np.diff(nodes)
-        s_nodes = np.concatenate([[0.0], np.cumsum(h * (speed @ _GL_W))])
+        s_nodes = np.concatenate([[0.0], np.cumsum(np.diff(nodes) * (speed @ _GL_W))])
         self._nodes = nodes
-        # u(s): cubic Hermite on each table interval, as power-form coefficients (highest first) in s - s_j
-        du = 1.0 / sigma
-        h = np.diff(s_nodes)
-        slope = np.diff(nodes) / h
-        t = (du[:-1] + du[1:] - 2.0 * slope) / h
         self._s_nodes = s_nodes
-        self._u_poly = np.stack([t / h, (slope - du[:-1]) / h - t, du[:-1], nodes[:-1]])
+        # u(s): quintic Hermite on each table interval through u, du/ds = 1/|C'| and d2u/ds2 = -(C'.C'')/|C'|^4 at
+        # its nodes, as power-form coefficients (highest first) in s - s_j
+        g11 = np.einsum("ij,ij->i", d1, d1)
+        du = 1.0 / np.sqrt(g11)
+        ddu = -np.einsum("ij,ij->i", d1, d2) / (g11 * g11)
+        h = np.diff(s_nodes)
+        rest = np.diff(nodes) - (du[:-1] + ddu[:-1] * h / 2) * h
+        rate = (np.diff(du) - ddu[:-1] * h) * h
+        curv = np.diff(ddu) * h * h
+        self._u_poly = np.stack([(6 * rest - 3 * rate + curv / 2) / h**5, (-15 * rest + 7 * rate - curv) / h**4,
+                                 (10 * rest - 4 * rate + curv / 2) / h**3, ddu[:-1] / 2, du[:-1], nodes[:-1]])
         self.length = float(s_nodes[-1])
         self.start = _point(start, "SplineCurve start")
         self.end = _point(end, "SplineCurve end")
@@ -737,7 +744,8 @@ class SplineCurve:
         nodes = [_table_nodes(spline.t, u0, u1, subdivisions) for u0, u1 in zip(brk[:-1], brk[1:])]
         q = [_quadrature_points(nd) for nd in nodes]
         speed = np.linalg.norm(d[0](np.concatenate([x.ravel() for x in q])), axis=1)
-        sigma = np.linalg.norm(d[0](np.concatenate(nodes)), axis=1)
+        all_nodes = np.concatenate(nodes)
+        d1, d2 = d[0](all_nodes), d[1](all_nodes)
         at = spline(brk)
         ends = [*at[:-1], at[-1]]
         if start is not None:
@@ -749,7 +757,7 @@ class SplineCurve:
         for i, (nd, qi) in enumerate(zip(nodes, q)):
             piece = object.__new__(cls)
             piece._fill(spline, brk[i], brk[i + 1], d, nd, speed[iq:iq + qi.size].reshape(qi.shape).copy(),
-                        sigma[i_n:i_n + len(nd)], ends[i], ends[i + 1])
+                        d1[i_n:i_n + len(nd)], d2[i_n:i_n + len(nd)], ends[i], ends[i + 1])
             iq, i_n = iq + qi.size, i_n + len(nd)
             out.append(piece)
         _set_table_bounds(out)
@@ -811,7 +819,8 @@ class SplineCurve:
         j = np.minimum(np.maximum(np.searchsorted(self._s_nodes, s, side="right") - 1, 0), len(self._s_nodes) - 2)
         x = s - self._s_nodes[j]
         c = self._u_poly[:, j]
-        return np.minimum(np.maximum(((c[0] * x + c[1]) * x + c[2]) * x + c[3], self.u0), self.u1)
+        return np.minimum(np.maximum(((((c[0] * x + c[1]) * x + c[2]) * x + c[3]) * x + c[4]) * x + c[5], self.u0),
+                          self.u1)
 
     @staticmethod
     def parameters(pieces: Sequence[SplineCurve], piece: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -825,10 +834,10 @@ class SplineCurve:
         j = np.empty(len(s), dtype=np.int64)
         _table_intervals(s, piece, np.cumsum(size) - size, size, s_nodes, j)
         x = s - s_nodes[j]
-        c = np.concatenate([np.hstack([p._u_poly, np.zeros((4, 1))]) for p in pieces], axis=1)[:, j]
+        c = np.concatenate([np.hstack([p._u_poly, np.zeros((6, 1))]) for p in pieces], axis=1)[:, j]
         u0 = np.array([p.u0 for p in pieces])[piece]
         u1 = np.array([p.u1 for p in pieces])[piece]
-        return np.minimum(np.maximum(((c[0] * x + c[1]) * x + c[2]) * x + c[3], u0), u1)
+        return np.minimum(np.maximum(((((c[0] * x + c[1]) * x + c[2]) * x + c[3]) * x + c[4]) * x + c[5], u0), u1)
 
     @staticmethod
     def evaluate_pieces(pieces: Sequence[SplineCurve], piece: np.ndarray, s: np.ndarray, *, frame: bool = True

@@ -421,3 +421,21 @@ def test_hermite_axes_keeps_an_axis_at_rest_at_a_value_of_each_blend():
     spl, offset = hermite_axes(np.array([1.0, 1.0]), np.array([[0.0], [10.0]]), np.array([[0.0], [10.0]]), zero, zero)
     assert spl(offset[1] + np.array([0.0, 0.5, 1.0]))[:, 0] == pytest.approx([10.0] * 3, abs=1e-12)
     assert spl(offset[0] + 0.5)[0] == 0.0
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_an_axis_still_in_each_blend_keeps_its_own_value_in_each(profile):
+    # two corner blends in one chain (B turning at each), U still across both but moved 0 -> 1500 mm by the line
+    # between them, whose corners are not blended: the chain's one blend spline took the first blend's U (0) for
+    # both, so U jumped 1500 -> 0 -> 1500 mm through the second blend (found: setpoint fuzzer rotary_cam seed 40599,
+    # the same program in inches)
+    prog = _program(["G21 G90 G64 P0.05", "G1 X0 Y0 Z5 B27 F100", "G1 X-0.4 Y-0.45 B29", "G1 X-11 Y10 U1500",
+                     "G1 X-14 Y9 B-5", "G1 X-16 Y9.4 B-16"])
+    sp = interpolate(prog, profile=profile)
+    u, b = sp.position[:, sp.axes.index("u")], sp.position[:, sp.axes.index("b")]
+    assert np.abs(u[sp.block <= 1]).max() == 0.0
+    np.testing.assert_allclose(u[sp.block >= 3], 1500.0, rtol=0, atol=1e-9)
+    # B passes its corner value -5 deg within P (read as deg) in the blend
+    assert np.abs(b[sp.block >= 3] + 5.0).min() <= 0.05
+    assert np.abs(np.diff(u)).max() <= 1500.0 / 100  # no step: U moves 1500 mm over one line at F100-ish rates
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
