@@ -36,7 +36,8 @@ def _program(lines: list[str]) -> object:
 def _lines(shape: str, rotary: bool) -> list[str]:
     """The lines of :func:`benchmarks.dense_code.rotary_programs` ``shape`` (``helix``: 400 chords of a two-lap R10
     helix at F2000, A 0 -> 90 deg; ``swarf``: 500 chords of an ellipse rising and falling in Z, A tilting and C
-    turning once; ``reversal``: 400 chords of 0.2 mm along a gentle S, A swinging +-30 deg), without its M2."""
+    turning once; ``reversal``: 400 chords of 0.2 mm along a gentle S, A swinging +-30 deg; ``coarse``: the helix in
+    60 chords of 2.1 mm, too coarse to merge, under G64 P0.05), without its M2."""
     return rotary_programs(shape, rotary).splitlines()[:-1]
 
 
@@ -260,24 +261,13 @@ def test_inverse_time_chords_merge_at_the_slowest_feed_of_each_piece(profile):
     assert _axis_deviation(sp, prog, "a") <= 0.01
 
 
-def _coarse_helix(with_a: bool) -> list[str]:
-    """60 chords of 2.1 mm (turning 0.21 rad each: too coarse to merge) of the two-lap R10 helix at F2000 under
-    G64 P0.05, A 0 -> 90 deg."""
-    out = ["G21 G90 G64 P0.05 G0 X10 Y0 Z0 A0", "G1 F2000"]
-    for i in range(1, 61):
-        t = 4 * math.pi * i / 60
-        out.append(f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / 60:.4f}"
-                   + (f" A{90 * i / 60:.4f}" if with_a else ""))
-    return out
-
-
 @pytest.mark.parametrize("profile", PROFILES)
 def test_coarse_chords_with_a_blend_their_corners_across_every_axis(profile):
     """The coarse helix's corners are blended as without A (a tangent arc, S-curve a clothoid pair, within P of the
     corner) and A follows a quintic across each blend, its rate continuous: the run takes the time it takes
     without A (before, each corner at the one-sample rule: 4.854 s trapezoid, 7.087 s S-curve against 3.913 s and
     3.993 s), A within P of its programmed motion, every limit held."""
-    plain, rotary = _program(_coarse_helix(False)), _program(_coarse_helix(True))
+    plain, rotary = _program(_lines("coarse", False)), _program(_lines("coarse", True))  # 60 chords of 2.1 mm, P0.05
     sp0, sp = interpolate(plain, profile=profile), interpolate(rotary, profile=profile)
     assert sp.duration == pytest.approx(sp0.duration, abs=2 * sp.sample_time)
     assert "programmed_path" in sp.meta
