@@ -141,8 +141,10 @@ def test_effect_whose_refit_gains_only_by_the_reduced_parameters_is_not_named():
     same record without the effects: 76 Hz, zeta 2.0), 4.41 um held out. The joint refit of a ``drift`` moved the
     reduced parameters out of it and was named for 4.41 -> 2.68 um, with a rate of 8.1e-6 mm/s: 27 nm over the
     record, no part of the gain. An effect other than an element must now itself carry the refit's gain (the
-    refitted model without it predicts worse by min_gain: diagnosis._idle_effect); the drift's refit is 2.66 um
-    with it and without it."""
+    refitted model without it predicts worse by min_gain: diagnosis._idle_effect). The case sits on a knife edge:
+    once the profile's phase times were counted in whole samples (1e-10 mm apart) the diagnosis no longer refitted a
+    drift on it, so the test runs the same record on the program of seed 22, where the refit still happens: before
+    the rule, drift was named there for 4.38 -> 2.67 um; its refit is 2.649 um with the drift and 2.651 without."""
     import numpy as np
 
     import toolpaths
@@ -150,20 +152,20 @@ def test_effect_whose_refit_gains_only_by_the_reduced_parameters_is_not_named():
     m = vcnc.machine("fadal-smc").with_axis_options("y", noise=None, encoder=None)
     m = m.with_effect("y", "position_periodic", {"period_mm": 10.0})
     m = m.with_effect("y", "backlash", {"width_mm": 0.025537})
-    sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(58, 3.0, 11973, seed=512281533, axes=("y",))), m)
+    sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(58, 3.0, 11973, seed=22, axes=("y",))), m)
     cap = m.simulate(sp, seed=436863)
     i = cap.axis_index("y")
     early = np.concatenate([cap.reference[1:, i], cap.reference[-1:, i]])  # logged one sample early
     rec = vcnc.Capture(t=cap.t, axes=("y",), reference=early[:, None], measured=cap.measured[:, i:i + 1])
     model = identify(rec, axis="y")
     first = model.validation["rounds"][0]
-    assert first["refitted"]["drift"]["validation_rms_um"] == pytest.approx(2.68, abs=0.05)
+    assert first["refitted"]["drift"]["validation_rms_um"] == pytest.approx(2.67, abs=0.05)
     with_drift, without = first["no_contribution_um"]["drift"]
-    assert with_drift == pytest.approx(2.66, abs=0.05)
+    assert with_drift == pytest.approx(2.65, abs=0.05)
     assert without == pytest.approx(with_drift, abs=0.01)
     assert first["accepted"] is None
     assert model.effects == []
-    assert model.validation["rms_after_um"] == pytest.approx(4.50, abs=0.05)  # the width rounded: 4.41 in the fuzz
+    assert model.validation["rms_after_um"] == pytest.approx(4.38, abs=0.05)
 
 
 def test_a_lag_refitted_as_a_critically_damped_mode_is_no_resonance():
