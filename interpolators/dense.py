@@ -341,6 +341,12 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
     BSpline or None
         Parametrised by cumulative chord length; None when no knot spacing fits.
     """
+    fitted = _fit_with_deviation(points, tolerance, tangents)
+    return None if fitted is None else fitted[0]
+
+
+def _fit_with_deviation(points: np.ndarray, tolerance: float, tangents: tuple) -> tuple[BSpline, float] | None:
+    """:func:`fit_run`'s spline and its :func:`fit_deviation` (the check that accepted it), or None."""
     from scipy.interpolate import BSpline
 
     u = _chord_lengths(points)
@@ -348,8 +354,9 @@ def fit_run(points: np.ndarray, tolerance: float, *, tangents: tuple = (None, No
         c = _solve(points, u, knots, tangents) if len(knots) - 4 >= 4 else None
         if c is not None:
             spl = BSpline(knots, c, 3)
-            if fit_deviation(spl, points) <= FIT_SHARE * tolerance:
-                return spl
+            deviation = fit_deviation(spl, points)
+            if deviation <= FIT_SHARE * tolerance:
+                return spl, deviation
     return None
 
 
@@ -497,12 +504,13 @@ def _merge(segments: list, lo: int, hi: int, blocks: list[int], tolerance: float
         t0 = _end_tangent(before, False)
     if after is not None and _turn(segments[hi - 1].direction, _end_tangent(after, True)) <= DENSE_MAX_TURN:
         t1 = _end_tangent(after, True)
-    spl = fit_run(points, tolerance, tangents=(t0, t1))
-    if spl is None and (t0 is not None or t1 is not None):
-        spl = fit_run(points, tolerance)
-    if spl is not None:
+    fitted = _fit_with_deviation(points, tolerance, (t0, t1))
+    if fitted is None and (t0 is not None or t1 is not None):
+        fitted = _fit_with_deviation(points, tolerance, (None, None))
+    if fitted is not None:
+        spl, deviation = fitted
         run = MergedRun(pieces=_pieces(spl, points[0], points[-1], by_bound=by_bound), vertex_u=_chord_lengths(points),
-                        blocks=np.asarray(blocks[lo:hi], dtype=np.int64), deviation=fit_deviation(spl, points))
+                        blocks=np.asarray(blocks[lo:hi], dtype=np.int64), deviation=deviation)
         return [(lo, hi, run)]
     k = lo + 1 + int(np.argmax(turns[lo:hi - 1]))
     return (_merge(segments, lo, k, blocks, tolerance, (before, None), turns, by_bound=by_bound)
