@@ -643,8 +643,13 @@ def _judge(model: AugmentedAxisModel, data: Data, plan: FoldPlan, opt: Diagnosis
 
 def _contradicting_folds(before: list[float], after: list[float], opt: DiagnosisOptions) -> list[int]:
     """Folds whose held-out RMS rises by >= min_gain and >= min_gain_um with the effect."""
-    return [i for i, (b, a) in enumerate(zip(before, after))
-            if a - b >= opt.min_gain_um and (b <= 0 or (a - b) / b >= opt.min_gain)]
+    return [i for i, (b, a) in enumerate(zip(before, after)) if _raises(b, a, opt)]
+
+
+def _raises(before: float, after: float, opt: DiagnosisOptions) -> bool:
+    """Is ``after`` [um] above ``before`` by ``min_gain`` relative and ``min_gain_um`` (a fold or the whole record
+    an effect makes worse)?"""
+    return after - before >= opt.min_gain_um and (before <= 0 or (after - before) / before >= opt.min_gain)
 
 
 def diagnose(capture: Capture, model: ReducedAxisModel, *, axis: str,
@@ -824,7 +829,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
         r_va = j.held_out_rms_um
         gain = _gain(prev, r_va)
         against = _contradicting_folds(stage.fold_rms_um, j.fold_rms_um, opt)
-        ok = gain >= opt.min_gain and (prev - r_va) >= opt.min_gain_um and j.rms_um < cur_rms and not against
+        ok = _lowers(prev, r_va, opt) and j.rms_um < cur_rms and not against
         if against:
             record.setdefault("contradicted_by_folds", {})[c.effect.NAME] = [i + 1 for i in against]
         if ok:
@@ -855,7 +860,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
             r_null = null.held_out_rms_um
             nested = _gain(r_null, r_va)
-            ok = nested >= opt.min_gain and (r_null - r_va) >= opt.min_gain_um
+            ok = _lowers(r_null, r_va, opt)
             record.setdefault("nested", {})[c.effect.NAME] = {"null_validation_rms_um": r_null,
                                                               "gain_pct": 100.0 * nested}
         if ok:
@@ -906,7 +911,7 @@ def _worse_on_the_record(before: ReducedAxisModel, after: AugmentedAxisModel, da
     idle samples from 0.0003 to 0.19 um, and lowers the error on all samples from 0.71 to 0.43 um."""
     b = _errors(before, data, np.ones(data.n, bool))[0]
     a = _errors(after, data, np.ones(data.n, bool))[0]
-    if not math.isfinite(a) or (a - b >= opt.min_gain_um and (b <= 0 or (a - b) / b >= opt.min_gain)):
+    if not math.isfinite(a) or _raises(b, a, opt):
         return b, a
     return None
 
@@ -924,7 +929,7 @@ def _idle_effect(j: _Judged, name: str, data: Data, opt: DiagnosisOptions) -> tu
     without = augment(j.model, rest)
     b = _errors(without, data, data.active)[0]
     a = j.rms_um
-    if math.isfinite(b) and not (b - a >= opt.min_gain_um and _gain(b, a) >= opt.min_gain):
+    if math.isfinite(b) and not _lowers(b, a, opt):
         return a, b
     return None
 
@@ -946,6 +951,12 @@ def _accepted_stage(chosen: tuple, tried: list[tuple], stage: Stage, record: dic
                  validation_rms_um=j.held_out_rms_um, validation_max_um=j.held_out_max_um,
                  identification_rms_um=j.rms_um, identification_max_um=j.max_um, evidence=ev,
                  fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um, in_sample_folds=j.in_sample_folds)
+
+
+def _lowers(before: float, after: float, opt: DiagnosisOptions) -> bool:
+    """Is ``after`` [um] below ``before`` by ``min_gain`` relative and ``min_gain_um``: the gain an effect must
+    bring (on the held-out error, over its null, or of its own share of a refit)?"""
+    return before - after >= opt.min_gain_um and _gain(before, after) >= opt.min_gain
 
 
 def _gain(before: float, after: float) -> float:
