@@ -503,6 +503,8 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             dialect = st.context.dialect.name
             mill = (MILL_G.get(key, DIALECT_G[dialect].get(key)) if dialect in DIALECT_G
                     else LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
+            if dialect == "linuxcnc" and key == 80 and any(v.letter == "P" for v in words):
+                mill = None  # Fanuc's G08 P1 / P0 (look-ahead), named by _unsupported_g, not LinuxCNC's G8
             if mill is not None and mill[0] == "refused":  # LinuxCNC's code, another meaning in this dialect
                 where.fail(f"{mill[1]}: not supported", column=w.column, text=w.text,
                            expected=f"milling G codes of the {dialect} dialect")
@@ -792,6 +794,9 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
         st.inverse_time = key == 930
         st.per_rev = key == 950
     st.block_f = seen["F"].value if "F" in seen else None
+    if "lathe mode" in gcodes:  # LinuxCNC's G8 (interpolators.iso_codes.LINUXCNC_G)
+        notes.add("G8 lathe radius mode (LinuxCNC's default at power up): X is the distance from the centre, "
+                  "as it always is here")
     # units, plane and distance modes first: they apply to this block's own words
     if "units" in gcodes:
         key, w = gcodes["units"]

@@ -165,9 +165,14 @@ LINUXCNC_UNDEFINED: dict[int, str] = {870: f" ({_UNDEFINED}; --dialect fanuc run
                                       880: f" ({_UNDEFINED})"}
 
 
-#: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error).
+#: Codes only the ``linuxcnc`` dialect reads (the Fanuc/Haas dialects name them in an error). G8: LinuxCNC's
+#: g-code.adoc "G8 Lathe Radius Mode": "the X axis moves ... will be the distance from the center ... G8 is
+#: default at power up"; rs274 takes it on any machine. vcnc's X is always that distance (G7, diameter mode,
+#: is refused), so G8 moves nothing: a mill program started from a lathe template ("G40 G8") runs as LinuxCNC
+#: runs it.
 LINUXCNC_G: dict[int, tuple[str, str]] = {432: ("length compensation", "G43.2 additional tool length offset"),
-                                           52: ("motion", "G5.2 NURBS block"), 53: ("motion", "G5.3 NURBS end")}
+                                           52: ("motion", "G5.2 NURBS block"), 53: ("motion", "G5.3 NURBS end"),
+                                           80: ("lathe mode", "G8 lathe radius mode")}
 
 
 PLANE_OF = {"XY": 2, "ZX": 1, "YZ": 0}

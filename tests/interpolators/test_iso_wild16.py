@@ -112,9 +112,9 @@ def test_fanuc_look_ahead_codes_are_named_under_linuxcnc(code, column, message):
         parse_program(text, context=LINUXCNC)
     prog = checked_iso(text, FANUC)
     assert prog.blocks[-1].target.tolist() == [10.0, 0.0, 5.0]
-    if code.startswith("G08"):  # a lathe program's G8 (LinuxCNC lathe radius mode) is not given the hint
-        with pytest.raises(GCodeError, match=r":2:1: G8 lathe radius mode: not supported \(got 'G8'\)"):
-            parse_program(text.replace("G08 P1", "G8"), context=LINUXCNC)
+    if code.startswith("G08"):  # a bare G8 is LinuxCNC's lathe radius mode, its default at power up: no motion
+        prog = checked_iso(text.replace("G08 P1", "G8"), LINUXCNC)
+        assert prog.blocks[-1].target.tolist() == [10.0, 0.0, 5.0]
 
 
 def test_the_macro_alarm_and_message_stop_set_under_linuxcnc_are_noted():
