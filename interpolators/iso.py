@@ -429,7 +429,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         message_stops(params, st, blocks, notes)
         line_notes(fl, source, external, notes)
         if dialect.name == "linuxcnc":  # M73's state comes back when its subroutine returns
-            _enter_level(st, len(params.frames), plain, Where(fl.file, fl.line, fl.raw), notes)
+            _enter_level(st, len(params.frames), params.lowest_since_last(), plain, Where(fl.file, fl.line, fl.raw),
+                         notes)
         while homing and fl.file == source and homing[0] < fl.line:
             grbl_homing(st, blocks, used, Where(source, homing[0], raw_lines[homing.pop(0) - 1]), notes)
         if shortcuts and plain.move(fl.words, fl.line, fl.raw):  # a plain G0-G3 move (interpolators.iso_fast)
@@ -472,11 +473,12 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                    messages=tuple(messages))
 
 
-def _enter_level(st: State, level: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
-    """LinuxCNC: the call level of the next line (:mod:`interpolators.iso_modal_state`); a subroutine that saved
-    the modal state with M73 gives it back as it returns."""
+def _enter_level(st: State, level: int, lowest: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
+    """LinuxCNC: the call level of the next line and the lowest since the last line
+    (:mod:`interpolators.iso_modal_state`); a subroutine that saved the modal state with M73 gives it back as it
+    returns."""
     try:
-        restored = st.modal_states.enter(st, level)
+        restored = st.modal_states.enter(st, level, lowest)
     except ValueError as exc:
         where.fail(f"M73 modal state restored at a subroutine's return: {exc}: not supported", expected="G40 "
                    "before the M73 and before the return, or the same compensation in both")

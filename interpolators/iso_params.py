@@ -215,6 +215,7 @@ class Parameters:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
+        self.lowest_depth = 0  # the fewest frames since lowest_since_last() last read it
         self.macro_b = macro_b
         self.unbracketed = 0  # assignments "#1 = #1 + 2" read without macro_b (LinuxCNC wants [#1 + 2])
         self.system = system
@@ -375,6 +376,13 @@ class Parameters:
 
     def pop(self) -> None:
         self.frames.pop()
+        self.lowest_depth = min(self.lowest_depth, len(self.frames))
+
+    def lowest_since_last(self) -> int:
+        """The fewest call frames there were since the last call of this (a return followed by a call between
+        two lines leaves as many frames as before, yet the called level was left and entered anew)."""
+        lowest, self.lowest_depth = min(self.lowest_depth, len(self.frames)), len(self.frames)
+        return lowest
 
 
 def has_parameters(code: str) -> bool:
