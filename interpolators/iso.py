@@ -317,6 +317,7 @@ class State:
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
     tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
+    lathe_marks: dict[str, int] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe codes seen: line
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -934,8 +935,32 @@ LATHE_G50 = ("G50 S read as the mill's scaling cancel and a spindle speed (on a 
              "spindle speed: a lathe program, whose X is a diameter?)")
 
 
+def _lathe_program(seen, gcodes, st: State, where: Where) -> None:
+    """Fanuc and Haas: a program with both G50 S and G96 is a lathe's. FANUC Series 0i-TF G code list (G code
+    system A): "G50 Coordinate system setting, maximum spindle speed setting", "G96 Constant surface speed
+    control"; Haas lathe operator's manual: "G50 Spindle Speed Limit", "G96 Constant Surface Speed On". On a
+    mill G50 is the scaling cancel and G96 an option no milling post writes beside it. A lathe's X is a diameter
+    and its U W incremental X Z: read as a mill program each X would end twice as far from the centre. Either
+    code alone stays a note (:data:`LATHE_G50`, "G96/G97 spindle mode")."""
+    if st.context.dialect.name not in ("fanuc", "haas"):
+        return
+    marks = []
+    if gcodes.get("scaling", (0,))[0] == 500 and "S" in seen:
+        marks.append(("G50 S (the lathe's maximum spindle speed)", gcodes["scaling"][1]))
+    if gcodes.get("spindle mode", (0,))[0] == 960:
+        marks.append(("G96 (constant surface speed)", gcodes["spindle mode"][1]))
+    for what, w in marks:
+        other = next(((k, line) for k, line in st.lathe_marks.items() if k != what), None)
+        if other is not None:
+            where.fail(f"a lathe program: {what} here and {other[0]} at line {other[1]} are a Fanuc/Haas lathe's "
+                       "codes (its X is a diameter, U and W incremental X and Z): not supported", column=w.column,
+                       text=w.text, expected="a milling program (vcnc reads mill programs)")
+        st.lathe_marks.setdefault(what, where.line)
+
+
 def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:
     """Compensation, length offsets, work offsets, path mode and return level."""
+    _lathe_program(seen, gcodes, st, where)
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
     for grp in ("rotation", "scaling", "polar"):

@@ -66,3 +66,26 @@ def test_m73_state_of_a_call_is_not_restored_without_m73():
     # the same calls without M73: the subroutine's G90 stays, the last move is absolute
     prog = checked_iso(M73_TWICE.replace("M73\n", ""), LINUXCNC)
     assert [b.target[:2].tolist() for b in prog.blocks if b.kind == "rapid"][-1] == [-5.0, -20.0]
+
+
+FANUC = MachineContext().with_dialect("fanuc")
+HAAS = MachineContext().with_dialect("haas")
+
+# a Fusion Fanuc turning post's start: G50 S (maximum spindle speed) then G96 (constant surface speed); X is a diameter
+TURNING = ("%\nO0001\nG98 G18\nG21\nG50 S6000\nG28 U0.\nT0100\nG54\nG99\nG97 S364 M3\nG0 X80. Z5.\nG50 S5000\n"
+           "G96 S91 M3\nG0 Z0.6\nX58.8\nG1 Z-59.188 F0.127\nM30\n%\n")
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+def test_a_fanuc_lathe_program_is_refused_naming_its_lathe_codes(context):
+    with pytest.raises(GCodeError, match=r":13:1: a lathe program: G96 \(constant surface speed\) here and G50 S "
+                                         r"\(the lathe's maximum spindle speed\) at line 5 are a Fanuc/Haas lathe's "
+                                         r"codes \(its X is a diameter, U and W incremental X and Z\): not supported"):
+        parse_program(TURNING, context=context)
+
+
+@pytest.mark.parametrize("context", [FANUC, HAAS])
+@pytest.mark.parametrize("line", ["G50 S3000", "G96 S100 M3"])
+def test_either_lathe_code_alone_stays_a_note_in_a_mill_program(context, line):
+    prog = checked_iso(f"G21 G90 G17\n{line}\nG0 X10. Y10.\nG1 X20. F500.\nM30\n", context)
+    assert [b.target.tolist() for b in prog.blocks][-2:] == [[10.0, 10.0, 0.0], [20.0, 10.0, 0.0]]
