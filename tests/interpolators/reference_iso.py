@@ -2070,8 +2070,12 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "end":
             break
         if res in ("m98", "m97"):
-            frames.append(_subprogram_call(res, ln, pc, st, params, fanuc=fanuc))
-            pc = frames[-1]["start"]
+            frame = _subprogram_call(res, ln, pc, st, params, fanuc=fanuc)
+            if frame["left"] < 0:  # L0: no call (LinuxCNC tests/interp/m98m99/05-M98-loops, "Test with 0 loops")
+                pc += 1
+                continue
+            frames.append(frame)
+            pc = frame["start"]
             continue
         if res == "g65":
             frames.append(_g65_call(ln, pc, st, params))

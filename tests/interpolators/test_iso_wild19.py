@@ -89,3 +89,11 @@ def test_a_fanuc_lathe_program_is_refused_naming_its_lathe_codes(context):
 def test_either_lathe_code_alone_stays_a_note_in_a_mill_program(context, line):
     prog = checked_iso(f"G21 G90 G17\n{line}\nG0 X10. Y10.\nG1 X20. F500.\nM30\n", context)
     assert [b.target.tolist() for b in prog.blocks][-2:] == [[10.0, 10.0, 0.0], [20.0, 10.0, 0.0]]
+
+
+@pytest.mark.parametrize("context", [LINUXCNC, FANUC])
+def test_m98_with_l0_calls_nothing(context):
+    # LinuxCNC tests/interp/m98m99/05-M98-loops, "Test with 0 loops": L0 runs the subprogram no time (rs274 agrees)
+    text = "G21 G90\nG0 X0 Y0 Z1.\nM98 P1 L0\nG0 X5.\nM98 P1 L2\nM30\nO1\nG91 G0 X1.\nG90\nM99\n"
+    prog = checked_iso(text, context)
+    assert [b.target[0] for b in prog.blocks if b.kind == "rapid"] == [0.0, 5.0, 6.0, 7.0]
