@@ -23,6 +23,12 @@ there).
 A blend whose axes leave that tolerance is made again with ``P`` scaled down by the excess
 (:func:`excess`: the deviation grows in proportion to the blend's size, as the XYZ one does), then dropped. The
 derivatives bound the blend's speed (:func:`hermite_bounds`) where the planner judges whether a blend pays.
+
+Where the X, Y, Z path goes on unchanged through a junction (a line into an arc, or a corner left unblended) but
+these axes' rate per mm steps (an axis starting or stopping where a rotary word appears on some blocks only, or a
+line and an arc moving it at different rates), the same quintic carries the step over a ramp of the programmed path
+centred on the junction (:func:`ramp_half_length`): the X, Y, Z path is the programmed one, so the polyline of
+:func:`excess` is exactly the axes' programmed motion there.
 """
 
 from __future__ import annotations
@@ -38,7 +44,7 @@ from interpolators.kinematics import CURVE_BOUND_MARGIN
 if TYPE_CHECKING:
     from scipy.interpolate import BSpline
 
-__all__ = ["hermite_axes", "hermite_bounds", "excess"]
+__all__ = ["hermite_axes", "hermite_bounds", "excess", "ramp_half_length"]
 
 #: Points along a blend at which its axes' deviation from their programmed motion and their derivatives are taken.
 _CHECK_POINTS = 33
@@ -122,3 +128,15 @@ def excess(length: np.ndarray, start: np.ndarray, end: np.ndarray, rate_start: n
     dev = np.abs(r - polyline).max(axis=(1, 2))
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(tolerance > 0, dev / (FIT_SHARE * tolerance), np.inf)
+
+
+def ramp_half_length(step: np.ndarray, tolerance: np.ndarray) -> np.ndarray:
+    """Half the length [mm of path] of the longest ramp that carries the rate steps ``step`` (m, k) [per mm of
+    path] of m junctions within ``FIT_SHARE * tolerance`` (m,) of their programmed motion: the quintic of
+    :func:`hermite_axes` over ``L`` centred on the corner (rates ``m0``, ``m1``) leaves the polyline by ``3 L |m1 -
+    m0| / 32`` at its middle, its largest distance (``r' - m0 = (m1 - m0) (3 u^2 - 2 u^3)``); the longer the ramp,
+    the lower its second and third derivatives (``1.5 |dm| / L``, ``6 |dm| / L^2``) and so the faster it is
+    passed. Infinite where no axis steps."""
+    step = np.abs(np.asarray(step, dtype=float)).max(axis=1)
+    with np.errstate(divide="ignore"):
+        return np.where(step > 0, 16.0 * FIT_SHARE * np.asarray(tolerance, dtype=float) / (3.0 * step), np.inf)
