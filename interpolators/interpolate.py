@@ -9,7 +9,14 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
-from interpolators.axis_blends import excess, hermite_axes, hermite_bounds, ramp_half_length
+from interpolators.axis_blends import (
+    CHECK_SHARES,
+    corner_positions,
+    excess,
+    hermite_axes,
+    hermite_bounds,
+    ramp_half_length,
+)
 from interpolators.dense import MergedRun, fit_axes, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
@@ -650,7 +657,12 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
         corners = [k for _, k in made]
         args = ends([sg for sg, _ in made], corners)
-        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners])
+        points = np.array([sg.point_at(CHECK_SHARES * sg.length) for sg, _ in made]).reshape(len(made), -1, 3)
+        sides = [np.array([_corner_direction(segments[k + j], at) for k in corners]).reshape(-1, 3)
+                 for j, at in ((0, "end"), (1, "start"))]
+        along = corner_positions(points, np.array([segments[k].end for k in corners], dtype=float).reshape(-1, 3),
+                                 *sides)  # the axes at the programmed path's point nearest the blend's
+        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
             spl, offsets = hermite_axes(*args)  # one spline for the chain's blends
             return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for (sg, _), o in zip(made, offsets)}}

@@ -18,7 +18,7 @@ import pytest
 
 from benchmarks.dense_code import rotary_programs
 from interpolators import interpolate, parse_program
-from interpolators.axis_blends import excess, hermite_axes, hermite_bounds, ramp_half_length
+from interpolators.axis_blends import corner_positions, excess, hermite_axes, hermite_bounds, ramp_half_length
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.dense import fit_axes
 from interpolators.kinematics import CURVE_BOUND_MARGIN
@@ -555,3 +555,28 @@ def test_ramp_half_length_keeps_the_quintic_within_the_share_of_p():
     h = half[:1]
     ratio = excess(2 * h, corner - m0 * h[:, None], corner + m1 * h[:, None], m0, m1, corner, np.array([0.05]))
     assert ratio[0] == pytest.approx(1.0, rel=1e-9)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_fast_axis_across_a_blend_stays_within_p_of_the_nearest_programmed_point(profile):
+    """C turning about 7 deg/mm on 10 mm sides of a 12-gon (30 deg corners) under G20 G64 P0.00787 (0.2 mm, read as
+    0.2 deg on C): the blends' C is checked against its programmed value at the nearest point of the chords (the
+    measure of ``_axis_deviation``), no longer along the blend's arc length with the corner at its middle, which
+    let C reach 0.426 deg (trapezoid) and 0.400 deg (S-curve), 2 P, from it (review31's seed 120). The blends that
+    keep it within 0.9 P are a little smaller: 2.748 -> 2.754 s, 2.871 -> 2.933 s."""
+    prog = _program(["G20 G90 G64 P0.00787 G0 X0 Y-0.7874 Z0 C0", "G1 F39.37", "X0.3937 Y-0.6819 C-75",
+                     "X0.6819 Y-0.3937 C-145", "X0.7874 Y0 C-210", "X0.6819 Y0.3937 C-210"])
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" in sp.meta and _inner_stops(sp, prog) == 0
+    assert 0.1 <= _axis_deviation(sp, prog, "c") <= 0.9 * 0.2 + 1e-3
+    assert distance_to_path(sp) <= 0.2
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert sp.duration <= (2.76 if profile == "trapezoid" else 2.94)
+
+
+def test_corner_positions_takes_the_nearer_line():
+    """Points near a right-angle corner at the origin (in along +X, out along +Y): a point inside the corner nearer
+    the incoming line lies before the corner by its X, one nearer the outgoing line after it by its Y."""
+    t = corner_positions(np.array([[[-0.5, 0.1, 0.0], [-0.1, 0.5, 0.0], [0.0, 0.0, 0.0]]]), np.zeros((1, 3)),
+                         np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 1.0, 0.0]]))
+    assert np.allclose(t, [[-0.5, 0.5, 0.0]], rtol=0, atol=1e-15)
