@@ -94,7 +94,7 @@ class _Chain:
         self.items = items
         self.lo = self.hi = len(items.segments)
         self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
-        self.extra = False  # blocks moving an axis beyond X, Y, Z (and only such blocks): see _extra_block
+        self.extra = False  # blocks moving an axis beyond X, Y, Z and feed moves keeping them still: _extra_block
 
     @classmethod
     def of(cls, segments: list, blocks: list[int], feeds: list[float], rapid: list[bool],
@@ -198,7 +198,9 @@ def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int
     merged, X, Y, Z and the other axes together (:func:`_merged_extra`), and their line/line corners blended
     across every axis (:func:`_blended_extra`). A rapid joins only the rapid before it from
     the same source line that did not end in exact stop: the chords of one rapid under tool centre point
-    control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord.
+    control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord. A feed
+    move of X, Y, Z keeping these axes still joins such a chain too (:func:`_joins_extra`), and a G64 chain of
+    feed moves turns into one where they start moving.
     Any other such block (a rapid, a move with X, Y, Z still: a hold at its XYZ position whose profile runs
     along ``Block.extra_length``) is a chain of its own, at rest at both ends.
     """
@@ -697,7 +699,8 @@ def _ramped_extra(segs: list, blks: list[int], fit_of: dict, program: Program, *
     rapid or a chord under tool centre point control keep the rule."""
     blk = program.blocks
     n = len(segs)
-    plain = [isinstance(sg, (Line, Arc)) and id(sg) not in fit_of and blk[b].kind != "rapid" and not blk[b].tcp
+    plain = [(isinstance(sg, Line) or (isinstance(sg, Arc) and abs(sg.sweep) <= 2.0 * math.pi))  # no extra turns:
+             and id(sg) not in fit_of and blk[b].kind != "rapid" and not blk[b].tcp  # its pieces are plain arcs
              for sg, b in zip(segs, blks)]
     rate = np.array([blk[b].extra_delta / blk[b].segment.length if plain[k] else np.zeros(len(EXTRA_NAMES))
                      for k, b in enumerate(blks)], dtype=float).reshape(n, len(EXTRA_NAMES))
