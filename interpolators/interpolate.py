@@ -659,7 +659,7 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
         corners = [k for _, k in made]
         args = ends([sg for sg, _ in made], corners)
-        points = np.array([sg.point_at(CHECK_SHARES * sg.length) for sg, _ in made]).reshape(len(made), -1, 3)
+        points = _points_at_shares([sg for sg, _ in made])
         sides = [np.array([_corner_direction(segments[k + j], at) for k in corners]).reshape(-1, 3)
                  for j, at in ((0, "end"), (1, "start"))]
         along = corner_positions(points, np.array([segments[k].end for k in corners], dtype=float).reshape(-1, 3),
@@ -673,6 +673,17 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
             reach = float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end))
             tol[k] = 0.0 if attempt == 1 else 0.95 * reach / ratio[i]
     return segments, blocks, fit_of
+
+
+def _points_at_shares(blends: list) -> np.ndarray:
+    """The points of corner blends (arcs, clothoid pairs) at ``CHECK_SHARES`` of their lengths, shape (m, c, 3):
+    all at once (:meth:`toolpaths.packed.PackedSegments.evaluate`)."""
+    packed = PackedSegments.from_segments(blends)
+    c = len(CHECK_SHARES)
+    seg = np.repeat(np.arange(len(blends), dtype=np.int64), c)
+    s = (CHECK_SHARES[None, :] * np.asarray(packed.length, dtype=float)[:, None]).ravel()
+    pos = packed.evaluate(seg, s, np.ones(len(s)), np.zeros(len(s)))[0]
+    return pos.reshape(len(blends), c, 3)
 
 
 #: Share of a line or arc a rate-step ramp may take at each of its ends (:func:`_ramped_extra`): the rest at least
@@ -881,10 +892,14 @@ def _fit_ends(g: _Geom, nu: int) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(divide="ignore", invalid="ignore"):
         rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0) if nu == 1 else np.zeros_like(r.delta)
     at_start, at_end = rate, rate.copy()
-    for k, (spl, s0) in r.fits.items():
+    keys = np.array(sorted(r.fits), dtype=np.int64)
+    splines = [r.fits[k][0] for k in keys.tolist()]
+    s0 = np.array([r.fits[k][1] for k in keys.tolist()])
+    for j, rows in rows_by_owner(splines, np.arange(len(keys))):  # each spline evaluated once for all its pieces
+        spl, k = splines[j], keys[rows]
         moving = np.any(spl.c != spl.c[0], axis=0)  # an axis the run keeps still: exactly 0
-        at_start[k] = np.where(moving, spl(s0, nu), 0.0)
-        at_end[k] = np.where(moving, spl(s0 + r.length[k], nu), 0.0)
+        at_start[k] = np.where(moving, spl(s0[rows], nu), 0.0)
+        at_end[k] = np.where(moving, spl(s0[rows] + r.length[k], nu), 0.0)
     return at_start, at_end
 
 
