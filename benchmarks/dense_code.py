@@ -137,7 +137,8 @@ def _path_deviation(sp, step: float = 2e-4) -> float:
     for i, a in enumerate("xyz"):
         if a in sp.axes:
             xyz[:, i] = sp.position[:, sp.axis_index(a)]
-    return float(cKDTree(sp.meta["programmed_path"].points(step=step)).query(xyz)[0].max()) - step / 2
+    path = sp.meta.get("programmed_path", sp.path)  # no corner blended: the path followed is the programmed one
+    return float(cKDTree(path.points(step=step)).query(xyz)[0].max()) - step / 2
 
 
 def _utilisation(sp, Ts: float) -> tuple[float, float, float]:
@@ -214,15 +215,29 @@ def rotary_programs(shape: str, rotary: bool) -> str:
     0.2 mm along an S at F2400 (A swinging +-30 deg), ``wrap`` a groove on a cylinder of radius 20 mm, 600
     chords of 0.1 mm in X at F1500 with A turning up to 19 deg per mm (without A: X alone); under G64 P0.05 chords
     too coarse to merge, their corners blended across every axis: ``coarse`` the helix in 60 chords, ``corners``
-    two laps of a 24-gon of radius 20 mm at F2000, A up 1 deg on one side and back on the next."""
+    two laps of a 24-gon of radius 20 mm at F2000, A up 1 deg on one side and back on the next; with A on some
+    blocks only (4-axis CAM output): ``indexed`` 40 lines of 10 mm zigzagging 1 mm at F3000, A up 5 deg on every
+    other one, ``arcs`` two laps of a 30 x 40 mm rectangle of R10 corners (G3, tangent to its sides) at F3000, A up
+    10 deg on each arc, under G64 P0.05, and ``staircase`` the helix with A up 2.25 deg on every tenth chord."""
     lines = {"helix": ["G0 X10 Y0 Z0 A0", "G1 F2000"], "swarf": ["G0 X30 Y0 Z0 A0 C0", "G1 F3000"],
              "reversal": ["G0 X0 Y0 A0", "G1 F2400"], "wrap": ["G0 X0 Y0 A0", "G1 F1500"],
-             "coarse": ["G0 X10 Y0 Z0 A0", "G1 F2000"], "corners": ["G0 X20 Y0 A0", "G1 F2000"]}[shape]
-    n = {"helix": 400, "swarf": 500, "reversal": 400, "wrap": 600, "coarse": 60, "corners": 48}[shape]
+             "coarse": ["G0 X10 Y0 Z0 A0", "G1 F2000"], "corners": ["G0 X20 Y0 A0", "G1 F2000"],
+             "indexed": ["G0 X0 Y0 A0", "G1 F3000"], "arcs": ["G0 X0 Y0 A0", "F3000"],
+             "staircase": ["G0 X10 Y0 Z0 A0", "G1 F2000"]}[shape]
+    n = {"helix": 400, "swarf": 500, "reversal": 400, "wrap": 600, "coarse": 60, "corners": 48, "indexed": 40,
+         "arcs": 16, "staircase": 400}[shape]
     for i in range(1, n + 1):
-        if shape in ("helix", "coarse"):
+        if shape in ("helix", "coarse", "staircase"):
             t = 4 * math.pi * i / n
-            xyz, rot = f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / n:.4f}", f"A{90 * i / n:.4f}"
+            turned = 90 * i / n if shape != "staircase" else (2.25 * (i // 10) if i % 10 == 0 else None)
+            xyz = f"X{10 * math.cos(t):.4f} Y{10 * math.sin(t):.4f} Z{-0.5 * i / n:.4f}"
+            rot = "" if turned is None else f"A{turned:.4f}"
+        elif shape == "indexed":
+            xyz, rot = f"X{10 * i} Y{i % 2}", (f"A{5 * (i // 2)}" if i % 2 == 0 else "")
+        elif shape == "arcs":
+            xyz = ["G1 X20 Y0", "G3 X30 Y10 I0 J10", "G1 X30 Y30", "G3 X20 Y40 I-10 J0", "G1 X0 Y40",
+                   "G3 X-10 Y30 I0 J-10", "G1 X-10 Y10", "G3 X0 Y0 I10 J0"][(i - 1) % 8]
+            rot = f"A{10 * (i // 2)}" if i % 2 == 0 else ""
         elif shape == "swarf":
             t = 2 * math.pi * i / n
             xyz = f"X{30 * math.cos(t):.4f} Y{20 * math.sin(t):.4f} Z{2 * math.sin(2 * t):.4f}"
@@ -235,12 +250,12 @@ def rotary_programs(shape: str, rotary: bool) -> str:
         else:
             w = 40 * math.sin(0.1 * i / 6)
             xyz, rot = f"X{0.1 * i:.4f}", f"A{math.degrees(w / 20):.4f}"
-        lines.append(xyz + (" " + rot if rotary else ""))
+        lines.append(xyz + (" " + rot if rotary and rot else ""))
     return "\n".join([f"G21 G90 G64 P{ROTARY_TOLERANCE.get(shape, 0.01)}", *lines, "M2"]) + "\n"
 
 
 #: G64 P of the cases of :func:`rotary_programs` that are not P0.01 [mm].
-ROTARY_TOLERANCE = {"coarse": 0.05, "corners": 0.05}
+ROTARY_TOLERANCE = {"coarse": 0.05, "corners": 0.05, "indexed": 0.05, "arcs": 0.05}
 
 
 def _rotary_cases(Ts: float) -> None:
@@ -251,10 +266,16 @@ def _rotary_cases(Ts: float) -> None:
     helix with A 7.750 s trapezoid, 23.788 s S-curve (3.929 s, 4.011 s without A); wrap 23.275 s, 59.771 s;
     swarf 8.197 s, 43.789 s (3.464 s, 3.549 s without); reversal 8.110 s, 27.568 s (2.092 s, 2.129 s).
     Before their corners were blended across every axis (each at the one-sample rule or a stop): coarse 4.854 s,
-    7.087 s (3.913 s, 3.993 s without A); corners 8.472 s, 10.148 s (7.723 s, 7.801 s)."""
+    7.087 s (3.913 s, 3.993 s without A); corners 8.472 s, 10.148 s (7.723 s, 7.801 s).
+    Before a chain kept the blocks leaving A still and carried A's rate steps on ramps (a stop wherever A started
+    or stopped, or its rate stepped between a line and an arc): indexed 9.040 s trapezoid (8.060 s without A), now
+    8.311 s; arcs 6.120 s (5.739 s), now 5.935 s. Their S-curve times are unchanged (10.600 s, 6.800 s): within
+    P0.05 deg a step of 0.5 deg/mm is bent within A's jerk limit below about 14 mm/s only, slower than a stop. The
+    staircase (7.062 s, 10.747 s against 3.929 s, 4.011 s without A) is unchanged: A's 7 deg/mm steps within
+    P0.01 deg pass at about 2.6 mm/s at best (A's jerk), each A chord near a stop either way."""
     from interpolators.context import INTERPOLATION_CONTEXT
 
-    for shape in ("helix", "swarf", "reversal", "wrap", "coarse", "corners"):
+    for shape in ("helix", "swarf", "reversal", "wrap", "coarse", "corners", "indexed", "arcs", "staircase"):
         took = {}
         for rotary in (False, True):
             prog = parse_program(rotary_programs(shape, rotary), context=INTERPOLATION_CONTEXT)

@@ -9,7 +9,14 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
-from interpolators.axis_blends import excess, hermite_axes, hermite_bounds
+from interpolators.axis_blends import (
+    CHECK_SHARES,
+    corner_positions,
+    excess,
+    hermite_axes,
+    hermite_bounds,
+    ramp_half_length,
+)
 from interpolators.dense import MergedRun, fit_axes, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
@@ -28,7 +35,7 @@ from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
 from interpolators.profiles import PROFILES, phase_states, reach_many, scurve_phases, trapezoid_phases
 from interpolators.program import Program
-from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve, rows_by_owner
+from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve, piece_of, rows_by_owner
 from toolpaths.packed import HOLD, PackedSegments
 from vcnc.core.axes import AXIS_NAMES, EXTRA_NAMES
 from vcnc.core.errors import InputError, ProgramTooLongError
@@ -87,7 +94,7 @@ class _Chain:
         self.items = items
         self.lo = self.hi = len(items.segments)
         self.dwell = 0.0  # > 0: a dwell chain (one hold segment)
-        self.extra = False  # blocks moving an axis beyond X, Y, Z (and only such blocks): see _extra_block
+        self.extra = False  # blocks moving an axis beyond X, Y, Z and feed moves keeping them still: _extra_block
 
     @classmethod
     def of(cls, segments: list, blocks: list[int], feeds: list[float], rapid: list[bool],
@@ -155,7 +162,9 @@ def _chains(program: Program) -> list[_Chain]:
                 chains.append(ch)
             continue
         seg = b.segment
-        if b.extra_start is not None and np.any(b.extra_delta != 0):
+        if b.extra_start is not None and (np.any(b.extra_delta != 0) or _joins_extra(cur, b)):
+            if cur is not None and not cur.extra and np.any(b.extra_delta != 0) and not any(cur.rapid):
+                cur.extra = True  # a G64 chain of feed moves with these axes still, into one that moves them
             cur = _extra_block(chains, items, cur, i, b, program.blocks)
             continue
         if seg is None or seg.length <= 0:
@@ -169,6 +178,16 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
+def _joins_extra(cur: _Chain | None, b) -> bool:
+    """Whether a feed move of X, Y, Z that keeps the axes beyond them still continues the chain ``cur`` that moves
+    them (G64, no rapid before it): its junctions are passed at speed with those axes starting or stopping (their
+    rate per mm of path steps from or to 0, bounded as any rate step: :func:`_extra_block`). 4-axis CAM output puts
+    a rotary word on some blocks only, and a stop wherever A starts or stops cost more than the axis' limits ask."""
+    seg = b.segment
+    return (cur is not None and cur.extra and b.kind != "rapid" and seg is not None and seg.length > 0
+            and not cur.items.rapid[cur.hi - 1])
+
+
 def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int, b, blocks: Sequence
                  ) -> _Chain | None:
     """Add a block that moves an axis beyond X, Y, Z; returns the chain the next block may join.
@@ -179,7 +198,9 @@ def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int
     merged, X, Y, Z and the other axes together (:func:`_merged_extra`), and their line/line corners blended
     across every axis (:func:`_blended_extra`). A rapid joins only the rapid before it from
     the same source line that did not end in exact stop: the chords of one rapid under tool centre point
-    control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord.
+    control (:func:`interpolators.tcp.tcp_chords`), which is one move of the control, not one per chord. A feed
+    move of X, Y, Z keeping these axes still joins such a chain too (:func:`_joins_extra`), and a G64 chain of
+    feed moves turns into one where they start moving.
     Any other such block (a rapid, a move with X, Y, Z still: a hold at its XYZ position whose profile runs
     along ``Block.extra_length``) is a chain of its own, at rest at both ends.
     """
@@ -388,6 +409,8 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
         if ch.extra and ch.hi - ch.lo > 1:
             merged, run_of, fit_of = _merged_extra(ch, jerk_limited, program)
             segs, blks, fit_of = _blended_extra(merged, fit_of, lim, limits, jerk_limited, Ts, program)
+            segs, blks, fit_of = _ramped_extra(segs, blks, fit_of, program,
+                                               worth=_ramp_worth(merged, lim, limits, jerk_limited, Ts))
         if not fit_of and (ch.hi - ch.lo == 1 or ch.extra):  # no corner to blend: the chain's own items
             it, lo, hi = ch.items, ch.lo, ch.hi
             all_segs += it.segments[lo:hi]
@@ -552,7 +575,7 @@ def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Ch
     chords under tool centre point control (``Block.tcp``: X, Y, Z follow the tip through the rotary axes, a fit
     of those apart would move the tip off the tolerance by the pivot distance); the chain as it was (no runs, no
     fits) when none is left."""
-    merged, run_of = _merged(ch, jerk_limited, unblended=True)
+    merged, run_of = _merged_between_starts(ch, jerk_limited, program)
     fit_of: dict = {}
     failed: set[int] = set()
     for run in {id(r): r for r in run_of.values()}.values():
@@ -573,6 +596,25 @@ def _merged_extra(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Ch
     if failed:
         merged, run_of = _restore_runs(ch, merged, run_of, failed)
     return merged, run_of, fit_of
+
+
+def _merged_between_starts(ch: _Chain, jerk_limited: bool, program: Program) -> tuple[_Chain, dict[int, MergedRun]]:
+    """:func:`_merged` (``unblended``) of a chain moving the axes beyond X, Y, Z, each stretch between two junctions
+    where they start or stop (every one still on one side, :func:`_joins_extra`) merged apart: a staircase of those
+    axes along a run (A moving on every tenth chord) fits no spline within ``P`` and would keep all its chords, while
+    the stretches fit one each and the junctions between them pass at their rate steps' bound."""
+    moving = [bool(np.any(program.blocks[b].extra_delta != 0)) for b in ch.blocks]
+    cuts = [0, *(i for i in range(1, len(moving)) if moving[i] != moving[i - 1]), len(moving)]
+    if len(cuts) == 2:
+        return _merged(ch, jerk_limited, unblended=True)
+    out, run_of = _Chain.of([], [], [], [], []), {}
+    for lo, hi in zip(cuts, cuts[1:]):
+        part, runs = _merged(_Chain.of(ch.segments[lo:hi], ch.blocks[lo:hi], ch.feeds[lo:hi], ch.rapid[lo:hi],
+                                       ch.tolerances[lo:hi]), jerk_limited, unblended=True)
+        for k in range(part.hi - part.lo):
+            out.add(part.segments[k], part.blocks[k], part.feeds[k], part.rapid[k], part.tolerances[k])
+        run_of.update(runs)
+    return out, run_of
 
 
 def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mapping[str, AxisLimits],
@@ -617,7 +659,12 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
         corners = [k for _, k in made]
         args = ends([sg for sg, _ in made], corners)
-        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners])
+        points = _points_at_shares([sg for sg, _ in made])
+        sides = [np.array([_corner_direction(segments[k + j], at) for k in corners]).reshape(-1, 3)
+                 for j, at in ((0, "end"), (1, "start"))]
+        along = corner_positions(points, np.array([segments[k].end for k in corners], dtype=float).reshape(-1, 3),
+                                 *sides)  # the axes at the programmed path's point nearest the blend's
+        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
             spl, offsets = hermite_axes(*args)  # one spline for the chain's blends
             return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for (sg, _), o in zip(made, offsets)}}
@@ -626,6 +673,152 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
             reach = float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end))
             tol[k] = 0.0 if attempt == 1 else 0.95 * reach / ratio[i]
     return segments, blocks, fit_of
+
+
+def _points_at_shares(blends: list) -> np.ndarray:
+    """The points of corner blends (arcs, clothoid pairs) at ``CHECK_SHARES`` of their lengths, shape (m, c, 3):
+    all at once (:meth:`toolpaths.packed.PackedSegments.evaluate`)."""
+    packed = PackedSegments.from_segments(blends)
+    c = len(CHECK_SHARES)
+    seg = np.repeat(np.arange(len(blends), dtype=np.int64), c)
+    s = (CHECK_SHARES[None, :] * np.asarray(packed.length, dtype=float)[:, None]).ravel()
+    pos = packed.evaluate(seg, s, np.ones(len(s)), np.zeros(len(s)))[0]
+    return pos.reshape(len(blends), c, 3)
+
+
+#: Share of a line or arc a rate-step ramp may take at each of its ends (:func:`_ramped_extra`): the rest at least
+#: 10 % of it. And the share of the ramp's largest length (:func:`interpolators.axis_blends.ramp_half_length`) it takes,
+#: its deviation below FIT_SHARE * P by more than the rounding of :func:`interpolators.axis_blends.excess`.
+_RAMP_SHARE, _RAMP_MARGIN = 0.45, 0.95
+
+
+def _ramped_extra(segs: list, blks: list[int], fit_of: dict, program: Program, *,
+                  worth: Callable[[list, list[int], np.ndarray, np.ndarray, tuple], np.ndarray]
+                  ) -> tuple[list, list[int], dict]:
+    """The segments of a chain moving the axes beyond X, Y, Z (``segs``, ``blks``, ``fit_of``: of
+    :func:`_blended_extra`)
+    with the rate steps of those axes at the junctions of two lines or arcs carried by ramps: the quintic of
+    :mod:`interpolators.axis_blends` along the programmed path over a length centred on the junction
+    (:func:`interpolators.axis_blends.ramp_half_length` each side, at most :data:`_RAMP_SHARE` of either segment),
+    each segment cut into its ramps and the rest, which keeps its programmed rate (a quintic with equal end rates:
+    the straight line). X, Y, Z keep their programmed path; the junction then passes at its X, Y, Z bound instead of
+    the one-sample rule of a rate step (a stop, at 0.5 deg/mm and the default limits), within ``P`` of the
+    programmed motion of every axis (RS274/NGC 3, Sec. 2.1.2.5: proportional to the path on each block; our reading
+    of G64 P for these axes, :mod:`interpolators.axis_blends`), where ``worth(segs, blks, joints, rates, ramps)``
+    (:func:`_ramp_worth`) finds passing the ramp faster than the junction's own bound (a short ramp of a large
+    step, 7 deg/mm within P0.05, is passed at 1.5 mm/s: slower than a stop). Junctions beside a merged run, a blend, a
+    rapid or a chord under tool centre point control keep the rule."""
+    blk = program.blocks
+    n = len(segs)
+    plain = [(isinstance(sg, Line) or (isinstance(sg, Arc) and abs(sg.sweep) <= 2.0 * math.pi))  # no extra turns:
+             and id(sg) not in fit_of and blk[b].kind != "rapid" and not blk[b].tcp  # its pieces are plain arcs
+             for sg, b in zip(segs, blks)]
+    rate = np.array([blk[b].extra_delta / blk[b].segment.length if plain[k] else np.zeros(len(EXTRA_NAMES))
+                     for k, b in enumerate(blks)], dtype=float).reshape(n, len(EXTRA_NAMES))
+    joints = [k for k in range(n - 1) if plain[k] and plain[k + 1] and np.any(rate[k + 1] != rate[k])]
+    if not joints:
+        return segs, blks, fit_of
+    k = np.array(joints)
+    length = np.array([sg.length for sg in segs])
+    start = np.array([_value_at_start(sg, blk[b]) for sg, b in zip(segs, blks)]).reshape(n, len(EXTRA_NAMES))
+    tol = np.array([min(_tolerance(blk[blks[i]]), _tolerance(blk[blks[i + 1]])) for i in joints])
+    half = np.minimum(_RAMP_SHARE * np.minimum(length[k], length[k + 1]),
+                      _RAMP_MARGIN * ramp_half_length(rate[k + 1] - rate[k], tol))
+    half = np.where(tol > 0, half, 0.0)
+    corner = start[k] + rate[k] * length[k, None]
+    ramps = (2.0 * half, corner - rate[k] * half[:, None], corner + rate[k + 1] * half[:, None], rate[k], rate[k + 1])
+    half = np.where(worth(segs, blks, k, rate, ramps), half, 0.0)
+    if not np.any(half > 0):
+        return segs, blks, fit_of
+    cut = np.zeros((n, 2))  # the ramp's length at each segment's start and end
+    cut[k, 1], cut[k + 1, 0] = half, half
+    units: list[tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []  # hermite_axes' arguments
+    pieces: list[tuple[int, float, float, int, float]] = []  # segment, from, to, unit, offset in it
+    for i in np.flatnonzero(cut.sum(axis=1) > 0).tolist():
+        h0, h1, m = cut[i, 0], cut[i, 1], rate[i]
+        if h0 > 0:  # the second half of the ramp at its start (the first half was made with segment i - 1)
+            pieces.append((i, 0.0, h0, len(units) - 1, h0))
+        middle = (h0, length[i] - h1)
+        units.append((middle[1] - middle[0], start[i] + m * middle[0], start[i] + m * middle[1], m, m))
+        pieces.append((i, *middle, len(units) - 1, 0.0))
+        if h1 > 0:
+            corner = start[i] + m * length[i]
+            units.append((2.0 * h1, corner - m * h1, corner + rate[i + 1] * h1, m, rate[i + 1]))
+            pieces.append((i, length[i] - h1, length[i], len(units) - 1, 0.0))
+    spl, offsets = hermite_axes(*(np.array(x) for x in zip(*units)))
+    out_segs, out_blks, out_fit, by_seg = [], [], dict(fit_of), {}
+    for i, lo, hi, u, off in pieces:
+        sg = segs[i]
+        piece = piece_of(sg, sg.point_at(lo) if lo > 0 else sg.start, sg.point_at(hi) if hi < length[i] else sg.end)
+        by_seg.setdefault(i, []).append(piece)
+        out_fit[id(piece)] = (spl, float(offsets[u] + off))
+    for i, (sg, b) in enumerate(zip(segs, blks)):
+        for piece in by_seg.get(i, [sg]):
+            out_segs.append(piece)
+            out_blks.append(b)
+    return out_segs, out_blks, out_fit
+
+
+def _ramp_worth(ch: _Chain, lim: AxisLimitArrays, limits: Mapping[str, AxisLimits], jerk_limited: bool, Ts: float):
+    """Predicate of :func:`_ramped_extra` for the chain ``ch``: is passing each junction ``k`` (between ``segs[k]``
+    and ``segs[k + 1]``, the axes' rates per mm ``rate``) through its ramp (``ramps``: the arguments of
+    :func:`interpolators.axis_blends.hermite_axes`) faster than at the junction's own bound? The model of
+    :func:`_blend_worth` (:func:`_pass_beats`): the ramp passed at the lower of its bound (its axes' derivatives at
+    ``1 - JUNCTION_SHARE`` of their limits; over its length where that is the lower; its speed changes within its
+    path bounds) and the X, Y, Z junction's (:func:`interpolators.kinematics.junction_speed_limit`, at a tangent
+    junction under the S-curve the larger :func:`_kink_junction_bound`; at the junction alone), the junction
+    alone at the lower of that and its rate step's one-sample rule, either a stop below
+    ``MIN_JUNCTION_SPEED_SHARE`` of the speed ``V`` of the two segments (their bounds from X, Y, Z and every axis,
+    and the speed reached over half of either from rest)."""
+    feed_of = dict(zip(ch.blocks, ch.feeds))
+
+    def worth(segs: list, blks: list[int], k: np.ndarray, rate: np.ndarray, ramps: tuple) -> np.ndarray:
+        m = len(k)
+        d1, d2, d3 = hermite_bounds(*ramps)
+        v_ramp, a_ramp, j_ramp = extra_curve_bounds(d1, d2, d3, np.full(m, np.inf), limits,
+                                                    share=np.full(m, 1.0 - JUNCTION_SHARE), jerk_limited=jerk_limited)
+        step = np.array([_corner_direction(segs[i + 1], "start") - _corner_direction(segs[i], "end")
+                         for i in k.tolist()]).reshape(-1, 3)
+        bend = np.array([_end_curvature(segs[i + 1], "start") - _end_curvature(segs[i], "end")
+                         for i in k.tolist()]).reshape(-1, 3)
+        v_xyz = junction_speed_limit(step, bend, lim, sample_time=Ts, share=JUNCTION_SHARE, jerk_limited=jerk_limited)
+        tangent = np.linalg.norm(step, axis=1) <= _TANGENT_STEP
+        if jerk_limited and tangent.any():  # a curvature step: the larger rule of _corner_stops
+            v_xyz[tangent] = np.maximum(v_xyz[tangent], _kink_junction_bound(segs, k[tangent], lim, Ts))
+        v_step = extra_junction_speed_limit(rate[k + 1] - rate[k], limits, sample_time=Ts, share=JUNCTION_SHARE,
+                                            jerk_limited=jerk_limited)
+        V, A, J = np.full(m, np.inf), np.full(m, np.inf), np.full(m, np.inf)
+        for i, at in ((k, "end"), (k + 1, "start")):
+            v_i, A_i, J_i = line_limits(np.array([_corner_direction(segs[j], at) for j in i.tolist()]).reshape(-1, 3),
+                                        np.array([feed_of[blks[j]] for j in i.tolist()], dtype=float),
+                                        np.zeros(m, dtype=bool), lim)
+            v_e, A_e, J_e = extra_path_bounds(np.abs(rate[i]), np.zeros(m, dtype=bool), limits)
+            A_i, J_i = np.minimum(A_i, A_e), np.minimum(J_i, J_e)
+            half = np.array([0.5 * segs[j].length for j in i.tolist()])
+            reach = reach_many(np.zeros(m), half, A_i, J_i, jerk_limited=jerk_limited)
+            V = np.minimum(V, np.minimum(reach, np.minimum(np.minimum(v_i, v_e), _curved_bound(
+                [segs[j] for j in i.tolist()], (1.0 - JUNCTION_SHARE) * A_i, (1.0 - JUNCTION_SHARE) * J_i,
+                jerk_limited))))
+            A, J = np.minimum(A, A_i), np.minimum(J, J_i)
+        v_alone, v_b = (np.where(v < MIN_JUNCTION_SPEED_SHARE * V, 0.0, v)  # below: a stop either way
+                        for v in (np.minimum(v_xyz, v_step), np.minimum(v_ramp, v_xyz)))
+        slow = np.where(v_ramp < v_xyz, ramps[0], 0.0)  # the ramp's length, where its own bound is the lower
+        passing = (np.minimum(A, a_ramp), np.minimum(J, j_ramp))  # the ramp's own path bounds
+        return (v_b > v_alone) & ((v_b >= V) | _pass_beats(V, v_alone, v_b, slow, A, J, jerk_limited, passing))
+
+    return worth
+
+
+def _tolerance(block) -> float:
+    return DEFAULT_TOLERANCE if block.tolerance is None else block.tolerance
+
+
+def _value_at_start(segment: Line | Arc, block) -> np.ndarray:
+    """The axes beyond X, Y, Z at the start of a line or arc of ``block`` (a line may start past the block's start,
+    shortened by a corner blend; an arc in such a chain is never cut)."""
+    if isinstance(segment, Line) and block.extra_start is not None and segment is not block.segment:
+        return _on_line([block], np.asarray(segment.start, dtype=float)[None])[0][0]
+    return np.asarray(block.extra_start if block.extra_start is not None else np.zeros(len(EXTRA_NAMES)), dtype=float)
 
 
 def _on_line(blocks: Sequence, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -699,10 +892,14 @@ def _fit_ends(g: _Geom, nu: int) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(divide="ignore", invalid="ignore"):
         rate = np.where(r.length[:, None] > 0, r.delta / r.length[:, None], 0.0) if nu == 1 else np.zeros_like(r.delta)
     at_start, at_end = rate, rate.copy()
-    for k, (spl, s0) in r.fits.items():
+    keys = np.array(sorted(r.fits), dtype=np.int64)
+    splines = [r.fits[k][0] for k in keys.tolist()]
+    s0 = np.array([r.fits[k][1] for k in keys.tolist()])
+    for j, rows in rows_by_owner(splines, np.arange(len(keys))):  # each spline evaluated once for all its pieces
+        spl, k = splines[j], keys[rows]
         moving = np.any(spl.c != spl.c[0], axis=0)  # an axis the run keeps still: exactly 0
-        at_start[k] = np.where(moving, spl(s0, nu), 0.0)
-        at_end[k] = np.where(moving, spl(s0 + r.length[k], nu), 0.0)
+        at_start[k] = np.where(moving, spl(s0[rows], nu), 0.0)
+        at_end[k] = np.where(moving, spl(s0[rows] + r.length[k], nu), 0.0)
     return at_start, at_end
 
 
@@ -1216,20 +1413,11 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float
             V = np.minimum(V, np.minimum(reach, np.minimum(v_i, _curved_bound(lines, A_b, J_b, jerk_limited))))
             A, J = np.minimum(A, A_i), np.minimum(J, J_i)
 
-        def change(dv: np.ndarray) -> np.ndarray:
-            if not jerk_limited:
-                return dv / A
-            return np.where(dv >= A * A / J, dv / A + A / J, 2.0 * np.sqrt(dv / J))
-
         kink = np.array([isinstance(b, SplineCurve) for b in blends.blends], dtype=bool)
         v_j = np.zeros(len(k))  # the corner unblended: a stop, or a kink at its junction bound
         if kink.any():
             v_j[kink] = np.minimum(_kink_junction_bound(segments, k[kink], lim, Ts), V[kink])
-        with np.errstate(divide="ignore", invalid="ignore"):  # v_b >= V: no speed change, passes anyway
-            t_stop, t_pass = 2.0 * change(V - v_j), 2.0 * change(V - v_b) + blends.length / v_b
-            d_stop, d_pass = (V + v_j) * change(V - v_j), (V + v_b) * change(V - v_b) + blends.length
-            passes = t_pass + np.maximum(d_stop - d_pass, 0.0) / V <= t_stop + np.maximum(d_pass - d_stop, 0.0) / V
-        faster = (v_b >= V) | passes
+        faster = (v_b >= V) | _pass_beats(V, v_j, v_b, blends.length, A, J, jerk_limited)
         tangent = np.zeros(len(k), dtype=bool)  # kinks of the program's rounding: curvature steps, faster blended
         if kink.any():
             tangent[kink] = [float(np.linalg.norm(_corner_direction(segments[i + 1], "start")
@@ -1239,6 +1427,25 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float
         return faster
 
     return worth
+
+
+def _pass_beats(V: np.ndarray, v_j: np.ndarray, v_b: np.ndarray, length: np.ndarray, A: np.ndarray, J: np.ndarray,
+                jerk_limited: bool, passing: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """:func:`_blend_worth`'s model: is a corner passed faster at ``v_b`` over ``length`` (a blend or ramp) than at
+    ``v_j`` (0: a stop), from and back to ``V``, with path bounds ``A``, ``J`` (``passing``: those of the speed
+    changes to ``v_b``, when lower)? Both compared over the same distance (the shorter one completed at ``V``)."""
+    A_b, J_b = (A, J) if passing is None else passing
+
+    def change(dv: np.ndarray, A: np.ndarray, J: np.ndarray) -> np.ndarray:
+        if not jerk_limited:
+            return dv / A
+        return np.where(dv >= A * A / J, dv / A + A / J, 2.0 * np.sqrt(dv / J))
+
+    with np.errstate(divide="ignore", invalid="ignore"):  # v_b >= V: no speed change, passes anyway
+        c_stop, c_pass = change(V - v_j, A, J), change(V - v_b, A_b, J_b)
+        t_stop, t_pass = 2.0 * c_stop, 2.0 * c_pass + length / v_b
+        d_stop, d_pass = (V + v_j) * c_stop, (V + v_b) * c_pass + length
+        return t_pass + np.maximum(d_stop - d_pass, 0.0) / V <= t_stop + np.maximum(d_pass - d_stop, 0.0) / V
 
 
 def _curved_bound(segments: list, A: np.ndarray, J: np.ndarray, jerk_limited: bool) -> np.ndarray:

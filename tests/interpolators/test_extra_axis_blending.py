@@ -4,7 +4,8 @@ Two consecutive feed moves that both move X/Y/Z and an axis beyond them are pass
 every axis' velocity step at their junction fits in one sample within the share of its limits
 that the chain keeps in reserve: the rule ``lookahead.py`` and ``kinematics.junction_speed_limit``
 apply to the X, Y, Z tangent of unblended junctions, applied per axis to the rates ``dr_i/ds``.
-Such junctions are not blended: the axes follow the programmed segments exactly. Runs of dense short
+Such junctions are not blended in X, Y, Z: the axes follow the programmed segments, exactly or across a ramp
+of a rate step within 0.9 of the tolerance (``interpolate._ramped_extra``). Runs of dense short
 lines are merged, X, Y, Z into one curve and the other axes into one spline along it, within the
 tolerance (``tests/interpolators/test_rotary_chains.py``). Every limit holds, checked here by finite
 differences of the sampled positions.
@@ -72,16 +73,19 @@ def test_g64_passes_gentle_junctions_at_speed_within_every_limit(profile, sample
     _on_segments(sp64, g64, tolerance=0.01)  # G64 P0.01: the axes within 0.01 deg and 0.01 mm (fit_axes)
 
 
-def test_scurve_junction_rule_includes_the_jerk_limit():
-    """At 1 ms the S-curve's jerk share (``v |dr_i| <= share J_i Ts^2``) leaves the gentle A rate
-    steps too small a speed to be worth passing: they stay stops, as for X, Y, Z corners. Blocks of 6 mm
-    (longer than ``UNBLENDED_MAX_LENGTH``: not merged); the 0.5 mm blocks of ``_wrap`` merge and pass
-    without a stop (before the axes were merged with X, Y, Z this test asserted stops on those too)."""
+def test_scurve_rate_steps_of_collinear_blocks_ride_on_ramps():
+    """At 1 ms the S-curve's jerk share (``v |dr_i| <= share J_i Ts^2``) leaves the gentle A rate steps of blocks of
+    6 mm (longer than ``UNBLENDED_MAX_LENGTH``: not merged) too small a speed to be worth passing unblended; A and W
+    follow a quintic ramp of the path across each junction instead, within 0.9 P of their programmed motion
+    (``interpolate._ramped_extra``), and the wrap runs at its feed: 120.08 s for 2400 mm at F1200 (before the ramps
+    this test asserted more than 60 samples at rest: 73 of them, 126.415 s). The 0.5 mm blocks of ``_wrap`` merge
+    and pass without a stop (before the axes were merged with X, Y, Z this test asserted stops on those too)."""
     prog = parse_program(_wrap("G64 P0.01", step=6.0), context=CTX)
     sp = interpolate(prog, profile="scurve", sample_time=1e-3)
-    assert _at_rest(sp, range(2, 200)) > 60  # the rate steps per mm a third of the 2 mm blocks' (> 100 stops)
+    assert _at_rest(sp, range(2, 200)) == 0
+    assert sp.duration == pytest.approx(2400.0 / 20.0, abs=0.1)
     check_limits(sp, prog, LIMITS, jerk=True)
-    _on_segments(sp, prog)
+    _on_segments(sp, prog, tolerance=0.9 * 0.01)
     dense = parse_program(_wrap("G64 P0.01"), context=CTX)
     sp = interpolate(dense, profile="scurve", sample_time=1e-3)
     assert _at_rest(sp, range(2, 200)) == 0

@@ -18,7 +18,7 @@ import pytest
 
 from benchmarks.dense_code import rotary_programs
 from interpolators import interpolate, parse_program
-from interpolators.axis_blends import excess, hermite_axes, hermite_bounds
+from interpolators.axis_blends import corner_positions, excess, hermite_axes, hermite_bounds, ramp_half_length
 from interpolators.context import INTERPOLATION_CONTEXT
 from interpolators.dense import fit_axes
 from interpolators.kinematics import CURVE_BOUND_MARGIN
@@ -428,4 +428,170 @@ def test_an_axis_still_in_each_blend_keeps_its_own_value_in_each(profile):
     # B passes its corner value -5 deg within P (read as deg) in the blend
     assert np.abs(b[sp.block >= 3] + 5.0).min() <= 0.05
     assert np.abs(np.diff(u)).max() <= 1500.0 / 100  # no step: U moves 1500 mm over one line at F100-ish rates
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+def _programmed_a(prog, block: int, xyz: np.ndarray) -> float:
+    """A programmed at the point of block ``block``'s line or XY arc nearest ``xyz``: in proportion to the path along
+    the block (RS274/NGC 3, Sec. 2.1.2.5)."""
+    b = prog.blocks[block]
+    seg = b.segment
+    if hasattr(seg, "sweep"):
+        c = np.asarray(seg.center, dtype=float)
+        turned = math.atan2(xyz[1] - c[1], xyz[0] - c[0]) - seg.start_angle
+        share = (turned * math.copysign(1.0, seg.sweep)) % (2 * math.pi) / abs(seg.sweep)
+        share = share if share <= 1.0 else (0.0 if share > 0.5 + 0.5 * 2 * math.pi / abs(seg.sweep) else 1.0)
+    else:
+        s, d = np.asarray(seg.start, dtype=float), np.asarray(seg.end, dtype=float) - np.asarray(seg.start, dtype=float)
+        share = float(np.clip(np.dot(xyz - s, d) / np.dot(d, d), 0.0, 1.0))
+    return b.extra_start[0] + share * b.extra_delta[0]
+
+
+def _a_off_path(sp, prog) -> float:
+    """Worst distance of A from its programmed value at the nearest point of the sample's block or the blocks
+    beside it (lines and XY arcs)."""
+    a = sp.position[:, sp.axes.index("a")]
+    xyz = sp.position[:, :3]
+    worst = 0.0
+    for i in range(len(sp)):
+        near = [k for k in (sp.block[i] - 1, sp.block[i], sp.block[i] + 1)
+                if 0 <= k < len(prog.blocks) and prog.blocks[k].kind != "rapid" and prog.blocks[k].segment is not None]
+        worst = max(worst, min(abs(a[i] - _programmed_a(prog, k, xyz[i])) for k in near))
+    return worst
+
+
+def _rounded_square(a_on_lines: bool) -> list[str]:
+    """A 30 x 40 mm rectangle with R10 corners (lines tangent to the arcs) at F3000 under G64 P0.05, A turning 5 deg
+    per block on every block (``a_on_lines``) or 10 deg per arc and still on the lines: at every junction the path
+    is tangent and A's rate per mm steps (0.25 to 0.32 deg/mm, or 0 to 0.64)."""
+    moves = [("G1 X20 Y0", 1), ("G3 X30 Y10 I0 J10", 2), ("G1 X30 Y30", 3), ("G3 X20 Y40 I-10 J0", 4),
+             ("G1 X0 Y40", 5), ("G3 X-10 Y30 I0 J-10", 6), ("G1 X-10 Y10", 7), ("G3 X0 Y0 I10 J0", 8)]
+    out = ["G21 G90 G64 P0.05 G0 X0 Y0 Z0 A0", "F3000"]
+    for text, k in moves:
+        arc = k % 2 == 0
+        out.append(f"{text} A{5 * k}" if a_on_lines else (f"{text} A{5 * k}" if arc else text))
+    return out
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+@pytest.mark.parametrize("a_on_lines", [True, False])
+def test_a_rate_step_at_a_tangent_line_arc_junction_is_ramped(profile, a_on_lines):
+    """Lines tangent to arcs, A's rate stepping at each junction: A follows a quintic ramp of the path across each
+    junction (within 0.9 P of its programmed motion) instead of the one-sample rule, a stop at every junction
+    before (A on every block: 3.060 s trapezoid, 3.400 s S-curve; A on the arcs only: 3.060 s, 3.400 s). Without A
+    the contour takes 2.882 s (trapezoid, its junctions passed at the arcs' bound) and 2.924 s (S-curve). A starting
+    and stopping on the arcs (0.64 deg/mm) under the S-curve: the ramp within P (0.7 mm) bends A within its jerk
+    limit only below 14 mm/s, slower than a stop, and the junctions stay stops, at the time they took before."""
+    plain = _program([ln.split(" A")[0] for ln in _rounded_square(True)])
+    prog = _program(_rounded_square(a_on_lines))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(prog, profile=profile)
+    stops = profile == "scurve" and not a_on_lines
+    bound = {("trapezoid", True): 1.001, ("trapezoid", False): 1.04, ("scurve", True): 1.08,
+             ("scurve", False): 1.17}[profile, a_on_lines]
+    assert sp.duration <= bound * sp0.duration
+    assert (_inner_stops(sp, prog) > 0) == stops
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 1e-6  # X, Y, Z on the programmed path: the ramps move A only
+    assert (0.0 if stops else 0.005) <= _a_off_path(sp, prog) <= 0.9 * 0.05 + 1e-6
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+def _zigzag(a_every: int | None, p: float = 0.05) -> list[str]:
+    """Ten lines of 10 mm zigzagging 1 mm in Y at F3000 under G64 ``p``, A turning 5 deg on every ``a_every``-th line
+    (still on the others: 4-axis CAM output with a rotary word on some blocks only); no A with None."""
+    out = [f"G21 G90 G64 P{p} G0 X0 Y0 Z0 A0", "G1 F3000"]
+    for i in range(1, 11):
+        a = "" if a_every is None else f" A{5 * (i // a_every)}"
+        out.append(f"X{10 * i} Y{i % 2}{a}")
+    return out
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_word_on_some_blocks_only_keeps_one_chain(profile):
+    """A moving on every other line of a zigzag: the lines that keep A still join the chain (before, a stop wherever
+    A started or stopped: 2.260 s trapezoid, 2.650 s S-curve, against 2.034 s and 2.072 s without A; now 2.093 s).
+    The trapezoid blends every corner across all axes (A's rate stepping from 0 to 0.5 deg/mm within the blend) and
+    takes nearly the time without A. Under the S-curve a blend that keeps A within P of its corner is 0.9 mm long:
+    bending A by 0.5 deg/mm over it within A's jerk limit passes at 14 mm/s, slower than a stop (measured: 1.403 s
+    against 1.325 s on five lines), so those corners stay stops, at the time they took before."""
+    plain, prog = _program(_zigzag(None)), _program(_zigzag(2))
+    sp0, sp = interpolate(plain, profile=profile), interpolate(prog, profile=profile)
+    if profile == "trapezoid":
+        assert _inner_stops(sp, prog) == 0
+        assert sp.duration <= 1.03 * sp0.duration
+        assert 0.01 <= _axis_deviation(sp, prog, "a") <= 0.05
+    else:
+        assert sp.duration <= 1.3 * sp0.duration
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert distance_to_path(sp) <= 0.05
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+def test_a_wider_tolerance_ramps_a_start_on_a_straight_line_under_the_s_curve():
+    """Collinear lines, A starting and stopping on every other one (0.5 deg/mm) under G64 P0.5: the ramps within
+    0.9 P are long enough to pass at speed under the S-curve too: no stop, the time without A (1.664 s; before, a
+    stop at each start and stop of A, 2.112 s)."""
+    lines = ["G21 G90 G64 P0.5 G0 X0 Y0 Z0 A0", "G1 F3000"]
+    lines += [f"X{10 * i}" + (f" A{5 * ((i + 1) // 2)}" if i % 2 else "") for i in range(1, 9)]
+    prog, plain = _program(lines), _program([ln.split(" A")[0] for ln in lines])
+    sp0, sp = interpolate(plain, profile="scurve"), interpolate(prog, profile="scurve")
+    assert _inner_stops(sp, prog) == 0
+    assert sp.duration <= 1.005 * sp0.duration
+    check_limits(sp, prog, LIMITS, jerk=True)
+    assert distance_to_path(sp) <= 1e-9
+    assert 0.05 <= _axis_deviation(sp, prog, "a") <= 0.45 + 1e-6
+
+
+def test_ramp_half_length_keeps_the_quintic_within_the_share_of_p():
+    """The ramp of :func:`interpolators.axis_blends.ramp_half_length` centred on a corner of the axes' polyline
+    leaves it by exactly FIT_SHARE * P at its middle (ratio 1 of :func:`excess`); a step on one axis of two sizes
+    it, infinite without a step."""
+    step = np.array([[0.5, 0.1], [0.0, 0.0]])
+    half = ramp_half_length(step, np.array([0.05, 0.05]))
+    assert half[0] == pytest.approx(16 * 0.9 * 0.05 / (3 * 0.5))
+    assert half[1] == math.inf
+    corner, m0 = np.array([[2.0, 1.0]]), np.array([[0.0, 0.2]])
+    m1 = m0 + step[:1]
+    h = half[:1]
+    ratio = excess(2 * h, corner - m0 * h[:, None], corner + m1 * h[:, None], m0, m1, corner, np.array([0.05]))
+    assert ratio[0] == pytest.approx(1.0, rel=1e-9)
+
+
+@pytest.mark.parametrize("profile", PROFILES)
+def test_a_fast_axis_across_a_blend_stays_within_p_of_the_nearest_programmed_point(profile):
+    """C turning about 7 deg/mm on 10 mm sides of a 12-gon (30 deg corners) under G20 G64 P0.00787 (0.2 mm, read as
+    0.2 deg on C): the blends' C is checked against its programmed value at the nearest point of the chords (the
+    measure of ``_axis_deviation``), no longer along the blend's arc length with the corner at its middle, which
+    let C reach 0.426 deg (trapezoid) and 0.400 deg (S-curve), 2 P, from it (review31's seed 120). The blends that
+    keep it within 0.9 P are a little smaller: 2.748 -> 2.754 s, 2.871 -> 2.933 s."""
+    prog = _program(["G20 G90 G64 P0.00787 G0 X0 Y-0.7874 Z0 C0", "G1 F39.37", "X0.3937 Y-0.6819 C-75",
+                     "X0.6819 Y-0.3937 C-145", "X0.7874 Y0 C-210", "X0.6819 Y0.3937 C-210"])
+    sp = interpolate(prog, profile=profile)
+    assert "programmed_path" in sp.meta and _inner_stops(sp, prog) == 0
+    assert 0.1 <= _axis_deviation(sp, prog, "c") <= 0.9 * 0.2 + 1e-3
+    assert distance_to_path(sp) <= 0.2
+    check_limits(sp, prog, LIMITS, jerk=profile == "scurve")
+    assert sp.duration <= (2.76 if profile == "trapezoid" else 2.94)
+
+
+def test_corner_positions_takes_the_nearer_line():
+    """Points near a right-angle corner at the origin (in along +X, out along +Y): a point inside the corner nearer
+    the incoming line lies before the corner by its X, one nearer the outgoing line after it by its Y."""
+    t = corner_positions(np.array([[[-0.5, 0.1, 0.0], [-0.1, 0.5, 0.0], [0.0, 0.0, 0.0]]]), np.zeros((1, 3)),
+                         np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 1.0, 0.0]]))
+    assert np.allclose(t, [[-0.5, 0.5, 0.0]], rtol=0, atol=1e-15)
+
+
+def test_a_staircase_along_a_dense_run_keeps_its_still_stretches_merged():
+    """The dense helix with A up 2.25 deg on every tenth chord only (``rotary_programs('staircase')``, S-curve): the
+    chords keeping A still join the chain, each stretch between A's starts and stops merged apart; merged as one
+    run, A's staircase fits no spline within P and the run kept its 400 chords (13.045 s with the join alone, no
+    split), against 10.747 s with each A chord its own chain. A's 7 deg/mm steps within P0.01 deg pass near a
+    stop either way (about 2.6 mm/s at A's jerk limit)."""
+    prog = parse_program(rotary_programs("staircase", True), context=CTX)
+    sp = interpolate(prog, profile="scurve")
+    assert sp.duration <= 10.75
+    check_limits(sp, prog, LIMITS, jerk=True)
+    assert distance_to_path(sp) <= 0.01
+    assert _axis_deviation(sp, prog, "a") <= 0.01
     assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
