@@ -107,7 +107,14 @@ from vcnc.traces.columns import (
 from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
+from vcnc.traces.names import (
+    columns_from_names,
+    counted,
+    is_sample_number,
+    mapping_note,
+    no_positions,
+    rsi_orientation_note,
+)
 from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
@@ -643,7 +650,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
             "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how, **stated}
     if guessed:
-        meta["columns"] = _guessed_note(columns, units, time_known)
+        meta["columns"] = _guessed_note(columns, units, time_known) + rsi_orientation_note(header or [])
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 

@@ -44,7 +44,11 @@ vcnc addition (tracewild7, robot controllers): KUKA.RobotSensorInterface names t
 and the setpoint ``RSol`` (the controller's XML elements, as ROS' ``kuka_rsi_hw_interface`` ``rsi_state.h`` reads them
 beside ``AIPos``/``ASPos`` and ``IPOC``): a logger's ``X_RIst`` / ``X_RSol`` are axis x's measured and commanded
 position, and its ``IPOC``, the controller's interpolation-cycle time stamp, counts milliseconds (a KR C4 logs it in
-steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. Universal Robots' RTDE
+steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. (tracewild8)
+``RIst``/``RSol`` hold the pose of the tool, X, Y, Z in mm and A, B, C in degrees, KUKA's E6POS angles of its
+orientation (A about Z, B about Y, C about X, as ``$POS_ACT``); they are no axes, and a machine's A, B, C turn about X,
+Y, Z: the names do not map ``A_RIst``... (:func:`rsi_orientation`), and the capture's note names them as left out (a
+joint is ``AIPos``/``ASPos``). Universal Robots' RTDE
 recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's target
 and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual joint
 positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
@@ -70,7 +74,7 @@ from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, IPOC, LAG_SUFFIX, unit_in_name
 
 __all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions",
-           "rtde_joints"]
+           "rtde_joints", "rsi_orientation", "rsi_orientation_note"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
@@ -219,8 +223,24 @@ def is_sample_number(name: str) -> bool:
     return bool(words) and set(words) <= _SAMPLE or name.strip() == "#"
 
 
+def rsi_orientation(name: str) -> bool:
+    """True for KUKA RSI's orientation angles of the tool, ``A_RIst``, ``B_RSol``, ``RIst.C`` (module docstring)."""
+    words = _words(name)
+    rsi = any(a == "r" and b in ("ist", "sol") for a, b in zip(words, words[1:]))
+    return rsi and any(w in ("a", "b", "c") for w in words)
+
+
+def rsi_orientation_note(header: Sequence[str]) -> str:
+    """The note for a header's KUKA RSI orientation angles that the names leave out, else ``""``."""
+    angles = [h for h in header if rsi_orientation(h)]
+    return (f"; left out {angles}: KUKA RSI's orientation angles of the tool (E6POS A about Z, B about Y, C about X), "
+            "no axes" if angles else "")
+
+
 def _position(name: str) -> tuple[str, str | None] | None:
     """(role, axis or None) of a position column, or None for any other column."""
+    if rsi_orientation(name):
+        return None
     if _TRAILING_UNIT.search(name) and unit_in_name(name, "length") is None and counted(name) is None:
         return None  # a unit that is neither a length nor counts: mm/min, A, Nm, %
     words = _split_axis(_words(name))
