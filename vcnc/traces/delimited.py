@@ -62,6 +62,9 @@ by a stated lead as turns and radians are.
 that hold single spaces and are set apart by runs of spaces (``Commanded Pos   Encoder 1 Pos``) are the header of rows
 separated by spaces when they number the columns (:func:`_spaced_names`); a PI GCS array (:mod:`vcnc.traces.gcsarray`)
 is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
+
+**tracewild8** (session 32). A drive's parameter list (a line per object: index, subindex, value) is refused as such
+(:func:`_check_parameter_list`).
 """
 
 from __future__ import annotations
@@ -552,8 +555,27 @@ def _column(name: str | int, header: list[str] | None, width: int, src: str, lin
     raise CaptureError(f"column {name!r} not found; columns found: {found}", file=src, line=line)
 
 
+#: A line of a drive's object dictionary: index in hexadecimal, subindex, value (``0x6065,  0, 4294967295``).
+_OBJECT_ENTRY = re.compile(r"\s*0x[0-9A-Fa-f]{4}\s*[,;\t ]\s*\d{1,3}\s*[,;\t ]")
+
+
+def _check_parameter_list(text: str, src: str) -> None:
+    """An error for a drive's parameter list, one object a line (index, subindex, value), as SOMANET drives' OBLAC
+    configuration export writes it (``META,FORMAT,2``, then ``0x2001,  0, 3693``; CiA 301's object indices): values of
+    settings, not samples over time (our reading of saikasener/altinay's LiftMotor.csv, beside its recordings)."""
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    entries = [n for n, ln in enumerate(text.splitlines(), 1) if _OBJECT_ENTRY.match(ln)]
+    if len(entries) >= 10 and 2 * len(entries) >= len(lines):
+        first = text.splitlines()[entries[0] - 1].strip()
+        raise CaptureError(f"a drive's parameter list, not a recording: {len(entries)} lines of object index, "
+                           f"subindex and value (line {entries[0]}: {first!r}) are settings, no samples over time; "
+                           "vcnc identifies a drive from a trace of its commanded and measured position (the drive "
+                           "tool's recorder or scope export)", file=src, line=entries[0])
+
+
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    _check_parameter_list(text, src)
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
