@@ -64,7 +64,8 @@ separated by spaces when they number the columns (:func:`_spaced_names`); a PI G
 is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
 
 **tracewild8** (session 32). A drive's parameter list (a line per object: index, subindex, value) is refused as such
-(:func:`_check_parameter_list`).
+(:func:`_check_parameter_list`). A column taken as sample numbers must step by 1 (:func:`_check_sample_numbers`):
+CoDeSys V2.3's trace names its first column ``Cycle`` whether it counts task cycles or, with a frequency scan, holds ms.
 """
 
 from __future__ import annotations
@@ -640,6 +641,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     if sample_time is None:
         t = d[:, idx["t"]] * TIME_UNITS[units["t"]]
     else:  # a column of sample numbers, or none: the row's place
+        if "t" in idx:
+            _check_sample_numbers(d[:, idx["t"]], columns["t"], src, hline)
         t = np.round((d[:, idx["t"]] if "t" in idx else np.flatnonzero(keep)) * sample_time, 12)
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
         with np.errstate(over="ignore", invalid="ignore"):
@@ -886,6 +889,19 @@ def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], t
     return (mapping_note("header", columns)
             + (f"; not stated in the file, assumed {', '.join(assumed)}" if assumed else "")
             + " (--columns, --time-unit, --unit set them)")
+
+
+def _check_sample_numbers(numbers: np.ndarray, name: str, src: str, line: int | None) -> None:
+    """A column taken as sample numbers (with a sampling period) counts samples: its median step is 1 (halsampler
+    -t; a lost sample leaves a larger step here and there). One that steps by another number holds something else:
+    CoDeSys V2.3 writes the time in ms in its ``Cycle`` column when the trace has a frequency scan (names.py), and a
+    sampling period times those would stretch the time by the step (our reading: refuse rather than guess)."""
+    step = float(np.median(np.diff(numbers))) if numbers.size > 1 else 1.0
+    if step != 1.0:
+        raise CaptureError(f"the column {name!r}, taken as sample numbers with the sampling period, steps by "
+                           f"{step:.6g}, not 1: it holds no sample numbers (a time in ms, as CoDeSys' 'Cycle' with a "
+                           "frequency scan?)", file=src, line=line,
+                           expected=f"--columns t={name} with --time-unit ms|us|s and no --sample-time")
 
 
 def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: int) -> None:

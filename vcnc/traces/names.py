@@ -55,6 +55,11 @@ positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (
 vector): a robot's joint is no axis of the capture by itself, so such a header is a question naming them and the
 unit (:func:`rtde_joints`), never millimetres.
 
+vcnc addition (tracewild8): CoDeSys V2.3's "Trace in ASCII-File" (ABB Automation Builder 2.2 help, "'Trace in
+ASCII-File'": a title line, the project's path, the names line, then the values separated by a blank) writes the task
+cycle in the first column, named ``Cycle``, when the trace has no frequency scan: a column of sample numbers; with a
+frequency scan that column holds the time in ms instead (the reader refuses sample numbers that do not step by 1).
+
 vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``, ``Encoder 2 Pos``) are in counts
 (:func:`counted`), and two of them beside one ``Commanded Pos`` are a question (which encoder closes the loop, the
 collocated or the far one, the file does not say).
@@ -97,8 +102,10 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
                     "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain"})
-#: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``).
-_SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num"})
+#: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``; CoDeSys V2.3's
+#: ``Cycle``, module docstring).
+_SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num", "cycle",
+                     "cycles"})
 #: Words of a name that say its values are counts (Mitsubishi's "Cumulative feedback pulses").
 _COUNT_WORDS = frozenset({"pulse", "pulses", "counts", "increments", "inc", "incr", "cnt", "cnts"})
 #: German compounds are one word: a commanded "Lagesollwert", a measured "Lageistwert", a velocity
