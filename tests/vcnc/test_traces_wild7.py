@@ -143,3 +143,19 @@ def test_kuka_rsi_orientation_angles_are_left_out_and_named(tmp_path):
         "the tool (E6POS A about Z, B about Y, C about X), no axes")
     given = read_capture(f, columns={"t": "IPOC", "a_ref": "A_RSol", "a": "A_RIst"})  # the user's choice stands
     assert given.axes == ("a",) and given.reference[0, 0] == pytest.approx(80.5)
+
+
+def test_an_ioc_log_with_ecmc_axis_diagnostics_points_to_camonitor(tmp_path):
+    head = "2023/01/23 16:08:46.963 ecmc::  Ax     PosSet     PosAct     PosErr    PosTarg   DistLeft    CntrOut"
+    rows = [f"2023/01/23 16:08:4{7 + k}.064 ecmc::   1     {49.9 * k:6.3f}     {49.9 * k:6.3f}      0.000      "
+            "0.000      0.000      0.000" for k in range(2)]
+    f = tmp_path / "log.log"
+    f.write_text("#\n# Start at \"2023-W04\"\n#\niocshLoad ecmc.cmd\n" + head + "\n" + rows[0] + "\n"
+                 "2023/01/23 16:08:47.904 Starting up EtherCAT bus: 1 second(s).\n" + rows[1] + "\n"
+                 "2023/01/23 16:08:49.904 EtherCAT bus started!\n")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert err.value.line == 5
+    assert ("an EPICS IOC's console log with ecmc's axis diagnostics (2 lines 'ecmc:: Ax PosSet PosAct PosErr ...' "
+            "among its messages), no table of samples: log the axis' PosSet and PosAct records with camonitor"
+            in str(err.value))

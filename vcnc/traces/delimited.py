@@ -64,7 +64,8 @@ separated by spaces when they number the columns (:func:`_spaced_names`); a PI G
 is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
 
 **tracewild8** (session 32). A drive's parameter list (a line per object: index, subindex, value) is refused as such
-(:func:`_check_parameter_list`). A column taken as sample numbers must step by 1 (:func:`_check_sample_numbers`):
+(:func:`_check_parameter_list`), as is an EPICS IOC's log with ecmc's axis diagnostics
+(:func:`_check_ecmc_diagnostics`). A column taken as sample numbers must step by 1 (:func:`_check_sample_numbers`):
 CoDeSys V2.3's trace names its first column ``Cycle`` whether it counts task cycles or, with a frequency scan, holds ms.
 """
 
@@ -574,9 +575,29 @@ def _check_parameter_list(text: str, src: str) -> None:
                            "tool's recorder or scope export)", file=src, line=entries[0])
 
 
+#: The header ecmc prints above its axis diagnostics in an IOC's console log (``2023/01/23 16:08:46.963 ecmc::  Ax
+#: PosSet     PosAct     PosErr ...``, ecmccfg's examples/test/subst_hw_axes/readme.md).
+_ECMC_DIAGNOSTICS = re.compile(r"ecmc::\s+Ax\s+PosSet\s+PosAct\s+PosErr\b")
+
+
+def _check_ecmc_diagnostics(text: str, src: str) -> None:
+    """An error for an EPICS IOC's console log with ecmc's axis diagnostics (a line per axis now and then among the
+    IOC's messages, each after a time stamp and ``ecmc::``): no table of samples; the axis' ``PosSet``/``PosAct``
+    records logged with camonitor are (:mod:`vcnc.traces.camonitor`). Our reading of ecmccfg's logs (tracewild8)."""
+    m = _ECMC_DIAGNOSTICS.search(text)
+    if m is None:
+        return
+    line = text.count("\n", 0, m.start()) + 1
+    rows = sum(1 for ln in text.splitlines() if re.search(r"ecmc::\s+\d+\s+-?\d", ln))
+    raise CaptureError(f"an EPICS IOC's console log with ecmc's axis diagnostics ({rows} lines 'ecmc:: Ax PosSet "
+                       "PosAct PosErr ...' among its messages), no table of samples: log the axis' PosSet and PosAct "
+                       "records with camonitor, which vcnc reads", file=src, line=line)
+
+
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
     _check_parameter_list(text, src)
+    _check_ecmc_diagnostics(text, src)
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
