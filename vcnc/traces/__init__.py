@@ -24,7 +24,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, mtconnect, sinumerik, tncscope
+from vcnc.traces import emps, mtconnect, sinumerik, tncscope, twincat
 from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -166,7 +166,7 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         reason = mtconnect.document_reason(local)
         if reason is not None:
             raise CaptureError(reason, file=str(p))
-        reason = sinumerik.measurement_reason(root, head)
+        reason = sinumerik.measurement_reason(root, head) or twincat.scope_project_reason(root)
         if reason is not None:
             raise CaptureError(reason, file=str(p))
         raise CaptureError(f"an XML file with root <{root}>, not a SINUMERIK trace (<traceSession> or "
