@@ -159,3 +159,25 @@ def test_an_ioc_log_with_ecmc_axis_diagnostics_points_to_camonitor(tmp_path):
     assert ("an EPICS IOC's console log with ecmc's axis diagnostics (2 lines 'ecmc:: Ax PosSet PosAct PosErr ...' "
             "among its messages), no table of samples: log the axis' PosSet and PosAct records with camonitor"
             in str(err.value))
+
+
+def test_an_indraworks_parameter_save_is_no_recording(tmp_path):
+    f = tmp_path / "params.par"
+    f.write_text("SERCOS-ASCII\n3/25/2019 2:45:05 PM\ndefault\nFWA-INDRV*-MPB-20V14\n1\n|\nS-0-0001\n"
+                 "NC cycle time (TNcyc)\n01100000000100010000000000000001\nus\n250\n65000\n10000\n|\n")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert err.value.line == 1
+    assert "a drive's parameter file, not a recording: 'SERCOS-ASCII' in line 1 begins Rexroth IndraWorks'" in str(
+        err.value)
+
+
+def test_a_twincat_scope_project_points_to_the_csv_export(tmp_path):
+    f = tmp_path / "Phasing.tcscopex"
+    f.write_text('\ufeff<?xml version="1.0" encoding="utf-8"?>\n<ScopeProject AssemblyName="TwinCAT.Measurement.'
+                 'Scope.API.Model">\n  <Name>Phasing</Name>\n</ScopeProject>\n', encoding="utf-8")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert str(err.value).endswith(
+        "a TwinCAT Scope project (root <ScopeProject>): the scope's configuration, its charts and channels; vcnc reads "
+        "a recording exported to CSV (TwinCAT Scope: Export to csv, or TC3ScopeExportTool)")

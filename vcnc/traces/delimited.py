@@ -564,8 +564,15 @@ _OBJECT_ENTRY = re.compile(r"\s*0x[0-9A-Fa-f]{4}\s*[,;\t ]\s*\d{1,3}\s*[,;\t ]")
 def _check_parameter_list(text: str, src: str) -> None:
     """An error for a drive's parameter list, one object a line (index, subindex, value), as SOMANET drives' OBLAC
     configuration export writes it (``META,FORMAT,2``, then ``0x2001,  0, 3693``; CiA 301's object indices): values of
-    settings, not samples over time (our reading of saikasener/altinay's LiftMotor.csv, beside its recordings)."""
+    settings, not samples over time (our reading of saikasener/altinay's LiftMotor.csv, beside its recordings); and
+    Rexroth IndraWorks' parameter save, whose first line is ``SERCOS-ASCII`` (anderssandstrom/tc_target_drive's
+    indradrive/params.par: a block per S-/P- parameter, ``|`` between blocks)."""
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if lines and lines[0].strip().lstrip("\ufeff") == "SERCOS-ASCII":
+        raise CaptureError("a drive's parameter file, not a recording: 'SERCOS-ASCII' in line 1 begins Rexroth "
+                           "IndraWorks' parameter save (S-/P- parameters, each with its name, attributes, unit and "
+                           "value); vcnc identifies a drive from a trace of its commanded and measured position (the "
+                           "drive tool's oscilloscope export)", file=src, line=1)
     entries = [n for n, ln in enumerate(text.splitlines(), 1) if _OBJECT_ENTRY.match(ln)]
     if len(entries) >= 10 and 2 * len(entries) >= len(lines):
         first = text.splitlines()[entries[0] - 1].strip()
