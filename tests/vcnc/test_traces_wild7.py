@@ -181,3 +181,21 @@ def test_a_twincat_scope_project_points_to_the_csv_export(tmp_path):
     assert str(err.value).endswith(
         "a TwinCAT Scope project (root <ScopeProject>): the scope's configuration, its charts and channels; vcnc reads "
         "a recording exported to CSV (TwinCAT Scope: Export to csv, or TC3ScopeExportTool)")
+
+
+def test_camonitor_binary_input_words_do_not_stop_the_positions(tmp_path):
+    lines = ["IOC_TEST:ec0-s1-EL1004-BI1     2021-07-09 09:50:50.013168 One  "]
+    for k in range(6):
+        stamp = f"2021-07-09 10:29:40.{k * 10:02d}0000"
+        lines += [f"IOC_TEST:Axis1-PosSet          {stamp} {10 + 0.5 * k:.4f}  ",
+                  f"IOC_TEST:Axis1-PosAct          {stamp} {10 + 0.5 * max(k - 1, 0):.4f}  "]
+    lines.append("IOC_TEST:ec0-s1-EL1004-BI1     2021-07-09 10:29:40.060000 Zero  ")
+    f = tmp_path / "backlash_forward.log"
+    f.write_text("\n".join(lines) + "\n")
+    cap = read_capture(f)
+    assert cap.meta["commanded"] == "x:IOC_TEST:Axis1-PosSet" and cap.meta["measured"] == "x:IOC_TEST:Axis1-PosAct"
+    np.testing.assert_allclose(cap.reference[:, 0], [10 + 0.5 * k for k in range(6)], atol=1e-9)
+    with pytest.raises(CaptureError) as err:
+        read_capture(f, columns={"x_ref": "IOC_TEST:ec0-s1-EL1004-BI1", "x": "IOC_TEST:Axis1-PosAct"})
+    assert err.value.line == 1
+    assert "the value of IOC_TEST:ec0-s1-EL1004-BI1 is not a number (got 'One')" in str(err.value)
