@@ -199,3 +199,33 @@ def test_camonitor_binary_input_words_do_not_stop_the_positions(tmp_path):
         read_capture(f, columns={"x_ref": "IOC_TEST:ec0-s1-EL1004-BI1", "x": "IOC_TEST:Axis1-PosAct"})
     assert err.value.line == 1
     assert "the value of IOC_TEST:ec0-s1-EL1004-BI1 is not a number (got 'One')" in str(err.value)
+
+
+def test_a_numpy_archive_names_its_arrays(tmp_path):
+    f = tmp_path / "veltest_run1.npz"
+    np.savez(f, t=np.arange(4) * 0.001, cmd=np.zeros(4), pos=np.zeros(4))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert "a NumPy archive (.npz) of the arrays ['t', 'cmd', 'pos']: save the time, commanded and measured" in str(
+        err.value)
+
+
+def test_an_excel_workbook_is_asked_as_csv(tmp_path):
+    import zipfile
+
+    f = tmp_path / "Recorded measurements.xlsx"
+    with zipfile.ZipFile(f, "w") as z:
+        z.writestr("[Content_Types].xml", "<Types/>")
+        z.writestr("xl/workbook.xml", "<workbook/>")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert "an Excel workbook (.xlsx): save the sheet that holds the trace as CSV, which vcnc reads" in str(err.value)
+
+
+def test_one_row_of_numbers_in_a_printout_is_no_row_vector(tmp_path):
+    f = tmp_path / "rampdown_pos.log"
+    text = "".join(f"velo: 24.03{k}\npos: -738625.{k}\n" for k in range(12))
+    f.write_text(text + "slopediffTime: [ 0.0597 0.0320 0.0757 0.0526]\n0.0597 0.0320 0.0757 0.0526\n")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert "only one row of numbers (4 values) among 25 lines of text: no table of samples" in str(err.value)

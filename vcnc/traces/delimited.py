@@ -609,6 +609,11 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
     if data.shape[0] < 2:  # MATLAB's and numpy's savetxt write a vector as one row
+        text_lines = sum(1 for ln in lines if ln.strip()) - 1
+        if text_lines > 20:  # a program's printout with one line of numbers in it (tracewild8)
+            raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: "
+                               "no table of samples (a program's printed output or a log?); a trace has a row per "
+                               "sample and a column per channel", file=src, line=row_lines[0])
         raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a "
                            "column per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
                            file=src, line=row_lines[0])
