@@ -229,3 +229,16 @@ def test_one_row_of_numbers_in_a_printout_is_no_row_vector(tmp_path):
     with pytest.raises(CaptureError) as err:
         read_capture(f)
     assert "only one row of numbers (4 values) among 25 lines of text: no table of samples" in str(err.value)
+
+
+def test_kuka_rsi_joint_positions_are_a_question_naming_them(tmp_path):
+    f = tmp_path / "rsi_axes.csv"
+    rows = [f"{1000 + 12 * k},{10 + 0.1 * max(k - 1, 0):.2f},{-90 + 0.2 * k:.2f},{10 + 0.1 * k:.2f},{-90 + 0.2 * k:.2f}"
+            for k in range(6)]
+    f.write_text("IPOC,A1_AIPos,A2_AIPos,A1_ASPos,A2_ASPos\n" + "\n".join(rows) + "\n")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert ("KUKA RSI axis-specific positions ASPos (setpoint) and AIPos (actual), joints ['A1', 'A2'], in deg: choose "
+            "a joint and name it as a rotary axis, e.g. --columns a_ref=A1_ASPos,a=A1_AIPos") in str(err.value)
+    cap = read_capture(f, columns={"t": "IPOC", "a_ref": "A1_ASPos", "a": "A1_AIPos"})
+    assert cap.axes == ("a",) and cap.reference[5, 0] == pytest.approx(10.5) and cap.t[1] == pytest.approx(0.012)

@@ -47,11 +47,11 @@ position, and its ``IPOC``, the controller's interpolation-cycle time stamp, cou
 steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. (tracewild8)
 ``RIst``/``RSol`` hold the pose of the tool, X, Y, Z in mm and A, B, C in degrees, KUKA's E6POS angles of its
 orientation (A about Z, B about Y, C about X, as ``$POS_ACT``); they are no axes, and a machine's A, B, C turn about X,
-Y, Z: the names do not map ``A_RIst``... (:func:`rsi_orientation`), and the capture's note names them as left out (a
-joint is ``AIPos``/``ASPos``). Universal Robots' RTDE
-recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's target
-and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual joint
-positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
+Y, Z: the names do not map ``A_RIst``... (:func:`rsi_orientation`), and the capture's note names them as left out; a
+joint's positions ``ASPos``/``AIPos`` (A1..A6, deg) are a question naming them (:func:`rsi_joints`). Universal Robots'
+RTDE recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's
+target and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual
+joint positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
 vector): a robot's joint is no axis of the capture by itself, so such a header is a question naming them and the
 unit (:func:`rtde_joints`), never millimetres.
 
@@ -79,7 +79,7 @@ from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, IPOC, LAG_SUFFIX, unit_in_name
 
 __all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions",
-           "rtde_joints", "rsi_orientation", "rsi_orientation_note"]
+           "rtde_joints", "rsi_orientation", "rsi_orientation_note", "rsi_joints"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
@@ -300,9 +300,31 @@ def rtde_joints(header: Sequence[str]) -> str | None:
     return None
 
 
+def rsi_joints(header: Sequence[str]) -> str | None:
+    """The question for a header of KUKA RSI's axis-specific positions (``ASPos`` setpoint, ``AIPos`` actual, joints
+    A1..A6 in deg, as ``kuka_rsi_hw_interface`` reads them; a logger's ``A1_AIPos`` or ``AIPos.A1``) without the
+    Cartesian ``RIst``/``RSol`` pair, else None: a robot's joint is no axis of the capture by itself (as
+    :func:`rtde_joints`); our reading of the names, no such log seen."""
+    roles: dict[str, dict[int, str]] = {"ASPos": {}, "AIPos": {}}
+    for h in header:
+        words = _words(h)
+        kind = next((f"A{a[1].upper()}Pos" for a, b in zip(words, words[1:]) if a in ("as", "ai") and b == "pos"),
+                    None)
+        joint = next((int(b) for a, b in zip(words, words[1:]) if a == "a" and b.isdigit()), None)
+        if kind is not None and joint is not None:
+            roles[kind].setdefault(joint, h)
+    both = sorted(set(roles["ASPos"]) & set(roles["AIPos"]))
+    if not both or any(_position(h) is not None for h in header):
+        return None
+    n = both[0]
+    return (f"KUKA RSI axis-specific positions ASPos (setpoint) and AIPos (actual), joints "
+            f"{[f'A{j}' for j in both]}, in deg: choose a joint and name it as a rotary axis, e.g. --columns "
+            f"a_ref={roles['ASPos'][n]},a={roles['AIPos'][n]} with the time (IPOC, ms)")
+
+
 def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
     """:func:`columns_from_names` of the names as they are."""
-    rtde = rtde_joints(header)
+    rtde = rtde_joints(header) or rsi_joints(header)
     if rtde is not None:
         return None, rtde
     if len(set(header)) != len(header):
