@@ -120,6 +120,10 @@ def test_codesys_cycle_column_holding_milliseconds_is_no_sample_count(tmp_path):
     f = tmp_path / "trace.txt"
     f.write_text(_codesys("Cycle", [4 * k for k in range(10)], cmd, cmd), newline="")
     with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert str(err.value).endswith("; 'Cycle' steps by 4, not 1: a time rather than sample numbers? give --columns "
+                                   "t=Cycle,... with --time-unit ms|us|s")
+    with pytest.raises(CaptureError) as err:
         read_capture(f, sample_time=0.004)  # 4 x 4 ms would stretch the time four times
     assert err.value.line == 3
     assert ("the column 'Cycle', taken as sample numbers with the sampling period, steps by 4, not 1"

@@ -633,7 +633,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
-                               f"(not read from the names: {why})"
+                               f"(not read from the names: {why})" + _sample_step_hint(header, data)
                                + (servo_period_hint(src) if header is None and not known else ""), file=src,
                                line=hline)
     axes = mapped_axes(columns, src)
@@ -935,6 +935,20 @@ def _check_sample_numbers(numbers: np.ndarray, name: str, src: str, line: int | 
                            f"{step:.6g}, not 1: it holds no sample numbers (a time in ms, as CoDeSys' 'Cycle' with a "
                            "frequency scan?)", file=src, line=line,
                            expected=f"--columns t={name} with --time-unit ms|us|s and no --sample-time")
+
+
+def _sample_step_hint(header: list[str] | None, data: np.ndarray) -> str:
+    """A note for the question of a header whose one column of sample numbers does not step by 1 (CoDeSys' ``Cycle``
+    holding ms, :func:`_check_sample_numbers`): it is no count of samples but likely a time; else ``""``."""
+    samples = [j for j, h in enumerate(header or []) if is_sample_number(h)]
+    if len(samples) != 1 or data.shape[0] < 2:
+        return ""
+    step = float(np.nanmedian(np.diff(data[:, samples[0]])))
+    if step == 1.0 or not math.isfinite(step):
+        return ""
+    name = (header or [])[samples[0]]
+    return (f"; {name!r} steps by {step:.6g}, not 1: a time rather than sample numbers? give --columns t={name},... "
+            "with --time-unit ms|us|s")
 
 
 def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: int) -> None:
