@@ -601,22 +601,34 @@ def _check_ecmc_diagnostics(text: str, src: str) -> None:
                        "records with camonitor, which vcnc reads", file=src, line=line)
 
 
-def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
-             unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+def _check_no_recording(text: str, src: str) -> None:
+    """Errors for text that is no recording: a drive's parameters, an IOC's log with ecmc's diagnostics."""
     _check_parameter_list(text, src)
     _check_ecmc_diagnostics(text, src)
+
+
+def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: str) -> None:
+    """An error for a table of one row: MATLAB's and numpy's savetxt write a vector as one row; among more than 20
+    lines of text it is a program's printout or log with one line of numbers in it (tracewild8)."""
+    if data.shape[0] >= 2:
+        return
+    text_lines = sum(1 for ln in lines if ln.strip()) - 1
+    if text_lines > 20:
+        raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: no "
+                           "table of samples (a program's printed output or a log?); a trace has a row per sample and "
+                           "a column per channel", file=src, line=row_lines[0])
+    raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a column "
+                       "per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
+                       file=src, line=row_lines[0])
+
+
+def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
+             unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    _check_no_recording(text, src)
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
-    if data.shape[0] < 2:  # MATLAB's and numpy's savetxt write a vector as one row
-        text_lines = sum(1 for ln in lines if ln.strip()) - 1
-        if text_lines > 20:  # a program's printout with one line of numbers in it (tracewild8)
-            raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: "
-                               "no table of samples (a program's printed output or a log?); a trace has a row per "
-                               "sample and a column per channel", file=src, line=row_lines[0])
-        raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a "
-                           "column per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
-                           file=src, line=row_lines[0])
+    _check_rows(data, lines, row_lines, src)
     above = lines[:row_lines[0] - 1]
     hline = table.header_line or len(above) or None  # the names' line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
