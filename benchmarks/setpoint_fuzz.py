@@ -6,9 +6,10 @@ of random programs: those three generators' programs and CAM-like dense code wri
 chords of random curves 1 um - 2 mm long, tangent arc chains, tiny arcs, zig-zags, helices, near-reversals, very
 short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`: the same in TNC conversational
 with cycle 32 tolerances; :func:`rotary_cam_program`: coarse chords with A-C swinging and cornering under G94 and
-G93, tangent arc chains of alternating sense, a third in G20), each run under the trapezoid and the S-curve with
-random but sane limits per axis (:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between
-axes, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
+G93, tangent arc chains of alternating sense, an axis of A-C/U-W written on some blocks only along lines and arcs,
+a third in G20), each run under the trapezoid and the S-curve with random but sane limits per axis
+(:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, 400x for rotary_cam, rapid
+rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
 
 * ``nonfinite``: a NaN or infinity in a column;
 * ``limits``: an axis beyond its velocity, acceleration (or, S-curve, jerk) limit by finite differences or in the
@@ -16,10 +17,11 @@ axes, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` nam
 * ``jump``: a position step that the analytic velocity and acceleration columns do not explain;
 * ``block_order``: ``Setpoints.block`` decreasing;
 * ``start`` / ``end``: the first sample not at the program's start, the last not exactly at its end;
-* ``deviation``: a sample farther from the programmed path than the tolerance of its block and the one before
-  (0 under G61 where a block ends at rest; G64 P; 0.01 mm without P, ``interpolators.DEFAULT_TOLERANCE``; the TNC
-  cycle 32 T or the dialect's tolerance, ``Block.tolerance``);
-* ``corner``: a programmed block end not passed within the block's tolerance (not on a sample within 1 nm where
+* ``deviation``: a sample farther from the programmed path than the tolerance of the junctions at its block's two
+  ends (:func:`junction_tolerances`: the smaller of the two blocks' G64 P, 0.01 mm without P,
+  ``interpolators.DEFAULT_TOLERANCE``, the TNC cycle 32 T or the dialect's tolerance, ``Block.tolerance``, as
+  LinuxCNC's ``tcFindBlendTolerance``; 0 where a block ends at rest, G61, a dwell);
+* ``corner``: a programmed block end not passed within its junction's tolerance (not on a sample within 1 nm where
   the block ends at rest);
 * ``dwell``: a dwell not held at rest for its time rounded up to whole samples;
 * ``axis``: an axis beyond X/Y/Z outside its programmed values over the sample's block and two blocks either side,
@@ -91,8 +93,9 @@ class _Cam:
         s = _num(self.r, v)
         return f"{axis}{'+' if self.tnc and not s.startswith('-') else ''}{s}"
 
-    def arc(self, centre, end, ccw: bool, *, z: float | None = None) -> None:
-        """An arc about ``centre`` (X Y) to ``end`` (X Y), helical to ``z``; the end put on the circle."""
+    def arc(self, centre, end, ccw: bool, *, z: float | None = None, extra: str = "") -> None:
+        """An arc about ``centre`` (X Y) to ``end`` (X Y), helical to ``z``, with ``extra`` words (ISO: axes beyond
+        X/Y/Z moving along it); the end put on the circle."""
         c = np.array([float(_num(self.r, centre[0])), float(_num(self.r, centre[1]))])
         r0 = float(np.hypot(*(self.pos[:2] - c)))
         ang = math.atan2(end[1] - c[1], end[0] - c[0])
@@ -106,7 +109,7 @@ class _Cam:
         else:
             i, j = (c - self.pos[:2]) / self.unit
             zw = f" Z{ez}" if z is not None else ""
-            self.lines.append(f"{'G3' if ccw else 'G2'} X{ex} Y{ey}{zw} I{i:.6f} J{j:.6f}")
+            self.lines.append(f"{'G3' if ccw else 'G2'} X{ex} Y{ey}{zw}{extra} I{i:.6f} J{j:.6f}")
         self.pos = np.array([float(ex), float(ey), float(ez)]) * self.unit
 
     def mode(self) -> None:
@@ -279,6 +282,43 @@ def _alternating_arcs(g: _Cam) -> None:
         ccw = not ccw if r.random() < 0.85 else ccw
 
 
+def _staircase(g: _Cam) -> None:
+    """Lines and tangent arcs (radii 0.05 - 10 mm) under one feed with an axis of A-C or U-W written on some blocks
+    only: indexing (a move of that axis alone every few blocks, still between), a staircase (a step on every k-th
+    block), or moving on every block at a rate per mm that changes from block to block, on lines and on arcs alike:
+    junctions where that axis starts, stops or steps its rate, line/line, line/arc and arc/arc."""
+    r = g.r
+    axis = r.choice("AAABCUVW")
+    value = r.uniform(-30, 30) if axis in "ABC" else r.uniform(-5, 5)
+    rate = 10 ** r.uniform(-1.5, 1.5) * (1 if axis in "ABC" else 0.1)  # per mm of path
+    every, style = r.randint(2, 6), r.choice(("index", "stair", "rates"))
+    heading = r.uniform(0, 2 * math.pi)
+    g.extra = True
+    g.move(g.pos, feed=g.feed(), extra=f" {axis}{value:.4f}")
+    for k in range(r.randint(4, 30)):
+        length = 10 ** r.uniform(-1, 1)
+        word = ""
+        if style == "index" and k % every == 0:
+            value += r.uniform(-90, 90) if axis in "ABC" else r.uniform(-5, 5)
+            g.lines.append(f"G1 {axis}{value:.4f}")
+        elif style == "rates" or (style == "stair" and k % every == 0):
+            value += rate * length * r.choice((1, 1, -1, 0.2, 3)) * (1 if style == "rates" else r.uniform(0.5, 2))
+            word = f" {axis}{value:.4f}"
+        if r.random() < 0.4:
+            rad = 10 ** r.uniform(math.log10(0.05), 1)
+            ccw = r.random() < 0.5
+            side = 1 if ccw else -1
+            c = g.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * side
+            sweep = min(length / rad, 2.5) * side
+            a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
+            g.arc(c, c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)]), ccw, extra=word)
+            heading += sweep
+        else:
+            if r.random() < 0.3:
+                heading += math.radians(r.uniform(1, 90)) * r.choice((1, -1))
+            g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0], extra=word)
+
+
 _ROTARY_SECTIONS = (_rotary_chords, _rotary_chords, lambda g: _rotary_chords(g, inverse_time=True),
                     _alternating_arcs, _extra_axes, _chords, _arc_chain)
 
@@ -286,15 +326,21 @@ _ROTARY_SECTIONS = (_rotary_chords, _rotary_chords, lambda g: _rotary_chords(g, 
 def rotary_cam_program(seed: int) -> str:
     """A CAM-like ISO program of ``seed`` for the rotary-axis blends and S-curve tangent junctions: coarse chords
     with A/B/C swinging and cornering (under G94 or G93 with F changing every block), tangent line/arc and arc/arc
-    chains of alternating sense with small radii, in random path modes, a third of the programs in G20 (inches:
+    chains of alternating sense with small radii, staircases of one axis beyond X/Y/Z (:func:`_staircase`), in
+    random path modes, a third of the programs in G20 (inches:
     coordinates, feeds and P; A-C stay in degrees)."""
     r = random.Random(f"rotary_cam:{seed}")
     g = _Cam(r, unit=25.4 if r.random() < 1 / 3 else 1.0)
     g.lines.append(f"{'G20' if g.unit != 1.0 else 'G21'} G17 G90 G40 G94")
     g.move([0, 0, 5], rapid=True)
+    stairs = random.Random(f"rotary_cam:stairs:{seed}")
     for _ in range(r.randint(2, 5)):
         g.mode()
         r.choice(_ROTARY_SECTIONS)(g)
+        if stairs.random() < 0.5:  # drawn apart: the other sections of a seed stay as they were before
+            g.r, main = stairs, g.r
+            _staircase(g)
+            g.r = main
         if r.random() < 0.2:
             g.move(g.pos + [0, 0, r.uniform(0.5, 5)], rapid=True)
     return "\n".join([*g.lines, "M2"]) + "\n"
@@ -344,13 +390,14 @@ def program_of(source: str, seed: int) -> tuple[str, MachineContext]:
     raise ValueError(f"unknown source {source!r}; known: {', '.join(SOURCES)}")
 
 
-def random_limits(rng: random.Random, axes) -> dict[str, AxisLimits]:
+def random_limits(rng: random.Random, axes, spread: float = 40.0) -> dict[str, AxisLimits]:
     """Limits per axis (mm or deg): velocity from 10, acceleration from 100, jerk from 1000, each axis' value a
-    random 1 - 40 times a base drawn per program (so up to 40x apart between axes); rapid 1 - 3 x the velocity."""
+    random 1 - ``spread`` times a base drawn per program (so up to ``spread`` x apart between axes); rapid 1 - 3 x
+    the velocity."""
     base = [10 ** rng.uniform(1, 1.5), 10 ** rng.uniform(2, 3), 10 ** rng.uniform(3, 5)]
     out = {}
     for axis in axes:
-        v, a, j = (b * 40 ** rng.random() for b in base)
+        v, a, j = (b * spread ** rng.random() for b in base)
         out[axis] = AxisLimits(velocity=v, acceleration=a, jerk=j, rapid=v * rng.uniform(1, 3))
     return out
 
@@ -361,6 +408,28 @@ def block_tolerances(program) -> np.ndarray:
     under G64 as LinuxCNC's planner blends them)."""
     return np.array([0.0 if b.exact_stop or b.kind == "dwell" else
                      DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance for b in program.blocks])
+
+
+def junction_tolerances(program) -> np.ndarray:
+    """The path tolerance of the junction at each block's end [mm]: the smaller of its own and the next moving
+    block's (``Block.tolerance``, :data:`interpolators.DEFAULT_TOLERANCE` without), as LinuxCNC's
+    ``tcFindBlendTolerance`` (src/emc/tp/tc.c) blends within ``fmin(T1, T2)``; 0 where it ends at rest (G61, a
+    dwell before the next move, the program's end). A block's samples lie within the larger of the junctions at
+    its two ends (a blend's first half carries the incoming block, its second half the outgoing one)."""
+    blocks = program.blocks
+    own = np.array([DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance for b in blocks])
+    out = np.zeros(len(blocks))
+    nxt, stop = len(blocks), True
+    for i in range(len(blocks) - 1, -1, -1):
+        b = blocks[i]
+        if b.kind == "dwell":
+            stop = True
+            continue
+        if b.segment is None or b.length == 0:
+            continue
+        out[i] = 0.0 if stop or b.exact_stop else min(own[i], own[nxt])
+        nxt, stop = i, False
+    return out
 
 
 def _full(program, sp, pos: np.ndarray, extra: np.ndarray | None) -> np.ndarray:
@@ -481,12 +550,13 @@ def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) ->
     if np.abs(sp.position[-1] - end).max() > EXACT:
         out.append(f"end: last sample {np.abs(sp.position[-1] - end).max():.3g} mm from the program end")
     tol = block_tolerances(program)
+    joint = junction_tolerances(program)
     blk = np.clip(sp.block, 0, None)
     # a blend joins a block to the moving block before it (a zero-length block between them has no samples)
     moving = np.array([b.segment is not None and b.length > 0 for b in program.blocks])
     before = np.maximum.accumulate(np.where(moving, np.arange(len(moving)), 0))
     before = np.concatenate([[0], before[:-1]])
-    allowed = np.maximum(tol[blk], tol[before[blk]]) + ALLOWANCE
+    allowed = np.maximum(joint[blk], np.where(blk > 0, joint[before[blk]], 0.0)) + ALLOWANCE
     path = program.path()
     if path.segments:
         d = path_distances(path, xyz(sp))
@@ -496,7 +566,7 @@ def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) ->
                        f"{d[k]:.3g} mm off the path, tolerance {allowed[k] - ALLOWANCE:g}")
     # a chord between samples v Ts apart on a curve of radius v^2 / a lies a Ts^2 / 8 inside it
     a_xyz = np.linalg.norm([limits[a].acceleration for a in sp.axes if a in "xyz"])
-    out += _corner_failures(program, sp, xyz(sp), tol, a_xyz * sp.sample_time**2 / 8)
+    out += _corner_failures(program, sp, xyz(sp), joint, a_xyz * sp.sample_time**2 / 8)
     out += _dwell_failures(program, sp)
     out += _axis_failures(program, sp, tol)
     return out
@@ -514,7 +584,7 @@ def run_case(source: str, seed: int) -> list[tuple[str, str, float, list[str]]]:
         return [("refused", "-", Ts, [str(e).splitlines()[0]])]
     if not any(b.segment is not None for b in program.blocks):
         return [("refused", "-", Ts, ["no motion"])]
-    limits = random_limits(rng, program.axes)
+    limits = random_limits(rng, program.axes, spread=400.0 if source == "rotary_cam" else 40.0)
     out = []
     for profile in ("trapezoid", "scurve"):
         try:

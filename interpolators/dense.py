@@ -582,7 +582,7 @@ def merge_dense_runs(
     first : list of int
         For each returned segment, the index of the first input segment it stands for (its feed,
         rapid flag and block; the tolerance after it is that of the last input segment it
-        replaces, ``last[k]`` = ``first[k + 1] - 1``).
+        replaces: the one before the next different ``first``, as a run's pieces share theirs).
     runs : dict of int to MergedRun
         For each returned piece, the run it belongs to.
     """

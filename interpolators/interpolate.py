@@ -912,8 +912,11 @@ def _merged(ch: _Chain, jerk_limited: bool, *, unblended: bool = False) -> tuple
                                          curvature_continuous=jerk_limited, unblended=unblended)
     if not runs:
         return ch, {}
-    last = [*(f - 1 for f in first[1:]), len(blocks) - 1]
-    slowest = [min(feeds[f:max(f, e) + 1]) for f, e in zip(first, last)]  # a run's feeds may differ (unblended)
+    # the last input segment each stands for: the pieces of one run share its first, so the one before the next
+    # item's first that differs (the run's last block: not the block before the run, that item's tolerance)
+    nxt = np.searchsorted(first, first, side="right")
+    last = [first[k] - 1 if k < len(first) else len(blocks) - 1 for k in nxt.tolist()]
+    slowest = [min(feeds[f:e + 1]) for f, e in zip(first, last)]  # a run's feeds may differ (unblended)
     out = _Chain.of(segs, [blocks[i] for i in first], slowest, [rapid[i] for i in first],
                     [tolerances[i] for i in last])
     return out, {id(segs[k]): run for k, run in runs.items()}

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from benchmarks.setpoint_fuzz import cam_program, check_setpoints, rotary_cam_program, run_case
+from benchmarks.setpoint_fuzz import cam_program, check_setpoints, junction_tolerances, rotary_cam_program, run_case
 from interpolators import AxisLimits, interpolate, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
 from tests.interpolators.setpoint_checks import xyz
@@ -46,9 +46,20 @@ def test_rotary_cam_programs_write_inches_inverse_time_and_alternating_arcs():
     assert any(w in text for w in (" A", " B", " C"))
     prog = parse_program(text, context=INTERPOLATION_CONTEXT)
     assert prog.blocks[-1].target[0] == pytest.approx(float(lines[-2].split("X")[1].split()[0]) * 25.4, abs=1e-9)
-    # seed 4 (G21): arcs turning alternately, one after the other
+    # seed 4 (G21): arcs turning alternately, one after the other, then a staircase's tangent arcs
     arcs = [line[:2] for line in rotary_cam_program(4).splitlines() if line[:3] in ("G2 ", "G3 ")]
-    assert (len(arcs), sum(a != b for a, b in zip(arcs, arcs[1:]))) == (17, 7)
+    assert (len(arcs), sum(a != b for a, b in zip(arcs, arcs[1:]))) == (24, 13)
+
+
+def test_rotary_cam_staircases_write_an_axis_on_some_blocks_and_on_arcs():
+    # seed 0: W indexed alone between lines and arcs, B on an arc; seed 5: axes moving on 12 arcs, A on one
+    lines = rotary_cam_program(0).splitlines()
+    assert "G1 W1.0542" in lines
+    assert "G2 X0.048094 Y0.252169 B61.2066 I-0.032130 J-0.137175" in lines
+    arcs = [line for line in rotary_cam_program(5).splitlines()
+            if line[:3] in ("G2 ", "G3 ") and any(f" {a}" in line for a in "ABCUVW")]
+    assert len(arcs) == 12
+    assert arcs[0] == "G3 X0.594458 Y0.648734 A-9.4203 I-0.031729 J0.005943"
 
 
 def test_axis_check_names_a_rotary_axis_beyond_its_programmed_values():
@@ -145,3 +156,41 @@ def test_limit_check_allows_the_rapid_rate_on_a_step_across_a_rapid_end():
     first_feed = int(np.argmax(sp.block == 2))
     assert abs(z[first_feed] - z[first_feed - 1]) / 0.0025 > 20.0
     assert check_setpoints(prog, sp, limits, "trapezoid") == []
+
+
+def _rapid_into_dense_chords() -> str:
+    """A rapid under G64 P0.5 to X10 Y0 Z5, then under P0.01 a run of 41 chords (20 um, then 0.1 mm) of a curve
+    turning from +X to +Y: merged into a smooth curve of several pieces."""
+    lines = ["G21 G90 G64 P0.5", "G0 X10 Y0 Z5", "G64 P0.01", "G1 X10.02 Y0.01 F3000"]
+    for k in range(1, 41):
+        t = k * 0.05
+        lines.append(f"G1 X{10.02 + 8 * np.sin(t / 2):.4f} Y{0.01 + 8 * (1 - np.cos(t / 2)) + 0.5 * t:.4f}")
+    return "\n".join([*lines, "M2"]) + "\n"
+
+
+def test_a_rapid_into_a_merged_run_is_blended_within_the_run_s_smaller_tolerance():
+    # the pieces of a merged run after its first took the tolerance of the item before the run (here the rapid's
+    # P0.5: _merged read the run's last block as the one before the next piece's first, shared by the pieces),
+    # so the S-curve's kink blend of the rapid into the curve passed X10 Y0 Z5 0.185 mm away under P0.01 (found:
+    # setpoint_fuzz cam seed 42205, 0.078 mm); the corner is within min(0.5, 0.01), LinuxCNC's
+    # tcFindBlendTolerance (src/emc/tp/tc.c)
+    prog = parse_program(_rapid_into_dense_chords(), context=INTERPOLATION_CONTEXT)
+    limits = {a: AxisLimits(velocity=100.0, acceleration=1000.0, jerk=1e5, rapid=200.0) for a in "xyz"}
+    for profile in ("trapezoid", "scurve"):
+        sp = interpolate(prog, limits=limits, sample_time=0.001, profile=profile)
+        assert check_setpoints(prog, sp, limits, profile) == []
+        assert np.linalg.norm(xyz(sp) - [10.0, 0.0, 5.0], axis=1).min() <= 0.01
+        np.testing.assert_allclose(xyz(sp)[-1], prog.blocks[-1].target, atol=1e-12)
+
+
+def test_deviation_check_takes_the_smaller_tolerance_of_a_junction():
+    # the same plan with the corner cut by 0.05 mm on the first chord's samples: within the rapid's P0.5, but the
+    # junction's tolerance is min(0.5, 0.01) (junction_tolerances); the check allowed the larger before
+    prog = parse_program(_rapid_into_dense_chords(), context=INTERPOLATION_CONTEXT)
+    limits = {a: AxisLimits(velocity=100.0, acceleration=1000.0, jerk=1e5, rapid=200.0) for a in "xyz"}
+    sp = interpolate(prog, limits=limits, sample_time=0.001, profile="trapezoid")
+    np.testing.assert_allclose(junction_tolerances(prog)[[0, 1, -1]], [0.01, 0.01, 0.0])
+    k = int(np.argmax(sp.block == 1))
+    sp.position[k, 2] -= 0.05
+    fails = [f for f in check_setpoints(prog, sp, limits, "trapezoid") if f.startswith("deviation")]
+    assert len(fails) == 1 and f"sample {k} (block 1, line 4)" in fails[0] and "tolerance 0.01" in fails[0]
