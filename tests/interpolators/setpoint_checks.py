@@ -15,24 +15,29 @@ def check_limits(sp, program, limits, *, jerk: bool = False, feed: bool = False,
     """Every axis of ``sp`` within ``limits[axis]``: the finite differences of the sampled positions and
     the analytic velocity and acceleration columns (the rapid rate on rapid blocks, the velocity limit
     elsewhere), and the jerk when ``jerk``; with ``feed`` also the X/Y/Z path speed never above the
-    block's programmed feed. ``rel`` is the relative allowance for rounding."""
+    block's programmed feed. ``rel`` is the relative allowance for rounding; the finite differences of order k
+    also allow the rounding of the positions themselves, ``2^k eps max|p| / Ts^k`` (the third difference of
+    positions near 245 mm at Ts = 0.31 ms rounds by up to 0.014 mm/s^3: fanuc_generator seed 42082 under the
+    setpoint fuzzer read 1.0000027 x a 1354 mm/s^3 jerk limit)."""
     Ts = sp.sample_time
     rapid = np.array([b.kind == "rapid" for b in program.blocks])
     for i, axis in enumerate(sp.axes):
         lim = limits[axis]
         p = sp.position[:, i]
+        eps = np.finfo(float).eps * float(np.abs(p).max(initial=0.0))  # the rounding of one position
         v_lim = np.where(rapid[sp.block], lim.rapid_rate, lim.velocity) * (1 + rel) + 1e-9
         assert np.all(np.abs(sp.velocity[:, i]) <= v_lim), axis
         # a step across a rapid's end runs partly at the rapid rate
         v_step = np.maximum(v_lim[1:], v_lim[:-1])
-        assert np.all(np.abs(np.diff(p)) / Ts <= v_step), (axis, np.abs(np.diff(p)).max() / Ts)
+        assert np.all(np.abs(np.diff(p)) / Ts <= v_step + 2 * eps / Ts), (axis, np.abs(np.diff(p)).max() / Ts)
         assert np.all(np.abs(sp.acceleration[:, i]) <= lim.acceleration * (1 + rel)), axis
         a_fd = np.abs(np.diff(p, 2)) / Ts**2
-        assert np.all(a_fd <= lim.acceleration * (1 + rel) + 1e-6), (axis, a_fd.max())
+        assert np.all(a_fd <= lim.acceleration * (1 + rel) + 1e-6 + 4 * eps / Ts**2), (axis, a_fd.max())
         if jerk:
             j_col = np.abs(np.diff(sp.acceleration[:, i])) / Ts
             assert np.all(j_col <= lim.jerk * (1 + rel) + 1e-6), (axis, j_col.max())
-            assert np.all(np.abs(np.diff(p, 3)) / Ts**3 <= lim.jerk * (1 + rel) + 1e-3), axis
+            j_fd = np.abs(np.diff(p, 3)) / Ts**3
+            assert np.all(j_fd <= lim.jerk * (1 + rel) + 1e-3 + 8 * eps / Ts**3), (axis, j_fd.max())
     if feed:
         xyz = [i for i, a in enumerate(sp.axes) if a in ("x", "y", "z")]
         speed = np.linalg.norm(sp.velocity[:, xyz], axis=1)
