@@ -25,7 +25,9 @@ rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is w
   the block ends at rest);
 * ``dwell``: a dwell not held at rest for its time rounded up to whole samples;
 * ``axis``: an axis beyond X/Y/Z outside its programmed values over the sample's block and two blocks either side,
-  widened by their largest tolerance (deg on A-C).
+  widened by their largest tolerance (deg on A-C);
+* ``axis_path``: such an axis farther from its value programmed at the nearest point of the path than the sample's
+  tolerance (deg on A-C), beyond the axis' rate times the sample's distance from the path (:func:`_axis_path_failures`).
 
 ``python -m benchmarks.setpoint_fuzz --count 200 --seed 0`` prints a table of outcomes per source; ``--list``
 names every failing case (source, seed, profile, sample time, kind and detail).
@@ -41,6 +43,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
@@ -529,6 +532,53 @@ def _axis_failures(program, sp, tol: np.ndarray) -> list[str]:
     return []
 
 
+def _programmed_axes(block) -> tuple[cKDTree, np.ndarray, np.ndarray]:
+    """Points of a feed move's X/Y/Z path at most 0.5 um apart (2,000 at most), the axes beyond X/Y/Z programmed
+    there (in proportion to the path, RS274/NGC 3 Sec. 2.1.2.5) and each axis' rate per mm."""
+    n = int(min(2000, max(50, block.length / 5e-4)))
+    s = np.linspace(0.0, block.length, n)
+    rate = (block.extra_target - block.extra_start) / block.length
+    return cKDTree(np.atleast_2d(block.segment.point_at(s))), block.extra_start + np.outer(s, rate), rate
+
+
+def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
+    """Each axis beyond X/Y/Z within ``allowed`` (the sample's path tolerance, read as deg on A-C) of its value
+    programmed at the point of the path nearest the sample (on the sample's block or the one either side), widened
+    by the axis' rate per mm times the sample's distance from that point and the points' spacing: blends keep their
+    axes within 0.9 P of that measure (``axis_blends.excess``), ramps and merged runs follow the programmed motion
+    within 0.9 P along the path (``axis_blends.ramp_half_length``, ``dense.fit_axes``). Samples on moves with X/Y/Z
+    still or under tool centre point control are left out."""
+    cols = [(k, EXTRA_NAMES.index(a)) for k, a in enumerate(sp.axes) if a not in "xyz"]
+    if not cols:
+        return []
+    blocks = program.blocks
+    feed = [b.segment is not None and b.length > 0 and b.extra_start is not None and not b.tcp for b in blocks]
+    pts, blk = xyz(sp), np.clip(sp.block, 0, None)
+    lo = np.searchsorted(blk, np.arange(len(blocks)), side="left")
+    hi = np.searchsorted(blk, np.arange(len(blocks)), side="right")
+    best = np.full((len(sp), len(cols)), -np.inf)  # samples left out stay below any tolerance
+    cache: dict[int, tuple] = {}
+    for i in np.flatnonzero((hi > lo) & np.array(feed, dtype=bool)).tolist():
+        rows = slice(lo[i], hi[i])
+        best[rows] = np.inf
+        for j in (i - 1, i, i + 1):
+            if not 0 <= j < len(blocks) or not feed[j]:
+                continue
+            tree, values, rate = cache.setdefault(j, _programmed_axes(blocks[j]))
+            dist, idx = tree.query(pts[rows])
+            spacing = blocks[j].length / (len(values) - 1)
+            for c, (k, e) in enumerate(cols):
+                off = np.abs(sp.position[rows, k] - values[idx, e]) - abs(rate[e]) * (dist + spacing)
+                best[rows, c] = np.minimum(best[rows, c], off)
+    out = best - allowed[:, None]
+    if np.any(out > 0):
+        r, c = np.unravel_index(int(np.argmax(out)), out.shape)
+        return [f"axis_path: {sp.axes[cols[c][0]]} at sample {r} (block {blk[r]}, line {blocks[blk[r]].line}) "
+                f"{best[r, c]:.3g} beyond its value at the nearest point of the path and the slack of its rate, "
+                f"tolerance {allowed[r] - ALLOWANCE:g}"]
+    return []
+
+
 def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) -> list[str]:
     """The failures of ``sp`` (setpoints of ``program`` under ``limits`` and ``profile``), one line per kind
     (see the module docstring); empty when every invariant holds."""
@@ -569,6 +619,7 @@ def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) ->
     out += _corner_failures(program, sp, xyz(sp), joint, a_xyz * sp.sample_time**2 / 8)
     out += _dwell_failures(program, sp)
     out += _axis_failures(program, sp, tol)
+    out += _axis_path_failures(program, sp, allowed)
     return out
 
 

@@ -73,9 +73,27 @@ def test_axis_check_names_a_rotary_axis_beyond_its_programmed_values():
     k = int(np.argmax(sp.block == 5)) + 10
     sp.position[k, sp.axes.index("a")] += 0.03
     fails = [f for f in check_setpoints(prog, sp, limits, "trapezoid") if not f.startswith(("limits", "jump"))]
-    assert len(fails) == 1
+    assert len(fails) == 2
     assert fails[0].startswith("axis: a at sample")
     assert "(block 5, line 7) 10.03, 0.03 beyond its programmed values 10 .. 10, tolerance 0.01" in fails[0]
+    # and 0.03 deg from A programmed at the nearest point of the line (A still there: no slack)
+    assert fails[1] == (f"axis_path: a at sample {k} (block 5, line 7) 0.03 beyond its value at the nearest point "
+                        "of the path and the slack of its rate, tolerance 0.01")
+
+
+def test_axis_path_check_measures_at_the_nearest_point_of_the_path():
+    # A 0 -> 10 deg along X0 -> X10 (1 deg/mm), then still: a sample of the first line with A 0.05 deg behind is
+    # within the A range of its blocks (the axis check passes it) but 0.05 deg from A at its X, above P0.01
+    prog = parse_program("G21 G64 P0.01\nG0 X0 Y0 A0\nG1 X10 A10 F600\nG1 X20\nM2\n", context=INTERPOLATION_CONTEXT)
+    limits = {a: AxisLimits(velocity=100.0, acceleration=1000.0, jerk=1e5) for a in "xya"}
+    sp = interpolate(prog, limits=limits, sample_time=0.002)
+    assert check_setpoints(prog, sp, limits, "trapezoid") == []
+    k = int(np.argmax(sp.block == 1)) + 200
+    assert sp.position[k, sp.axes.index("x")] == pytest.approx(sp.position[k, sp.axes.index("a")], abs=1e-9)
+    sp.position[k, sp.axes.index("a")] -= 0.05
+    fails = [f for f in check_setpoints(prog, sp, limits, "trapezoid") if not f.startswith(("limits", "jump"))]
+    assert len(fails) == 1 and fails[0].startswith(f"axis_path: a at sample {k} (block 1, line 3) 0.0")
+    assert fails[0].endswith("tolerance 0.01")
 
 
 def test_spline_points_by_arc_length_have_unit_speed_and_the_curvature_as_second_derivative():
