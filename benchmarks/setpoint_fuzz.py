@@ -543,7 +543,7 @@ def _programmed_axes(block) -> tuple[cKDTree, np.ndarray, np.ndarray]:
 
 def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
     """Each axis beyond X/Y/Z within ``allowed`` (the sample's path tolerance, read as deg on A-C) of its value
-    programmed at the point of the path nearest the sample (on the sample's block or the one either side), widened
+    programmed at the point of the path nearest the sample (on the sample's move or the move either side), widened
     by the axis' rate per mm times the sample's distance from that point and the points' spacing: blends keep their
     axes within 0.9 P of that measure (``axis_blends.excess``), ramps and merged runs follow the programmed motion
     within 0.9 P along the path (``axis_blends.ramp_half_length``, ``dense.fit_axes``). Samples on moves with X/Y/Z
@@ -558,11 +558,14 @@ def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
     hi = np.searchsorted(blk, np.arange(len(blocks)), side="right")
     best = np.full((len(sp), len(cols)), -np.inf)  # samples left out stay below any tolerance
     cache: dict[int, tuple] = {}
-    for i in np.flatnonzero((hi > lo) & np.array(feed, dtype=bool)).tolist():
+    moving = [i for i, b in enumerate(blocks) if b.segment is not None and b.length > 0]
+    for n, i in enumerate(moving):
+        if not feed[i] or hi[i] == lo[i]:
+            continue
         rows = slice(lo[i], hi[i])
         best[rows] = np.inf
-        for j in (i - 1, i, i + 1):
-            if not 0 <= j < len(blocks) or not feed[j]:
+        for j in moving[max(n - 1, 0):n + 2]:  # the moves either side (a zero-length block between has no samples)
+            if not feed[j]:
                 continue
             tree, values, rate = cache.setdefault(j, _programmed_axes(blocks[j]))
             dist, idx = tree.query(pts[rows])
