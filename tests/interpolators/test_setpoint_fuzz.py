@@ -237,3 +237,15 @@ def test_limit_check_allows_the_rounding_of_positions_far_from_zero():
         else:
             with pytest.raises(AssertionError):
                 check_limits(sp, prog, limits, jerk=True)
+
+
+def test_axis_path_check_takes_the_move_after_a_zero_length_block():
+    # a G1 repeating the point between a line moving W and one starting B (4.8 deg/mm) under G64 P0.05: the blend's
+    # first half carries line 3 with B up to 0.163 deg, its value on line 5 at the nearest point (the corner cut
+    # 0.034 mm short along it); the check took the zero-length block for the one after (found: rotary_cam seed 42091)
+    prog = parse_program("G21 G64 P0.05\nG0 X0 Y0 B0\nG1 X1.3 Y3.2 W1 F100\nG1 X1.3 Y3.2\nG1 X3.9 Y1.9 B14\nM2\n",
+                         context=INTERPOLATION_CONTEXT)
+    limits = {a: AxisLimits(velocity=100.0, acceleration=1000.0, jerk=1e5) for a in "xybw"}
+    sp = interpolate(prog, limits=limits, sample_time=0.0005)
+    assert sp.position[sp.block == 1, sp.axes.index("b")].max() == pytest.approx(0.163, abs=5e-4)
+    assert check_setpoints(prog, sp, limits, "trapezoid") == []
