@@ -249,3 +249,31 @@ def test_axis_path_check_takes_the_move_after_a_zero_length_block():
     sp = interpolate(prog, limits=limits, sample_time=0.0005)
     assert sp.position[sp.block == 1, sp.axes.index("b")].max() == pytest.approx(0.163, abs=5e-4)
     assert check_setpoints(prog, sp, limits, "trapezoid") == []
+
+
+def test_a_fitted_axis_still_but_for_rounding_keeps_a_positive_jerk_bound():
+    # B steps along lines and an arc, C and A start on the last line: a fitted piece of the chain carries B with
+    # derivatives of its spline's rounding (|r_1| 1.03e-15 /mm, just above the 1e-15 taken as moving; |r_2| 4.3e-16
+    # below); r_2 stayed in the jerk term at the acceleration its own term did not bound, the path jerk bound came
+    # out at -7.8e21 mm/s^3 and ruckig found no S-curve profile (found: rotary_cam seed 42267, shrunk)
+    prog = parse_program("G21 G17 G90 G40 G94\nG1 X-0.4286 Y0.903504 Z5.000 F12000\nG1 X-6.744 Y1.011 Z5.000 B28.6438\n"
+                         "G1 X-6.5421 Y1.1285 Z5.0000\nG3 X-6.557361 Y1.269500 B30.6523 I-0.039045 J0.067100\n"
+                         "G1 X-13.0583 Y3.3615 Z5.000\nG1 X-8.0846 Y10.9205 Z9.809380 B26.0610 C28.3496 A31.4030\nM2\n",
+                         context=INTERPOLATION_CONTEXT)
+    table = {"x": (1463, 1447, 65579), "y": (91.3, 13843, 467490), "z": (976, 76579, 1279465),
+             "a": (205, 33384, 768069), "b": (552, 89033, 13482551), "c": (17.7, 191466, 49414)}
+    limits = {k: AxisLimits(velocity=v, acceleration=a, jerk=j) for k, (v, a, j) in table.items()}
+    sp = interpolate(prog, limits=limits, sample_time=0.00027, profile="scurve")
+    np.testing.assert_allclose(sp.position[-1], [-8.0846, 10.9205, 9.80938, 31.403, 26.061, 28.3496], atol=1e-9)
+    assert check_setpoints(prog, sp, limits, "scurve") == []
+
+
+def test_extra_curve_bounds_take_a_derivative_below_the_threshold_as_zero():
+    from interpolators.kinematics import extra_curve_bounds
+
+    d1, d2, d3 = (np.zeros((1, 6)) for _ in range(3))
+    d1[0, 1], d2[0, 1], d3[0, 1] = 1.03e-15, 4.3e-16, 4.6e-16  # B: a spline's rounding
+    limits = {"b": AxisLimits(velocity=552.0, acceleration=89033.0, jerk=13482551.0)}
+    v, a, j = extra_curve_bounds(d1, d2, d3, np.array([200.0]), limits, share=np.ones(1), jerk_limited=True)
+    assert v[0] == 200.0
+    assert a[0] == pytest.approx(89033.0 / 1.03e-15) and j[0] == pytest.approx(13482551.0 / 1.03e-15)
