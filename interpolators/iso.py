@@ -506,7 +506,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             dialect = st.context.dialect.name
             mill = (MILL_G.get(key, DIALECT_G[dialect].get(key)) if dialect in DIALECT_G
                     else LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
-            if dialect == "linuxcnc" and key == 80 and any(v.letter == "P" for v in words):
+            if dialect == "linuxcnc" and key == 80 and _fanuc_g08(w, words):
                 mill = None  # Fanuc's G08 P1 / P0 (look-ahead), named by _unsupported_g, not LinuxCNC's G8
             if mill is not None and mill[0] == "refused":  # LinuxCNC's code, another meaning in this dialect
                 where.fail(f"{mill[1]}: not supported", column=w.column, text=w.text,
@@ -882,6 +882,14 @@ def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
     st.tool_offsets[tool] = offset
     notes.add("T<tool>.<offset> read as Fagor's tool and offset (T D of the Fagor 8055)")
     return Word("T", float(tool), w.column, w.text)
+
+
+def _fanuc_g08(g8: Word, words: list[Word]) -> bool:
+    """Whether the G8 ``g8`` of a ``linuxcnc`` block is Fanuc's ``G08 P1`` / ``P0`` (AI advanced preview control):
+    it has a P and no other G or M code of the block can own that P. LinuxCNC's G8 (lathe radius mode, modal group
+    15 of g-code.adoc "Modal Groups") takes no P, and a block holds one code of each group: ``G8 G64 P0.01`` or
+    ``G8 G4 P1`` gives the P to G64 or G4."""
+    return any(v.letter == "P" for v in words) and not any(v.letter in "GM" and v is not g8 for v in words)
 
 
 def _unsupported_g(key: int, words: list[Word], dialect: str) -> str:
