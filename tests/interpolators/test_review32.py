@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
-from interpolators import parse_program
+from interpolators import interpolate, parse_program
+from interpolators.context import INTERPOLATION_CONTEXT as CTX
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
+from tests.interpolators.setpoint_checks import check_limits
+from tests.interpolators.test_secondary_axes import LIMITS
 from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext().with_dialect("linuxcnc")
@@ -26,3 +30,25 @@ def test_g8_with_a_p_of_its_own_is_still_named_as_fanucs_look_ahead():
     with pytest.raises(GCodeError, match=r":2:1: G8 lathe radius mode: not supported \(G08 P1 / P0 with a P is "
                                          r"Fanuc's AI advanced preview control"):
         parse_program("G21\nG08 P1\nG0 X1\nM2\n", context=LINUXCNC)
+
+
+# one lap of a 30 x 40 mm rectangle with R10 corners, its sides tangent to the arcs, under G64 P0.01 at F3000
+ROUNDED = ["G21 G90 G64 P0.01 G0 X0 Y0 Z0 A0", "G1 Z-1 F3000", "G1 X20 Y0", "G3 X30 Y10 I0 J10", "G1 X30 Y30",
+           "G3 X20 Y40 I-10 J0", "G1 X0 Y40", "G3 X-10 Y30 I0 J-10", "G1 X-10 Y10", "G3 X0 Y0 I10 J0"]
+
+
+@pytest.mark.parametrize("tail", ["G0 Z5 A90", "G1 A90 F3600"])
+def test_a_rotary_index_after_a_contour_leaves_the_contour_as_planned(tail):
+    """A rapid or a move of A alone after a 3-axis G64 contour starts a chain of its own: the contour's chain is no
+    rotary chain. Review32: its chain was turned into one (interpolate._chains) though the block did not join it, and
+    under the S-curve its tangent line/arc junctions lost their curvature blends: 2.848 s to the contour's end against
+    2.668 s with no A in the tail."""
+    ends = {}
+    for t in (tail, tail.replace(" A90", " Z5" if "G1" in tail else "")):
+        prog = parse_program("\n".join([*ROUNDED, t, "M2"]) + "\n", context=CTX)
+        sp = interpolate(prog, profile="scurve")
+        check_limits(sp, prog, LIMITS, jerk=True)
+        ends[t] = float(np.flatnonzero(sp.block < len(ROUNDED) - 1)[-1]) * sp.sample_time
+    with_a, without = ends.values()
+    assert with_a == pytest.approx(without, abs=1e-9)
+    assert with_a <= 2.67
