@@ -1271,6 +1271,15 @@ def _move_z(t: _Tnc, line: int, kind: str, z: float, *, optional: bool = False) 
     t.emit(line, kind, end, rows=rows)
 
 
+def _function_dwell(t: _Tnc, line: int, up: str) -> None:
+    """``FUNCTION DWELL TIME t`` / ``REV r`` (TNC 640 user's manual, "Defining a dwell time: FUNCTION DWELL"): a
+    dwell where the tool is, t seconds or r spindle revolutions."""
+    m = re.match(r"FUNCTION DWELL\s+(TIME|REV)\s*(\S+)\s*$", up)
+    if m is None:
+        raise ReferenceError(up)
+    _dwell(t, line, _val(m.group(2), t.q))
+
+
 def _dwell(t: _Tnc, line: int, seconds: float) -> None:
     t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one" if seconds > 0 else "optional"))
 
@@ -2770,9 +2779,12 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _feed_dwell_def(t, up)
         elif up.startswith("FUNCTION TCPM") or up.startswith("FUNCTION RESET TCPM"):
             _function_tcpm(t, up)
+        elif up.startswith("FUNCTION DWELL"):
+            _function_dwell(t, line, up)
         elif up.startswith(("PLANE", "FUNCTION")):
             if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL"))
-                    or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
+                    or up.startswith("PLANE")
+                    and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
                 raise ReferenceError(up)
         elif re.match(r"CYCLE? DEF", up):
             _cycle_def(t, line, up)

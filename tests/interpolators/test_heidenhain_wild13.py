@@ -1,0 +1,66 @@
+"""Heidenhain programs of a thirteenth wild set (hyperMILL 2025 for a DMC 105V, a machine warm-up generator, a
+CAM program manager's INCH programs, programs written in the forms of Fusion's and NX's TNC 640 posts): an FK
+line along a tangent of the arc before it (one solution, not several), FUNCTION DWELL in the reference. Each a
+hand-written program, checked against the independent reference where it runs."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
+
+ZERO = MachineContext()
+
+
+def checked(body: str, context: MachineContext = ZERO):
+    return checked_program("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", context)
+
+
+def program(body: str):
+    return parse_heidenhain("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", context=ZERO)
+
+
+def ends(prog, line: int) -> list[tuple[str, list[float]]]:
+    return [(b.kind, np.round(b.target, 4).tolist()) for b in prog.blocks if b.line == line]
+
+
+def arc_end(prog, line: int) -> list[float]:
+    """The end of the one counter-clockwise arc of a line."""
+    (block,) = [b for b in prog.blocks if b.line == line]
+    assert block.kind == "arc" and block.segment.ccw
+    return block.target.tolist()
+
+
+def test_fk_line_along_a_tangent_of_the_arc_before_it_is_one_solution():
+    # the FL's line X=0 touches the FCT's circle (centre 10/60, radius 10) at 0/60: a double root, which Newton's
+    # method meets only to about 1e-5 mm from every start; vcnc counted 6 solutions there and asked for FSELECT
+    prog = program("TOOL CALL 1 Z S4000\nL X+20 Y+70 R0 FMAX\nL Z-5 R0 F500\nL X+10 Y+70 F300\n"
+                   "FCT DR+ R10\nFL X+0 Y+0 AN-90")
+    assert arc_end(prog, 6) == pytest.approx([0.0, 60.0, -5.0], abs=1e-4)
+    assert ends(prog, 7) == [("line", [0.0, 0.0, -5.0])]
+
+
+def test_fk_tangent_line_with_a_second_real_solution_still_needs_fselect():
+    # the line Y=70 (AN+180, 10 from 0/60) touches the circle about 90/60 at 90/70 (a quarter turn) and, turned
+    # the other way round it, at 90/50 (three quarters): two solutions, not the four the double root made
+    body = ("TOOL CALL 1 Z S4000\nL X+100 Y+50 R0 FMAX\nL Z-5 R0 F500\nL X+100 Y+60 F300\n"
+            "FCT DR+ R10\nFL X+10 AN+180 PDX+0 PDY+60 D10")
+    with pytest.raises(GCodeError, match="2 solutions"):
+        program(body)
+    prog = program(body + "\nFSELECT 1")
+    assert arc_end(prog, 6) == pytest.approx([90.0, 70.0, -5.0], abs=1e-4)
+    assert ends(prog, 7) == [("line", [10.0, 70.0, -5.0])]
+
+
+def test_function_dwell_with_a_q_parameter_is_a_dwell_in_the_reference_too():
+    # the warm-up generator's 'FUNCTION DWELL TIME+Q23' in a loop (TNC 640 user's manual, "Defining a dwell time:
+    # FUNCTION DWELL"); the reference passed FUNCTION DWELL over silently, so it could not see the dwell rows
+    prog = checked("Q23 = 2\nQ90 = 1\nTOOL CALL 1 Z S500\nL X+10 R0 FMAX M3\nLBL 2\nFUNCTION DWELL TIME+Q23\n"
+                   "Q90 = Q90 + 1\nFN 12: IF +Q90 LT +4 GOTO LBL 2\nL X+20 R0 FMAX")
+    dwells = [b for b in prog.blocks if b.kind == "dwell"]
+    assert len(dwells) == 3 and all(b.dwell == pytest.approx(2.0) for b in dwells)
+    assert ends(prog, 10) == [("rapid", [20.0, 0.0, 0.0])]
