@@ -1206,24 +1206,95 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
 
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
+_FORM_RE = re.compile(r"\s*(ROW|CIRC|PITCHCIRC)(\d+)\s*\(([^)]*)\)", re.I)
+_FORM_KEY_RE = re.compile(r"\s*(NUM|START|STEP|END|ROT|D|X|Y|Z)(?![A-Z])", re.I)
+#: The words of each generated pattern form, and those it must have.
+_FORM_WORDS = {"ROW": ({"X", "Y", "D", "NUM", "ROT", "Z"}, {"X", "Y", "D", "NUM"}),
+               "CIRC": ({"X", "Y", "D", "START", "NUM", "Z"}, {"X", "Y", "D", "NUM"}),
+               "PITCHCIRC": ({"X", "Y", "D", "START", "STEP", "END", "NUM", "Z"}, {"X", "Y", "D", "NUM"})}
+
+
+def _form_words(kind: str, text: str, start: int, where: Where, params: QParameters,
+                column0: int) -> dict[str, float]:
+    """The words of one ROW / CIRC / PITCHCIRC form, ``text[start:]`` its inside, values evaluated."""
+    allowed, needed = _FORM_WORDS[kind]
+    words: dict[str, float] = {}
+    pos = start
+    while text[pos:].strip():
+        m = _FORM_KEY_RE.match(text, pos)
+        key = m.group(1).upper() if m else ""
+        if m is None or key not in allowed or key in words:
+            tok = text[pos:].split()[0]
+            where.fail(f"word {tok!r} in PATTERN DEF {kind}", column=column0 + pos, text=tok,
+                       expected=", ".join(sorted(allowed)) + " (each once)")
+        words[key], pos = read_value(text, m.end(), where, params, what=key, column0=column0)
+    missing = sorted(needed - words.keys()) + (["STEP or END"] if kind == "PITCHCIRC" and
+                                                not {"STEP", "END"} & words.keys() else [])
+    inside = text[start:].strip()
+    if missing:
+        where.fail(f"PATTERN DEF {kind} without {', '.join(missing)}", column=column0 + start, text=inside,
+                   expected=f"{kind}n ({' '.join(sorted(needed))} ...)")
+    if words["NUM"] < 1 or words["NUM"] != int(words["NUM"]):
+        where.fail(f"PATTERN DEF {kind} with NUM{words['NUM']:g}", column=column0 + start, text=inside,
+                   expected="NUM a whole number >= 1")
+    if {"STEP", "END"} <= words.keys():
+        where.fail("PATTERN DEF PITCHCIRC with both STEP and END", column=column0 + start, text=inside,
+                   expected="STEP (the stepping angle) or END (the end angle)")
+    return words
+
+
+def _form_points(kind: str, w: dict[str, float]) -> list[dict[str, float]]:
+    """The positions of a generated pattern form, in program units (see :func:`pattern_positions`)."""
+    count, z = int(w["NUM"]), w.get("Z", 0.0)
+    if kind == "ROW":
+        a = math.radians(w.get("ROT", 0.0))
+        return [{"X": w["X"] + k * w["D"] * math.cos(a), "Y": w["Y"] + k * w["D"] * math.sin(a), "Z": z}
+                for k in range(count)]
+    first = w.get("START", 0.0)
+    if kind == "CIRC":
+        step = 360.0 / count
+    elif "STEP" in w:
+        step = w["STEP"]
+    else:
+        step = (w["END"] - first) / (count - 1) if count > 1 else 0.0
+    r = w["D"] / 2.0
+    return [{"X": w["X"] + r * math.cos(math.radians(first + k * step)),
+             "Y": w["Y"] + r * math.sin(math.radians(first + k * step)), "Z": z} for k in range(count)]
 
 
 def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: int) -> list[dict[str, float]]:
     """The machining positions of ``PATTERN DEF POS1 (X+25 Y+33.5 Z+0) POS2 (...)`` (TNC 640
     user's manual, "Pattern definition PATTERN DEF": up to 9 positions; ``Z`` is the workpiece
-    surface there, added to the cycle's Q203; ``IX``/``IY`` are from the previous position).
+    surface there, added to the cycle's Q203; ``IX``/``IY`` are from the previous position), and of the
+    generated forms of the same page, as the control's dialog names their data (TNC 640 cycle programming
+    manual, "PATTERN DEF": "Defining a single row", "Defining a full circle", "Defining a pitch circle"; no copy
+    of those pages is in the search index, so the rules below are our reading of their dialog):
+    ``ROW1 (X+25 Y+33.5 D+8 NUM5 ROT+0 Z+0)`` NUM positions from the starting point X/Y, D apart along the
+    direction ROT (degrees from the working plane's reference axis, about the starting point);
+    ``CIRC1 (X+25 Y+33 D80 START+45 NUM8 Z+0)`` NUM positions on the circle of diameter D about X/Y, the first at
+    the polar angle START, then 360/NUM apart counter-clockwise; ``PITCHCIRC1 (X+25 Y+33 D80 START+45 STEP+30
+    NUM8 Z+0)`` the same with the stepping angle STEP (its sign the direction), or with the end angle ``END``
+    instead (the steps (END - START) / (NUM - 1)). ``Z`` is the surface there, as in POS. The positions are
+    machined in the order the forms are written, each from its first position on.
 
     Returns one dict per position with the words as written (``"X"``, ``"IY"``, ``"Z"`` ...) in
-    program units. Other pattern forms (ROW, PATTERN, FRAME, CIRC, PITCHCIRC) are errors.
+    program units. The forms PAT and FRAME (rows of rows, their machining order not found) are errors.
     """
     out: list[dict[str, float]] = []
-    pos = 0
+    pos, listed = 0, 0
     while rest[pos:].strip():
         m = _POS_RE.match(rest, pos)
         if m is None:
-            tok = rest[pos:].split()[0]
-            where.fail(f"pattern {tok!r} is not supported", column=column0 + pos, text=tok,
-                       expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...)")
+            f = _FORM_RE.match(rest, pos)
+            if f is None:
+                tok = rest[pos:].split()[0]
+                where.fail(f"pattern {tok!r} is not supported", column=column0 + pos, text=tok,
+                           expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...) or "
+                                    "PITCHCIRC1 (...)")
+            kind = f.group(1).upper()
+            out += _form_points(kind, _form_words(kind, rest[: f.end(3)], f.start(3), where, params, column0))
+            pos = f.end()
+            continue
         words = read_words(rest[: m.end(2)], m.start(2), where, params, column0=column0)
         point: dict[str, float] = {}
         for w in words:
@@ -1232,9 +1303,10 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
                            expected="X, Y, Z (each once; IX, IY incremental)")
             point[w.key] = float(w.value)
         out.append(point)
+        listed += 1
         pos = m.end()
-    if not out or len(out) > 9:
-        where.fail(f"PATTERN DEF with {len(out)} positions", column=column0, text=rest.strip(),
+    if not out or listed > 9:
+        where.fail(f"PATTERN DEF with {listed} positions", column=column0, text=rest.strip(),
                    expected="1 to 9 positions POS1 .. POS9")
     return out
 

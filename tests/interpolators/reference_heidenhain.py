@@ -68,6 +68,7 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
 
 from __future__ import annotations
 
+import cmath
 import copy
 import dataclasses
 import math
@@ -2179,6 +2180,33 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _pattern_def(up: str, q: dict) -> list[dict]:
+    """PATTERN DEF's positions in the order written: POSn (X Y Z as words), and the generated forms ROWn (X Y
+    start, D apart NUM times along the angle ROT), CIRCn (NUM points on the circle X Y D from START, a full turn
+    shared out) and PITCHCIRCn (the same, STEP apart, or from START to END) as the reader reads them (TNC 640
+    cycle programming manual, "PATTERN DEF", its dialog); PAT and FRAME are not modelled."""
+    out: list[dict] = []
+    for kind, inner in re.findall(r"(POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\(([^)]*)\)", up):
+        if kind == "POS":
+            out.append(_words(inner, q))
+            continue
+        if kind in ("PAT", "FRAME"):
+            raise ReferenceError(f"PATTERN DEF {kind}")
+        v = {k: _val(x, q) for k, x in re.findall(r"(NUM|START|STEP|END|ROT|D|X|Y|Z)\s*([-+]?\s*(?:Q\d+|[\d.]+))",
+                                                   inner)}
+        n, z = int(v["NUM"]), v.get("Z", 0.0)
+        if kind == "ROW":
+            w = cmath.rect(v["D"], math.radians(v.get("ROT", 0.0)))
+            pts = [complex(v["X"], v["Y"]) + k * w for k in range(n)]
+        else:
+            first = v.get("START", 0.0)
+            step = 360.0 / n if kind == "CIRC" else v["STEP"] if "STEP" in v else (v["END"] - first) / max(n - 1, 1)
+            pts = [complex(v["X"], v["Y"]) + cmath.rect(v["D"] / 2, math.radians(first + k * step))
+                   for k in range(n)]
+        out += [{"X": c.real, "Y": c.imag, "Z": z} for c in pts]
+    return out
+
+
 def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
     """CYCL CALL PAT: at each PATTERN DEF position (IX/IY from the last one; Z shifts the surface Q203),
     up to the clearance max(Q200, Q204) above that surface if below it, over the point at rapid, the cycle."""
@@ -2791,7 +2819,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif re.match(r"TCH\s*PROBE", up):
             _touch_probe(t, line, up)
         elif up.startswith("PATTERN DEF"):
-            t.pattern = [_words(inner, t.q) for inner in re.findall(r"POS\d+\s*\(([^)]*)\)", up)]
+            t.pattern = _pattern_def(up, t.q)
         elif up.startswith("CYCL CALL PAT"):
             t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
             _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")

@@ -64,3 +64,49 @@ def test_function_dwell_with_a_q_parameter_is_a_dwell_in_the_reference_too():
     dwells = [b for b in prog.blocks if b.kind == "dwell"]
     assert len(dwells) == 3 and all(b.dwell == pytest.approx(2.0) for b in dwells)
     assert ends(prog, 10) == [("rapid", [20.0, 0.0, 0.0])]
+
+
+DRILL = ("TOOL CALL 1 Z S3000\nL Z+50 R0 FMAX M3\n"
+         "CYCL DEF 200 DRILLING ~\n Q200=2 ;SET-UP CLEARANCE ~\n Q201=-5 ;DEPTH ~\n Q206=150 ;FEED ~\n"
+         " Q202=5 ;PLUNGING DEPTH ~\n Q210=0 ;DWELL TOP ~\n Q203=+0 ;SURFACE ~\n Q204=20 ;2ND SET-UP ~\n"
+         " Q211=0 ;DWELL BOTTOM\n")
+
+
+def holes(prog) -> list[list[float]]:
+    """The bottoms of the drilled holes, in order."""
+    return [np.round(b.target, 4).tolist() for b in prog.blocks if b.kind == "line"]
+
+
+def test_pattern_def_row_is_num_positions_d_apart_along_rot():
+    # TNC 640 cycle programming manual, "PATTERN DEF", "Defining a single row": from the starting point X/Y,
+    # D apart, NUM positions, the row turned ROT about its start; vcnc refused every form but POS
+    prog = checked(DRILL + "PATTERN DEF ~\n ROW1 (X+10 Y+20 D+10 NUM3 ROT+90 Z+0)\nCYCL CALL PAT FMAX")
+    assert holes(prog) == [[10.0, 20.0, -5.0], [10.0, 30.0, -5.0], [10.0, 40.0, -5.0]]
+
+
+def test_pattern_def_circ_shares_the_full_turn_from_start():
+    # "Defining a full circle": NUM positions on the circle of diameter D about X/Y, the first at START
+    prog = checked(DRILL + "PATTERN DEF ~\n CIRC1 (X+50 Y+50 D40 START+90 NUM4 Z-2)\nCYCL CALL PAT FMAX")
+    assert holes(prog) == [[50.0, 70.0, -7.0], [30.0, 50.0, -7.0], [50.0, 30.0, -7.0], [70.0, 50.0, -7.0]]
+
+
+def test_pattern_def_pitchcirc_steps_by_step_or_to_end_after_a_pos():
+    # "Defining a pitch circle": STEP apart (negative: clockwise), or the end angle END; forms run in the order
+    # written, a POS first
+    prog = checked(DRILL + "PATTERN DEF ~\n POS1 (X+0 Y+0 Z+0) ~\n PITCHCIRC1 (X+0 Y+0 D20 START+0 STEP-90 NUM3 Z+0)"
+                   "\nCYCL CALL PAT FMAX")
+    assert holes(prog) == [[0.0, 0.0, -5.0], [10.0, 0.0, -5.0], [0.0, -10.0, -5.0], [-10.0, 0.0, -5.0]]
+    prog = checked(DRILL + "PATTERN DEF ~\n PITCHCIRC1 (X+0 Y+0 D20 START+0 END+180 NUM3 Z+0)\nCYCL CALL PAT FMAX")
+    assert holes(prog) == [[10.0, 0.0, -5.0], [0.0, 10.0, -5.0], [-10.0, 0.0, -5.0]]
+
+
+@pytest.mark.parametrize(("form", "message"), [
+    ("PAT1 (X+0 Y+0 DX+8 DY+10 NUMX5 NUMY4 ROT+0 ROTX+0 ROTY+0 Z+0)", "pattern 'PAT1' is not supported"),
+    ("ROW1 (X+0 Y+0 NUM5 Z+0)", "PATTERN DEF ROW without D"),
+    ("CIRC1 (X+0 Y+0 D20 NUM0 Z+0)", "PATTERN DEF CIRC with NUM0"),
+    ("PITCHCIRC1 (X+0 Y+0 D20 START+0 NUM3)", "PATTERN DEF PITCHCIRC without STEP or END"),
+    ("ROW1 (X+0 Y+0 D5 NUM2 AN+30)", "word 'AN\\+30' in PATTERN DEF ROW"),
+])
+def test_pattern_def_forms_not_run_say_which(form, message):
+    with pytest.raises(GCodeError, match=message):
+        program(DRILL + "PATTERN DEF ~\n " + form + "\nCYCL CALL PAT FMAX")
