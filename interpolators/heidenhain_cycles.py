@@ -275,6 +275,9 @@ class DrillCycle:
     place : tuple of float or None
         Cycles 210, 212-215: the centre Q216, Q217 [mm, program] the tool goes to at the clearance height first
         (``None``: the cycle runs where the tool is).
+    centre_offset : tuple of float
+        Cycles 251, 253, 256 with Q367 = 1..4: the pocket's, slot's or stud's centre from the tool's position at
+        the call [mm, program directions, turned by Q224 / Q374] (see :func:`beside_tool_offset`).
     wall_only : bool
         Cycles 210, 211, 212, 214: the finishing runs round the wall only (no floor finishing, as 251/252's Q215 = 2
         has), with Q215 = 0 also without a side allowance.
@@ -337,6 +340,7 @@ class DrillCycle:
     place: tuple[float, float] | None = None
     wall_only: bool = False
     lead: float = 2.0
+    centre_offset: tuple[float, float] = (0.0, 0.0)
 
     @property
     def shape(self) -> int:
@@ -1018,16 +1022,16 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     heidenhain_cycle_moves' ``_circular_pocket``.
 
     ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
-    side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
-    over the pocket's centre). The moves are heidenhain_cycle_moves' ``_circular_pocket``.
+    side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 places the pocket
+    beside the tool (:func:`beside_tool_offset`). The moves are heidenhain_cycle_moves' ``_circular_pocket``.
 
     ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
     Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are
     heidenhain_cycle_moves' ``_rectangular_stud``.
 
     ``number`` = 253: SLOT MILLING (TNC 640 manual, "SLOT MILLING (Cycle 253)"): Q218 slot length, Q219 slot
-    width, Q374 angle of rotation, Q367 slot position (0: the tool over the slot's centre; the others an
-    error), the rest as 251. The slot is the rectangle Q218 x Q219 with the corner radius Q219 / 2 (two
+    width, Q374 angle of rotation, Q367 slot position (:func:`beside_tool_offset`), the rest as 251. The slot is
+    the rectangle Q218 x Q219 with the corner radius Q219 / 2 (two
     half circles joined by straight sides), and is milled as cycle 251 mills its pocket: the manual
     leaves the roughing path to the control, and 251's rings (each an obround here) stay inside the slot.
 
@@ -1047,16 +1051,11 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     stud is 256's rounded rectangle Q223 x Q223 with the corner radius Q223 / 2, i.e. a circle, from the
     blank Q222 (the cycle run is 256's: from the starting position 2 mm outside the blank, half circles on
     and off, revolutions stepping in to the finished diameter)."""
+    offset = beside_tool_offset(number, q, where, column)
     if number == 253:
-        if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle 253: Q367={q[367]:g} (the slot beside the tool) is not supported", column=column,
-                       text=where.text, expected="Q367=0 (the tool over the slot's centre)")
         q = {**q, 220: q[219] / 2.0, 224: q.get(374, 0.0)}
     slot = (0.0, 0.0, 0.0, 0.0, 0.0)
     if number == 254:
-        if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle 254: Q367={q[367]:g} (the slot placed from the tool position) is not supported",
-                       column=column, text=where.text, expected="Q367=0 (the slot from the centre Q216, Q217)")
         if not q[248] > 0 or not q[375] > q[219] > 0:
             where.fail("cycle 254: the angular length Q248 must be > 0, the pitch circle Q375 wider than the slot "
                        "width Q219 > 0", column=column, text=where.text, expected="Q248 > 0, Q375 > Q219 > 0")
@@ -1067,9 +1066,6 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         q = {**q, 218: q[223], 219: q[223], 220: q[223] / 2.0, 424: q[222], 425: q[222],
              224: 0.0 if start == -1.0 else start}
     if number in (251, 253, 256, 257):
-        if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle {number}: Q367={q[367]:g} (the pocket or stud beside the tool) is not supported",
-                       column=column, text=where.text, expected="Q367=0 (the tool over the centre)")
         if not q[218] > 0 or not q[219] > 0 or (number in (256, 257) and (q[424] < q[218] or q[425] < q[219])):
             where.fail(f"cycle {number}: the side lengths Q218 and Q219 must be > 0 (256: the blank's Q424, Q425 at "
                        "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
@@ -1093,7 +1089,40 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
         angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale),
         plunge_type=int(q.get(366, 0.0)) if number in (251, 252, 253, 254) else 0, slot=slot,
-        repeats=max(1, int(q.get(377, 1.0)))), where, column)
+        repeats=max(1, int(q.get(377, 1.0))), centre_offset=(offset[0] * scale, offset[1] * scale)), where, column)
+
+
+#: Q367 of cycles 251 and 256: the corner of the pocket or stud where the tool stands, in half side lengths.
+_CORNERS = {1: (1.0, 1.0), 2: (-1.0, 1.0), 3: (-1.0, -1.0), 4: (1.0, -1.0)}
+
+
+def beside_tool_offset(number: int, q: dict[int, float], where: Where, column: int) -> tuple[float, float]:
+    """The centre of a pocket, slot or stud from the tool's position at the call, by its position Q367 [program
+    units] (TNC 640 cycle programming manual, cycles 251 "Q367 Position of pocket" and 256 "Q367 Position of
+    stud": 0 the tool over the centre, 1 at the lower left corner, 2 the lower right, 3 the upper right, 4 the
+    upper left; cycle 253 "Q367 Position of slot": 0 the centre, 1 the slot's left end, 2 the centre of its left
+    circle, 3 the centre of its right circle, 4 its right end). The offset turns with the angle of rotation Q224
+    (253: Q374), whose centre the manual puts at the tool's position. No copy of those pages is in the search
+    index: our reading of their parameter texts. Cycle 257 has no position; 254's Q367 (a reference point for
+    the pitch circle) stays an error."""
+    where_q = q.get(367, 0.0)
+    if number == 254 and where_q != 0.0:
+        where.fail(f"cycle 254: Q367={where_q:g} (the slot placed from the tool position) is not supported",
+                   column=column, text=where.text, expected="Q367=0 (the slot from the centre Q216, Q217)")
+    if number not in (251, 253, 256) or where_q == 0.0:
+        return (0.0, 0.0)
+    if where_q not in (1.0, 2.0, 3.0, 4.0):
+        where.fail(f"cycle {number}: Q367={where_q:g} is not a position", column=column, text=where.text,
+                   expected="Q367=0 (centre), 1, 2, 3 or 4")
+    if number == 253:
+        half, radius = q[218] / 2.0, q[219] / 2.0
+        u, v = {1.0: (half, 0.0), 2.0: (half - radius, 0.0), 3.0: (radius - half, 0.0), 4.0: (-half, 0.0)}[where_q]
+        angle = q.get(374, 0.0)
+    else:
+        su, sv = _CORNERS[int(where_q)]
+        u, v, angle = su * q[218] / 2.0, sv * q[219] / 2.0, q.get(224, 0.0)
+    a = math.radians(angle)
+    return (u * math.cos(a) - v * math.sin(a), u * math.sin(a) + v * math.cos(a))
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:

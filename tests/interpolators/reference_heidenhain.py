@@ -1374,6 +1374,8 @@ def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
     kind_runs = {"212": _finishing, "213": _finishing, "214": _finishing, "215": _finishing, "210": _old_slot,
                  "211": _old_slot, "263": _thread_family, "264": _thread_family, "265": _thread_family,
                  "267": _thread_family, "203": _universal_drilling, "205": _universal_drilling}
+    if kind in ("251", "253", "256") and p.get("Q367", 0.0):
+        _to_shape_centre(t, line, kind, p)
     if kind in runs:
         runs[kind](t, line, p)
         return
@@ -1392,8 +1394,6 @@ def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
         _rough_out(t, line, p)
         return
     if kind == "253":  # SLOT MILLING: 251's pocket Q218 x Q219 with half circles at the ends, turned by Q374
-        if p.get("Q367", 0.0):
-            raise ReferenceError("253 with the slot beside the tool")
         _circular_pocket(t, line, {"Q215": 0.0, **p, "Q220": p["Q219"] / 2, "Q224": p.get("Q374", 0.0)})
         return
     if kind == "254":  # CIRCULAR SLOT: Q377 slots Q378 apart, each as a pocket of width Q219 along the arc
@@ -1760,6 +1760,29 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _dwell(t, line, p.get("Q211", 0.0))
     _move_z(t, line, back, clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _to_shape_centre(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """Q367 = 1..4 of 251 / 256 (the tool at the lower left, lower right, upper right, upper left corner) and 253
+    (the tool at the slot's left end, its left circle's centre, its right circle's centre, its right end), the
+    shape turned by Q224 / Q374 about the tool: up to the set-up clearance if below it, then at FMAX over the
+    centre, as the reader reads the TNC 640 cycle manual's Q367."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError(f"{kind} with Q367 under a transformation")
+    n = int(p["Q367"])
+    if kind == "253":
+        tool = {1: -p["Q218"] / 2, 2: p["Q219"] / 2 - p["Q218"] / 2, 3: p["Q218"] / 2 - p["Q219"] / 2,
+                4: p["Q218"] / 2}[n] + 0j
+        turn = p.get("Q374", 0.0)
+    else:
+        tool = complex(p["Q218"] * (1 if n in (2, 3) else -1), p["Q219"] * (1 if n in (3, 4) else -1)) / 2
+        turn = p.get("Q224", 0.0)
+    here = t.prog()
+    centre = complex(*here[:2]) - tool * t.scale * cmath.exp(1j * math.radians(turn))
+    clear = p["Q203"] - (-1.0 if p["Q201"] < 0 else 1.0) * p["Q200"]
+    if (here[2] / t.scale - clear) * (1.0 if p["Q201"] < 0 else -1.0) < 0:
+        _move_z(t, line, "rapid", clear)
+    t.emit(line, "rapid", t.machine(np.array([centre.real, centre.imag, t.prog()[2]])))
 
 
 def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:

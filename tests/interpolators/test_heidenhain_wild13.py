@@ -110,3 +110,39 @@ def test_pattern_def_pitchcirc_steps_by_step_or_to_end_after_a_pos():
 def test_pattern_def_forms_not_run_say_which(form, message):
     with pytest.raises(GCodeError, match=message):
         program(DRILL + "PATTERN DEF ~\n " + form + "\nCYCL CALL PAT FMAX")
+
+
+POCKET = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+15 R0 FMAX\nCYCL DEF {n} X ~\n Q215=0 ~\n"
+          " Q218=30 ~\n Q219={w} ~\n Q220=2 ~\n Q368=0 ~\n Q224={a} ~\n Q374={a} ~\n Q367={pos} ~\n Q207=500 ~\n"
+          " Q351=+1 ~\n Q201=-2 ~\n Q202=2 ~\n Q369=0 ~\n Q206=150 ~\n Q338=0 ~\n Q200=2 ~\n Q203=+0 ~\n Q204=20 ~\n"
+          " Q370=1 ~\n Q366=0 ~\n Q385=400 ~\n Q424=36 ~\n Q425=22\nCYCL CALL")
+
+
+def centre_move(prog) -> list[float]:
+    """Where the cycle's first plane move goes (over the shape's centre)."""
+    first = [b for b in prog.blocks if b.line > 3 and b.kind == "rapid" and b.target[2] == b.start[2]]
+    return np.round(first[0].target, 6).tolist()
+
+
+@pytest.mark.parametrize(("number", "width", "angle", "position", "centre"), [
+    (251, 16, 0, 1, [25.0, 28.0, 15.0]),  # the tool at the lower left corner: the centre half the sides up right
+    (251, 16, 90, 3, [18.0, 5.0, 15.0]),  # the upper right corner, the pocket turned 90 deg about the tool
+    (256, 16, 0, 2, [-5.0, 28.0, 15.0]),  # the stud's lower right corner
+    (253, 10, 0, 1, [25.0, 20.0, 15.0]),  # the slot's left end: the centre half the length on
+    (253, 10, 0, 3, [0.0, 20.0, 15.0]),  # the centre of its right circle: (30 - 10) / 2 back
+])
+def test_q367_places_the_pocket_slot_or_stud_beside_the_tool(number, width, angle, position, centre):
+    # TNC 640 cycle programming manual, Q367 "Position of pocket / stud / slot": the tool's position at the call
+    # is a corner or an end of the shape, not its centre; vcnc refused every Q367 but 0
+    prog = checked(POCKET.format(n=number, w=width, a=angle, pos=position))
+    assert centre_move(prog) == pytest.approx(centre, abs=1e-6)
+    if number == 251:  # the pocket's straight cuts lie symmetric about its centre
+        cut = np.array([b.target[:2] for b in prog.blocks if b.kind == "line" and b.line > 3])
+        assert (cut.min(axis=0) + cut.max(axis=0)) / 2 == pytest.approx(centre[:2], abs=1e-6)
+
+
+def test_q367_of_cycle_254_stays_an_error():
+    body = POCKET.format(n=254, w=10, a=0, pos=1).replace("CYCL DEF 254 X ~\n", "CYCL DEF 254 X ~\n Q375=60 ~\n"
+                                                          " Q216=+0 ~\n Q217=+0 ~\n Q376=+0 ~\n Q248=+90 ~\n")
+    with pytest.raises(GCodeError, match="cycle 254: Q367=1"):
+        program(body)
