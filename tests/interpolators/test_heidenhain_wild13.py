@@ -146,3 +146,11 @@ def test_q367_of_cycle_254_stays_an_error():
                                                           " Q216=+0 ~\n Q217=+0 ~\n Q376=+0 ~\n Q248=+90 ~\n")
     with pytest.raises(GCodeError, match="cycle 254: Q367=1"):
         program(body)
+
+
+def test_contour_def_is_named_when_refused():
+    # the TNC 640 SL cycles' "simple contour formula" (CONTOUR DEF P1 = LBL 1 I2 = LBL 2) instead of cycle 14:
+    # refused, now naming the function and the cycle vcnc runs instead (was 'unknown or unsupported block')
+    with pytest.raises(GCodeError, match="CONTOUR DEF .* CYCL DEF 14 CONTOUR GEOMETRY"):
+        program("CONTOUR DEF ~\n P1 = LBL 1 ~\n I2 = LBL 2\nM30\nLBL 1\nL X+0 Y+0 RL\nLBL 0\nLBL 2\n"
+                "L X+5 Y+5 RL\nLBL 0")
