@@ -2850,13 +2850,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             t.modal = False
             _position_call(t, line, _words(up[len("CYCL CALL POS"):], t.q))
         elif up.startswith("CYCL CALL"):
-            if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
-                raise ReferenceError(up)
-            t.modal = False
-            _run_cycle(t, line)
-            mb = re.search(r"M140\s+MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
-            if mb:  # M140 at the block's end, after the cycle
-                _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
+            _cycl_call(t, line, up)
         elif re.fullmatch(r"(M\d+\s*)+(MB\s*(MAX|\d+\.?\d*)\s*(F\s*(MAX|\d+\.?\d*)\s*)?)?(M\d+\s*)*",
                           _m_words(up, t.q)[0]):
             _reduce_display(t, _m_words(up, t.q)[1])
@@ -2882,6 +2876,17 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         for k in [k for k in t.q if k.startswith("QL")]:
             del t.q[k]
         t.q.update(local)
+
+
+def _cycl_call(t: _Tnc, line: int, up: str) -> None:
+    """``CYCL CALL`` (with M words): the cycle defined last where the tool is, an ``M140 MB`` after it."""
+    if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
+        raise ReferenceError(up)
+    t.modal = False
+    _run_cycle(t, line)
+    mb = re.search(r"M140\s+MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
+    if mb:  # M140 at the block's end, after the cycle
+        _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
 
 
 def _label_block(t: _Tnc, up: str, pc: int, labels: dict[str, int], counters: dict[int, int],
