@@ -16,7 +16,8 @@ from vcnc.errors import GCodeError
 LINUXCNC = MachineContext().with_dialect("linuxcnc")
 
 
-@pytest.mark.parametrize("line, kinds", [("G40 G8 G64 P0.01", ["rapid"]), ("G8 G4 P0.5", ["dwell", "rapid"])])
+@pytest.mark.parametrize("line, kinds", [("G40 G8 G64 P0.01", ["rapid"]), ("G8 G4 P0.5", ["dwell", "rapid"]),
+                                                ("G8 M66 P0 L0", ["rapid"])])
 def test_g8_beside_a_code_that_takes_p_is_the_lathe_radius_mode(line, kinds):
     # LinuxCNC g-code.adoc "Modal Groups": G8 (group 15) takes no P, the block's G64 or G4 owns it; review32: the P
     # made G8 Fanuc's G08 P1 look-ahead and the block was refused naming --dialect fanuc
@@ -26,10 +27,13 @@ def test_g8_beside_a_code_that_takes_p_is_the_lathe_radius_mode(line, kinds):
     assert any(n.startswith("G8 lathe radius mode") for n in prog.notes)
 
 
-def test_g8_with_a_p_of_its_own_is_still_named_as_fanucs_look_ahead():
-    with pytest.raises(GCodeError, match=r":2:1: G8 lathe radius mode: not supported \(G08 P1 / P0 with a P is "
-                                         r"Fanuc's AI advanced preview control"):
-        parse_program("G21\nG08 P1\nG0 X1\nM2\n", context=LINUXCNC)
+@pytest.mark.parametrize("line", ["G08 P1", "G90 G08 P1", "G08 P0 M3 S1000"])
+def test_g8_with_a_p_of_its_own_is_still_named_as_fanucs_look_ahead(line):
+    # no other code of the block reads a P (rs274ngc interp_check.cc check_other_codes)
+    column = line.index("G08") + 1
+    with pytest.raises(GCodeError, match=rf":2:{column}: G8 lathe radius mode: not supported \(G08 P1 / P0 with a P "
+                                         r"is Fanuc's AI advanced preview control"):
+        parse_program(f"G21\n{line}\nG0 X1\nM2\n", context=LINUXCNC)
 
 
 # one lap of a 30 x 40 mm rectangle with R10 corners, its sides tangent to the arcs, under G64 P0.01 at F3000
