@@ -317,7 +317,8 @@ class State:
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
     tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
-    lathe_marks: dict[str, int] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe codes seen: line
+    lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
+    # codes seen: their file and line
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -972,12 +973,14 @@ def _lathe_program(seen, gcodes, st: State, where: Where) -> None:
     if gcodes.get("spindle mode", (0,))[0] == 960:
         marks.append(("G96 (constant surface speed)", gcodes["spindle mode"][1]))
     for what, w in marks:
-        other = next(((k, line) for k, line in st.lathe_marks.items() if k != what), None)
+        other = next(((k, at) for k, at in st.lathe_marks.items() if k != what), None)
         if other is not None:
-            where.fail(f"a lathe program: {what} here and {other[0]} at line {other[1]} are a Fanuc/Haas lathe's "
+            file, line = other[1]
+            at = f"line {line}" if file == where.file else f"{file or '<input>'}:{line}"  # a subprogram's file
+            where.fail(f"a lathe program: {what} here and {other[0]} at {at} are a Fanuc/Haas lathe's "
                        "codes (its X is a diameter, U and W incremental X and Z): not supported", column=w.column,
                        text=w.text, expected="a milling program (vcnc reads mill programs)")
-        st.lathe_marks.setdefault(what, where.line)
+        st.lathe_marks.setdefault(what, (where.file, where.line))
 
 
 def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:

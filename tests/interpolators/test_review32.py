@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from interpolators import interpolate, parse_program
+from interpolators import interpolate, load_program, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT as CTX
 from interpolators.context import MachineContext
 from tests.interpolators.iso_checks import checked_iso
@@ -56,3 +56,13 @@ def test_a_rotary_index_after_a_contour_leaves_the_contour_as_planned(tail):
     with_a, without = ends.values()
     assert with_a == pytest.approx(without, abs=1e-9)
     assert with_a <= 2.67
+
+
+def test_a_lathe_code_in_a_subprogram_file_names_the_file_of_the_other(tmp_path):
+    # review32: the error in O1000's file named "G50 S ... at line 3" of the main program as if of its own file
+    (tmp_path / "main.nc").write_text("O0001\nG21 G90\nG50 S3000\nM98 P1000\nM30\n")
+    (tmp_path / "1000.nc").write_text("O1000\nG96 S100\nG0 X10.\nM99\n")
+    with pytest.raises(GCodeError) as err:
+        load_program(tmp_path / "main.nc", context=MachineContext().with_dialect("fanuc"))
+    assert err.value.file.endswith("1000.nc") and err.value.line == 2
+    assert f"G50 S (the lathe's maximum spindle speed) at {tmp_path / 'main.nc'}:3 are" in str(err.value)
