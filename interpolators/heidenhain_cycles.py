@@ -1236,6 +1236,8 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
 _FORM_RE = re.compile(r"\s*(ROW|CIRC|PITCHCIRC)(\d+)\s*\(([^)]*)\)", re.I)
+#: A form the reader reads whose parenthesis is left open (``ROW1 (X+0 Y+0 D+10 NUM2``).
+_OPEN_FORM_RE = re.compile(r"\s*(POS|ROW|CIRC|PITCHCIRC)(\d+)\s*\([^)]*$", re.I)
 _FORM_KEY_RE = re.compile(r"\s*(NUM|START|STEP|END|ROT|D|X|Y|Z)(?![A-Z])", re.I)
 #: The words of each generated pattern form, and those it must have.
 _FORM_WORDS = {"ROW": ({"X", "Y", "D", "NUM", "ROT", "Z"}, {"X", "Y", "D", "NUM"}),
@@ -1317,7 +1319,10 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
             f = _FORM_RE.match(rest, pos)
             if f is None:
                 tok = rest[pos:].split()[0]
-                where.fail(f"pattern {tok!r} is not supported", column=column0 + pos, text=tok,
+                open_form = _OPEN_FORM_RE.match(rest, pos)
+                what = (f"PATTERN DEF {open_form.group(1).upper()}{open_form.group(2)} without its closing ')'"
+                        if open_form else f"pattern {tok!r} is not supported")
+                where.fail(what, column=column0 + pos, text=tok,
                            expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...) or "
                                     "PITCHCIRC1 (...)")
             kind = f.group(1).upper()

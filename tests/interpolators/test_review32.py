@@ -8,6 +8,7 @@ import pytest
 from interpolators import interpolate, load_program, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT as CTX
 from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.iso_checks import checked_iso
 from tests.interpolators.setpoint_checks import check_limits
 from tests.interpolators.test_secondary_axes import LIMITS
@@ -66,3 +67,16 @@ def test_a_lathe_code_in_a_subprogram_file_names_the_file_of_the_other(tmp_path)
         load_program(tmp_path / "main.nc", context=MachineContext().with_dialect("fanuc"))
     assert err.value.file.endswith("1000.nc") and err.value.line == 2
     assert f"G50 S (the lathe's maximum spindle speed) at {tmp_path / 'main.nc'}:3 are" in str(err.value)
+
+
+_DRILL = ("0 BEGIN PGM T MM\nTOOL CALL 1 Z S4000\nL Z+50 R0 FMAX\nCYCL DEF 200 DRILLING ~\n Q200=2 ~\n Q201=-10 ~\n"
+          " Q206=150 ~\n Q202=5 ~\n Q210=0 ~\n Q203=+0 ~\n Q204=50 ~\n Q211=0 ~\n Q395=0\n")
+
+
+@pytest.mark.parametrize("form", ["ROW1 (X+0 Y+0 D+10 NUM2 Z+0", "POS1 (X+0 Y+0 Z+0"])
+def test_a_pattern_form_left_open_is_named_as_such(form):
+    # review32: "pattern 'ROW1' is not supported" for a form the reader reads (TNC 640 cycle programming manual,
+    # "PATTERN DEF"), its ')' missing
+    text = _DRILL + f"PATTERN DEF ~\n {form}\nCYCL CALL PAT F500\nEND PGM T MM\n"
+    with pytest.raises(GCodeError, match=rf":14:12: PATTERN DEF {form[:4]} without its closing '\)'"):
+        parse_heidenhain(text, context=MachineContext())
