@@ -306,3 +306,48 @@ def test_removed_datum_offset_is_fitted_again_without_it():
     assert model.fit["offset"]["offset_mm"] == pytest.approx(case["offset_mm"], abs=1e-3)  # 1 um noise, the backlash
     assert [e.name for e in model.effects] == ["backlash"]
     assert model.validation["rms_after_um"] == pytest.approx(1.25, abs=0.1)
+
+
+def test_a_mode_a_later_refit_moves_above_the_nyquist_frequency_is_dropped():
+    """ident_fuzz seed 21 case 52 with a one-sample delay only (fadal-pid's y, T = 1 ms, no mode). Round 1 accepted a
+    resonance of damping 0.33 (it acts as the lag: held out 1.78 -> 0.75 um over its null), round 2 the delay, and the
+    joint refit of both moved the mode to 2744 Hz, above the record's 500 Hz Nyquist frequency, where a sampled record
+    shows nothing (Shannon 1949): the final model named a resonance the machine does not have, at 0.043 um held out.
+    The final model now faces every accepted effect again (diagnosis._backward_check): the mode is dropped, said in
+    the last round's record and the diagnosis text, and the delay alone, refitted, predicts the record to 3 nm."""
+    from benchmarks.ident_fuzz import build, draw_case
+    from identification.diagnosis import format_before_after
+
+    case = dict(draw_case(21, 52), effects={"delay": {"samples": 1}})
+    assert (case["machine"], case["axis"]) == ("fadal-pid", "y")
+    rec, _, _, _ = build(case)
+    model = identify(rec, axis="y")
+    rounds = model.validation["rounds"]
+    assert [r["accepted"] for r in rounds] == ["resonance", "delay", None]
+    assert rounds[0]["resonance_damping"] == pytest.approx(0.33, abs=0.02)
+    dropped = rounds[-1]["dropped"]
+    assert list(dropped) == ["resonance"]
+    assert "its frequency 2744 Hz lies above the record's Nyquist frequency 1/(2T) = 500 Hz" in \
+        dropped["resonance"]["reason"]
+    assert dropped["resonance"]["validation_rms_with_um"] == pytest.approx(0.043, abs=0.005)
+    assert [e.name for e in model.effects] == ["delay"]
+    assert model.effects[0]["parameters"]["samples"] == 1
+    assert model.effects[0]["evidence"]["refitted_without"] == ["resonance"]
+    assert model.validation["rms_before_um"] == pytest.approx(1.78, abs=0.02)
+    assert model.validation["rms_after_um"] < 0.01
+    assert dropped["resonance"]["validation_rms_without_um"] == model.validation["rms_after_um"]
+    text = format_before_after(model)
+    assert "dropped: resonance, accepted in an earlier round, because its frequency 2744 Hz" in text
+    assert "+ delay (1 samples)" in text and "+ resonance" not in text
+
+
+def test_dropped_lines_name_the_effect_the_reason_and_the_errors():
+    from identification.diagnosis import dropped_lines
+
+    validation = {"rounds": [{"accepted": "backlash"}, {"accepted": None, "dropped": {"drift": {
+        "reason": "the final model refitted without it predicts as well", "validation_rms_with_um": 1.25,
+        "validation_rms_without_um": 1.3}}}]}
+    assert dropped_lines(validation, "mdeg") == [
+        "dropped: drift, accepted in an earlier round, because the final model refitted without it predicts as well; "
+        "the final model without it: held-out RMS 1.25 -> 1.3 mdeg"]
+    assert dropped_lines({"rounds": [{"accepted": None}]}) == []
