@@ -666,9 +666,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         raise CaptureError(f"fewer than two rows with all of {list(columns.values())}", file=src)
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
-    _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
-                          src, in_counts=_in_counts(header, units_row, idx, above, unit))
     units = _header_units(header, units_row, idx, time_unit, unit)
+    _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
+                          src, in_counts=_in_counts(header, units_row, idx, above, unit, units))
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
     stated.update(_turn_travel(units, above))
     if unit is None:
@@ -844,19 +844,19 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
 
 
 def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
-               above: list[str], unit: str | None) -> dict[str, str]:
+               above: list[str], unit: str | None, units: Mapping[str, str | None]) -> dict[str, str]:
     """The position columns whose values are counts, each with what says so (for a message): a count unit in its name
     or units row (:func:`_counted_columns`), or, for every position, a count size the preamble states (``Resolution:
     0.5 um``: the file logs counts, whatever ``--unit`` says; a count is a whole number, so ``19.725`` in every cell
     there is 19725 grouped by thousands, never 19.725 counts). A plain unit given (``--unit mm``, not a count size
     such as ``0.5um``) says the positions are no counts, and so does a column's own plain unit without one given
-    (``X Soll [mm]``: the resolution is the encoder's, the column mm)."""
+    (``X Soll [mm]``: the resolution is the encoder's, the column mm). ``units``: each column's unit as
+    :func:`_header_units` reads it."""
     marked = {k: f"a count unit ({c!r})" for k, c in _counted_columns(header, units_row, idx).items()}
     size = stated_count_size(above)
     if size is not None and (unit is None or unit_named(unit, "length") is None):
         said = f"counts (line {size.line} states {size.text!r})"
-        own = _header_units(header, units_row, idx, None, unit)
-        marked.update({k: said for k in idx if k != "t" and k not in marked and own[k] not in LENGTH_UNITS})
+        marked.update({k: said for k in idx if k != "t" and k not in marked and units[k] not in LENGTH_UNITS})
     return marked
 
 
