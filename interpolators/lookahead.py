@@ -286,14 +286,21 @@ def _quintic_basis(u: np.ndarray, order: int = 0) -> np.ndarray:
 _CHECK_BASIS = tuple(_quintic_basis(np.linspace(0.0, 1.0, _KINK_CHECK_POINTS), r) for r in range(4))
 
 
+#: :func:`_quintic_basis` of :data:`_KINK_CHECK_POINTS` parameters between the two neighbours of each check
+#: parameter (:func:`_blend_deviation`'s second pass), made when first needed.
+_FINE_BASIS: dict[int, np.ndarray] = {}
+
+
 def _blend_deviation(controls: np.ndarray, path: np.ndarray) -> float:
     """Largest distance [mm] of the quintic of ``controls`` from the polyline ``path``: at
     :data:`_KINK_CHECK_POINTS` parameters, then as many again between the two neighbours of the farthest one."""
     dist = _path_distance(_CHECK_BASIS[0] @ controls, path)
     i = int(np.argmax(dist))
-    h = 1.0 / (_KINK_CHECK_POINTS - 1)
-    fine = np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h, _KINK_CHECK_POINTS)
-    return float(max(dist[i], _path_distance(_quintic_basis(fine) @ controls, path).max()))
+    if i not in _FINE_BASIS:
+        h = 1.0 / (_KINK_CHECK_POINTS - 1)
+        _FINE_BASIS[i] = _quintic_basis(np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h,
+                                                    _KINK_CHECK_POINTS))
+    return float(max(dist[i], _path_distance(_FINE_BASIS[i] @ controls, path).max()))
 
 
 def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolerance: float,
