@@ -1124,8 +1124,11 @@ def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool,
 
 
 #: Share of the jerk limits a curve's speed may take (``v^3 |(k^2, dk/ds)|``) tried beside
-#: :data:`interpolators.kinematics.JERK_SPEED_SHARE` in each chain under the S-curve (:func:`_faster_jerk_share`).
-_CRUISE_JERK_SHARE = 0.7
+#: :data:`interpolators.kinematics.JERK_SPEED_SHARE` in each chain under the S-curve (:func:`_faster_jerk_share`):
+#: with ``3 k v a`` at :data:`interpolators.kinematics.JERK_ACCEL_SHARE` (0.3) the path jerk keeps at least
+#: ``sqrt(1 - (0.3 + s sin(phi))^2) - s cos(phi) >= 0.26`` of the limit whatever the share of ``k^2`` and ``dk/ds``
+#: (angle ``phi``); at 0.7 it keeps none where ``dk/ds`` dominates (a curve piece then has no path jerk at all).
+_CRUISE_JERK_SHARE = 0.6
 
 
 def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, plan: tuple[np.ndarray, ...]

@@ -15,7 +15,7 @@ limits of the two in-plane axes:
 * centripetal share: ``v_p^2 / R <= CENTRIPETAL_SHARE * A`` (this caps the feed on small arcs);
 * tangential: ``sqrt(a_p^2 + (v_max,p^2/R)^2) <= A``;
 * jerk (S-curve only): ``v_p^3/R^2 <= JERK_SPEED_SHARE * J`` (``jerk_share``: ``interpolators.interpolate`` plans
-  each chain at 0.3 and at 0.7 and keeps the faster),
+  each chain at 0.3 and at 0.6 and keeps the faster),
   ``3 v_p a_p / R <= JERK_ACCEL_SHARE * J``, and ``j_p`` takes what is left of ``J``: the norm of the jerk
   vector, whose tangential and normal parts are orthogonal, ``(|j_p| + v_p^3/R^2)^2 + (3 v_p a_p / R)^2 <=
   J^2``, so ``|j_p| <= sqrt(J^2 - (3 v_p a_p / R)^2) - v_p^3/R^2`` (the sum of the parts' magnitudes, which

@@ -258,20 +258,20 @@ def test_tangent_junctions_are_blended_within_the_tolerance(name, text, ratio):
 @pytest.mark.parametrize("Ts", SAMPLE_TIMES)
 def test_alternating_tangent_arcs(Ts):
     """20 tangent R0.6 half circles of alternating sense (curvature steps of 3.33 1/mm): each junction blended
-    within P = 0.01 mm at about 16.2 mm/s, where the one-sample rule allowed about ``sqrt(J Ts / dk)`` (3.9 mm/s
+    within P = 0.01 mm at about 15.4 mm/s, where the one-sample rule allowed about ``sqrt(J Ts / dk)`` (3.9 mm/s
     at 1 ms, 7.7 at 4 ms, with J = 50 000 mm/s^3); the half circles' own bound is 17.5 mm/s with 0.3 of J for
-    ``v^3 k^2`` and 23.2 mm/s with 0.7, the share this chain is planned with (interpolate._faster_jerk_share)."""
+    ``v^3 k^2`` and 22.1 mm/s with 0.6, the share this chain is planned with (interpolate._faster_jerk_share)."""
     prog = parse_program(_alternating_arcs())
     sp = interpolate(prog, profile="scurve", sample_time=Ts)
     check_limits(sp, prog, DEFAULT_LIMITS, jerk=True, feed=True)
     assert distance_to_path(sp) <= 0.01  # measured 0.0091
     _check_on_blocks(sp, prog)
     inner = (sp.block >= 3) & (sp.block <= 20)  # the samples between the first and the last arc/arc junction
-    assert np.linalg.norm(sp.velocity[inner], axis=1).min() > 16.0  # measured 16.23 (12.23 at 0.3 of J)
-    # measured 2.897 s (1 ms), 2.900 s (4 ms); 3.534 s and 3.536 s with the curves at 0.3 of J; before the blend's
+    assert np.linalg.norm(sp.velocity[inner], axis=1).min() > 15.2  # measured 15.41 (12.23 at 0.3 of J)
+    # measured 3.007 s (1 ms), 3.008 s (4 ms); 3.534 s and 3.536 s with the curves at 0.3 of J; before the blend's
     # leg was bisected and its shape ranked by the planner's own bound 3.901 s and 3.904 s; 4.298 s and 3.932 s
     # with the one-sample rule; trapezoid 2.50 s
-    assert sp.duration <= 2.91
+    assert sp.duration <= 3.01
 
 
 def test_alternating_arc_blend_is_the_fastest_fitting_ramp():
