@@ -326,9 +326,7 @@ def interpolate(
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
     if g.extra is not None:
         v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
-    v0, v1 = _junction_speeds(g, c, v_max, a_max, j_max, jerk_limited)
-    if jerk_limited and g.extra is None:
-        v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max, v0, v1))
+    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max), jerk_limited)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
 
@@ -1131,11 +1129,13 @@ def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool,
 _CRUISE_JERK_SHARE = 0.6
 
 
-def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, plan: tuple[np.ndarray, ...]
+def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool
                        ) -> tuple[np.ndarray, ...]:
-    """3b. The S-curve plan ``(v_max, a_max, j_max, v0, v1)`` with, in each chain where that is faster, the
-    bounds of its curves at :data:`_CRUISE_JERK_SHARE` of the jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of
-    :data:`interpolators.kinematics.JERK_SPEED_SHARE`.
+    """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` and the junction speeds
+    (:func:`_junction_speeds`) they give; under the S-curve, in each chain where that is faster, the bounds of its
+    curves at :data:`_CRUISE_JERK_SHARE` of the jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of
+    :data:`interpolators.kinematics.JERK_SPEED_SHARE` (not in a program moving the axes beyond X, Y, Z, whose
+    curve bounds, :func:`interpolators.kinematics.extra_curve_bounds`, keep it).
 
     The share splits one budget: at constant speed the jerk of a curve is ``v^3 |(k^2, dk/ds)|`` alone, while a
     speed change on it needs the rest for ``3 k v a`` and the path jerk (:mod:`interpolators.kinematics`).
@@ -1145,6 +1145,9 @@ def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, plan: tuple[n
     need likewise: LinuxCNC's ``pmCircleActualMaxVel`` (``src/emc/tp/blendmath.c``) gives an arc's normal
     acceleration what its speed needs, at most ``BLEND_ACC_RATIO_NORMAL`` (sqrt(3)/2) of the limit, and the
     tangential acceleration the rest; no manual found states a jerk split (our reading: choose the faster)."""
+    plan = (*bounds, *_junction_speeds(g, c, *bounds, jerk_limited))
+    if not jerk_limited or g.extra is not None:
+        return plan
     v_max, a_max, j_max, v0, v1 = plan
     alt = _path_bounds(g, c, lim, True, _CRUISE_JERK_SHARE)
     differs = (alt[0] != v_max) | (alt[1] != a_max) | (alt[2] != j_max)
