@@ -75,6 +75,24 @@ def test_curve_bounds_keep_the_jerk_vector_norm_within_the_limit():
     assert math.hypot(j[0] + kappa * kappa * v[0] ** 3, normal) == pytest.approx(J, rel=1e-9)
 
 
+@pytest.mark.parametrize("turn", [0.05, 0.5, 1.5])
+def test_curve_bounds_at_the_higher_jerk_share_leave_path_jerk(turn):
+    """At jerk_share 0.6 (interpolate._faster_jerk_share's second plan) a curve whose bound is set by dk/ds (a
+    short quintic turning ``turn`` rad, from and back to curvature 0) or by k^2 still keeps a path jerk of at least
+    0.26 J (``sqrt(1 - (0.3 + 0.6 sin(phi))^2) - 0.6 cos(phi)``, phi the angle of ``(k^2, dk/ds)``; measured phi 89,
+    80 and 47 deg: 0.43, 0.35 and 0.265 J, the last next to the least, 0.2646 J at 48.6 deg), and its speed bound
+    is (0.6 / 0.3)^(1/3) times the one at JERK_SPEED_SHARE."""
+    end = np.array([math.cos(turn), math.sin(turn), 0.0])
+    curve = SplineCurve.hermite(np.zeros(3), np.array([1.0, 0, 0]), np.zeros(3), 2.0 * np.array([1.0, 0, 0])
+                                + 0.5 * end, end, np.zeros(3))
+    limits = AxisLimitArrays(dict(DEFAULT_LIMITS), {0, 1})
+    J = DEFAULT_LIMITS["x"].jerk
+    v3, _, _ = curve_limits([curve], np.array([1e4]), limits, jerk_limited=True)
+    v6, a6, j6 = curve_limits([curve], np.array([1e4]), limits, jerk_limited=True, jerk_share=0.6)
+    assert j6[0] >= 0.26 * J and a6[0] > 0
+    assert v6[0] == pytest.approx(v3[0] * 2.0 ** (1.0 / 3.0), rel=1e-9)
+
+
 @pytest.mark.parametrize("text, seconds, forced", [
     # a full circle R2 from rest at F3000: its speed changes on the curve; at 0.6 of J for v^3 k^2 the
     # acceleration ramps would take longer than the higher cruise gains (0.619 s): the 0.3 plan is kept
