@@ -343,9 +343,12 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
         d_start = min(math.sqrt(8.0 * tolerance / step), d_max)
     corner = b.point_at(np.zeros(1))
     at_leg = _legs(a, b)
-    # a curvature ramp between programmed lines and arcs: its leg bisected to the longest that fits (measured: beside
-    # merged curve pieces the longer legs made the corpus program 0274 slower, 1754.5 -> 1760.4 s)
-    ramp = theta <= _MIN_BLEND_ANGLE and not isinstance(a, SplineCurve) and not isinstance(b, SplineCurve)
+    # a curvature ramp between arcs of opposite sense: its leg bisected to the longest that fits, the ramp's
+    # curvature derivative the lower for it; elsewhere the longer legs passed slower on the whole (their bound held
+    # over a longer stretch; measured: corpus 0274 1754.5 -> 1760.4 s beside merged curves, 0028 15.456 -> 15.495 s
+    # at line/arc junctions)
+    ramp = (theta <= _MIN_BLEND_ANGLE and isinstance(a, Arc) and isinstance(b, Arc)
+            and float(np.dot(k_a, k_b)) < 0.0)
     best, best_v = None, 0.0
     for stretch in _KINK_STRETCHES:
         d, fit, fail = d_start, None, math.inf
