@@ -213,7 +213,8 @@ def _header(spec: _Spec, pos_unit: str) -> tuple[list[str], list[tuple[str, int]
     """The names, the kind of each column (``t``, ``n``, ``ref``, ``second`` or an extra, with its axis index) and
     a row of units or None."""
     rng, axes = spec.rng, spec.axes
-    vocab = rng.choice(list(_VOCABULARY))
+    rotary = any(a in "abc" for a in axes)  # KUKA RSI's A, B, C are the tool's orientation, no axes (names.py)
+    vocab = rng.choice([v for v in _VOCABULARY if not (rotary and v == "kuka_rsi")])
     spec.use_lag = rng.random() < 0.15
     bare = len(axes) == 1 and axes[0] == "x" and rng.random() < 0.3
     spec.lay.append(f"names:{'bare' if bare else vocab}" + ("+lag" if spec.use_lag else ""))

@@ -34,8 +34,14 @@ Procedure (forward selection judged on held-out data)
    (:func:`_worse_on_the_record`: a model that moves where the axis rests). An element must
    also beat its own null (the sampled split form without
    it); any other effect must itself carry the refit's gain (the refitted model without it predicts worse by
-   as much: :func:`_idle_effect`). Steps 2-4 repeat (at most ``max_effects`` times) until no proposal passes.
-5. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
+   as much: :func:`_idle_effect`). A mode must lie below the record's Nyquist frequency 1/(2T)
+   (:func:`_unphysical_mode`). Steps 2-4 repeat (at most ``max_effects`` times) until no proposal passes.
+5. **Check backward.** The final model faces every accepted effect again: one no longer physical (a mode above
+   the Nyquist frequency or damped beyond 1/sqrt(2), a Stribeck term without its static excess) or no longer
+   needed (the final model refitted without it predicts the held-out folds within ``min_gain``, a mode no longer
+   coherent with the motion) is dropped, the model refitted without it, and the last round's record says so
+   under ``dropped`` (:func:`_backward_check`; the report's ``dropped:`` lines).
+6. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
    the active stretches and the warnings; ``validation.unexplained`` the final residual's
    spectral peaks and its association with position, velocity, direction, acceleration and time
    (:func:`identification.residual.residual_evidence`), so that what no named effect explains is
@@ -94,6 +100,7 @@ __all__ = [
     "format_before_after",
     "samples_note",
     "refusal_lines",
+    "dropped_lines",
 ]
 
 log = logging.getLogger(__name__)
@@ -727,6 +734,7 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
             break
         stages.append(_accepted_stage(chosen, tried, stages[-1], rounds[-1]))
         cur, cur_rms = stages[-1].full_model, stages[-1].identification_rms_um
+    stages = _backward_check(stages, data, plan, rounds, opt)
     # the reduced model's identification-data error, on the active samples
     stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, active)
     final = _final_model(model, stages, opt, data, rounds, plan, counts)
@@ -850,7 +858,8 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
             record["resonance_motion_coherence"] = coh
             record["resonance_damping"] = e_new.damping
-            ok = coh >= _MIN_MODE_COHERENCE and e_new.damping < _MAX_MODE_DAMPING
+            record["resonance_frequency_hz"] = e_new.frequency
+            ok = coh >= _MIN_MODE_COHERENCE and _unphysical_mode(e_new, data.T) is None
         if ok and c.effect.NAME == "friction_stribeck":
             ratios = stribeck_static_ratios(j.model)
             record["stribeck_static_ratios"] = list(ratios)
@@ -871,6 +880,137 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
     record["gain_pct"] = 100.0 * _gain(prev, best[0].held_out_rms_um)
     record["accepted"] = chosen[1].effect.NAME if chosen else None
     return chosen
+
+
+def _unphysical_mode(e, T: float) -> str | None:
+    """Why the refitted mode ``e`` (:class:`identification.effects.Resonance`) is no resonance a record sampled
+    every ``T`` [s] shows, or None.
+
+    A second-order mode shows a resonant peak only for a damping below 1/sqrt(2) (:data:`_MAX_MODE_DAMPING`), and a
+    record sampled every T shows no frequency above its Nyquist frequency 1/(2T): its samples determine a signal
+    band-limited to 1/(2T), and anything above it aliases onto a lower frequency (Shannon, "Communication in the
+    presence of noise", Proc. IRE 37(1), 1949, Theorem 1). A mode fitted above it is a lag the refit borrowed:
+    ident_fuzz seed 21 case 52 with a one-sample delay only (fadal-pid/y, T = 1 ms) accepted a mode of damping 0.33
+    in round 1, and the joint refit with the delay of round 2 moved it to 2744 Hz (damping 0.55), above the 500 Hz
+    Nyquist frequency."""
+    nyquist = 0.5 / T
+    if e.frequency >= nyquist:
+        return (f"its frequency {e.frequency:.4g} Hz lies above the record's Nyquist frequency 1/(2T) = "
+                f"{nyquist:.4g} Hz, which a sampled record cannot show")
+    if e.damping >= _MAX_MODE_DAMPING:
+        return f"its damping {e.damping:.3g} is >= 1/sqrt(2): a mode without a resonant peak"
+    return None
+
+
+def _unphysical(model: AugmentedAxisModel, name: str, data: Data) -> str | None:
+    """Why the effect ``name`` of ``model`` is no longer the physical effect its name says (the tests of
+    :func:`_choose` that need no refit), or None."""
+    e = next(e for e in model.elements if e.NAME == name)
+    if name == "resonance":
+        return _unphysical_mode(e, data.T)
+    if name == "friction_stribeck":
+        ratios = stribeck_static_ratios(model)
+        if min(ratios) < _MIN_STATIC_RATIO:
+            return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below "
+                    f"{_MIN_STATIC_RATIO}: no Stribeck curve")
+    return None
+
+
+def _without(model: AugmentedAxisModel, name: str) -> AugmentedAxisModel:
+    """``model`` without the effect ``name`` as :func:`_choose` judged it: an element against its null
+    (:func:`_null_of`), any other effect against the model without it."""
+    kind = next(e.KIND for e in model.elements if e.NAME == name)
+    return _null_of(model, name) if kind == "element" else augment(model, [e for e in model.elements
+                                                                           if e.NAME != name])
+
+
+def _unneeded(final: Stage, without: _Judged, name: str, data: Data, plan: FoldPlan,
+              opt: DiagnosisOptions) -> str | None:
+    """Why the final model no longer needs ``name`` (``without``: the final model refitted without it and judged),
+    or None: it must still lower the pooled held-out RMS by min_gain and min_gain_um (:func:`_lowers`), and a mode
+    must still be coherent with the commanded acceleration in the residual it explains
+    (:data:`_MIN_MODE_COHERENCE`)."""
+    w, f = without.held_out_rms_um, final.validation_rms_um
+    if not _lowers(w, f, opt):
+        return (f"the final model refitted without it predicts the held-out folds {w:.4g} um against {f:.4g} um "
+                f"with it: it no longer lowers that error by >= {opt.min_gain:.0%} and >= {opt.min_gain_um} um")
+    if name == "resonance":
+        e = next(e for e in final.full_model.elements if e.NAME == name)
+        coh = motion_coherence(data.x - data.predict(without.model), data.xr, data.T, plan.active,
+                               [e.frequency, e.antiresonance])
+        if coh < _MIN_MODE_COHERENCE:
+            return (f"the residual it explains is no longer coherent with the commanded acceleration "
+                    f"({coh:.3g} < {_MIN_MODE_COHERENCE})")
+    return None
+
+
+def _first_failing(stages: list[Stage], checked: set, data: Data, plan: FoldPlan,
+                   opt: DiagnosisOptions) -> tuple[str, str, _Judged | None] | None:
+    """The first accepted effect the final model (``stages[-1]``) no longer needs or that is no longer physical, as
+    (name, why, the final model refitted without it and judged, when computed), or None. ``checked``: effects
+    :func:`_choose` judged against this very model (their need is not tested again)."""
+    final = stages[-1]
+    for s in stages[1:]:
+        why = _unphysical(final.full_model, s.effect, data)
+        if why is not None:
+            return s.effect, why, None
+        if s.effect in checked:
+            continue
+        without = _judge(_without(final.full_model, s.effect), data, plan, opt)
+        why = _unneeded(final, without, s.effect, data, plan, opt)
+        if why is not None:
+            return s.effect, why, without
+    return None
+
+
+def _backward_check(stages: list[Stage], data: Data, plan: FoldPlan, rounds: list[dict],
+                    opt: DiagnosisOptions) -> list[Stage]:
+    """The stages with every accepted effect the final model no longer needs, or that is no longer physical, dropped
+    (noted under ``dropped`` in the last round's record), the final model refitted without it; repeated until all
+    pass.
+
+    Forward selection judges each effect against the model of its round, and a later joint refit moves the earlier
+    effects' parameters: ident_fuzz seed 21 case 52 (fadal-pid/y, a one-sample delay only) accepted a mode of damping
+    0.33 that acted as the lag, then the delay, and the refit of both moved the mode to 2744 Hz, above the record's
+    Nyquist frequency, where it explained nothing. So the final model faces every accepted effect again: the tests of
+    :func:`_choose` that need no refit (:func:`_unphysical`) and, refitted and judged without it, the held-out gain
+    and a mode's motion coherence (:func:`_unneeded`) - the backward elimination step of stepwise selection
+    (Efroymson, "Multiple regression analysis", in Ralston and Wilf, Mathematical Methods for Digital Computers,
+    Wiley, 1960; our reading: with the held-out gain of :func:`_choose` as the F test's stand-in)."""
+    checked = {stages[-1].effect}
+    while len(stages) > 1:
+        failing = _first_failing(stages, checked, data, plan, opt)
+        if failing is None:
+            break
+        name, why, without = failing
+        final = stages[-1]
+        rest = [e for e in final.full_model.elements if e.NAME != name]
+        if without is None or not any(e.KIND == "element" for e in rest):
+            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect)
+            without = _judge(augment(final.full_model, rest), data, plan, opt) if rest else None
+        log.info("diagnosis: %s dropped: %s", name, why)
+        w = without.held_out_rms_um if without is not None else stages[0].validation_rms_um
+        rounds[-1].setdefault("dropped", {})[name] = {"reason": why, "validation_rms_with_um": final.validation_rms_um,
+                                                      "validation_rms_without_um": w}
+        stages = _dropped(stages, name, without)
+        checked = set()
+    return stages
+
+
+def _dropped(stages: list[Stage], name: str, without: _Judged | None) -> list[Stage]:
+    """``stages`` without the stage of ``name``, the last one's model replaced by ``without`` (the final model
+    refitted without it and judged; None when no effect remains)."""
+    kept = [s for s in stages if s.effect != name]
+    if len(kept) == 1 or without is None:
+        return kept[:1]
+    j = without
+    kept[-1] = dataclasses.replace(
+        kept[-1], train_model=j.model, full_model=j.model, validation_rms_um=j.held_out_rms_um,
+        validation_max_um=j.held_out_max_um, identification_rms_um=j.rms_um, identification_max_um=j.max_um,
+        fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um, in_sample_folds=j.in_sample_folds,
+        evidence=dict(kept[-1].evidence, refitted_without=sorted({*kept[-1].evidence.get("refitted_without", []),
+                                                                  name})))
+    return kept
 
 
 def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
@@ -1273,6 +1413,18 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
     return lines
 
 
+def dropped_lines(validation: dict, unit: str = "um") -> list[str]:
+    """One line per accepted effect the final model dropped again, from the ``dropped`` notes of
+    ``validation['rounds']`` (:func:`_backward_check`): which, why, and the held-out error with and without it."""
+    lines = []
+    for r in validation.get("rounds") or []:
+        for name, d in (r.get("dropped") or {}).items():
+            lines.append(f"dropped: {name}, accepted in an earlier round, because {d.get('reason')}; the final model "
+                         f"without it: held-out RMS {d.get('validation_rms_with_um', math.nan):.4g} -> "
+                         f"{d.get('validation_rms_without_um', math.nan):.4g} {unit}")
+    return lines
+
+
 def format_before_after(model: ReducedAxisModel) -> str:
     """Text table of :func:`before_after_rows` for the command line (errors in um, mdeg on a rotary axis)."""
     rows = before_after_rows(model)
@@ -1294,7 +1446,7 @@ def format_before_after(model: ReducedAxisModel) -> str:
     v = model.validation or {}
     if v.get("split"):
         lines.append(f"validation: {v['split']}")
-    refused = refusal_lines(v, u)
+    refused = refusal_lines(v, u) + dropped_lines(v, u)
     if not model.effects:
         lines.append("diagnosis: no effect is kept; the reduced model stands" if refused else
                      "diagnosis: no effect lowers the held-out error significantly; the reduced model stands")

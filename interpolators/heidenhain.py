@@ -909,6 +909,8 @@ _KNOWN_UNSUPPORTED = {
     "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
     "SQL": "SQL (table access)",
     "PRESET": "PRESET (the preset table's functions; CYCL DEF 247 selects a preset)",
+    "CONTOUR": "CONTOUR DEF (the SL cycles' contour formula of pockets P and islands I; CYCL DEF 14 CONTOUR "
+               "GEOMETRY names contours vcnc runs)",
 }
 
 

@@ -74,6 +74,8 @@ def run_hole(m: Machine, c: DrillCycle, surface: float, where: Where, blk: Sourc
         return
     if c.place is not None:
         _to_centre(m, c, surface, where, blk)
+    if c.centre_offset != (0.0, 0.0):
+        _beside_tool(m, c, surface, where, blk)
     if c.shape in (251, 252, 253):
         _circular_pocket(m, c, surface, where, blk)
         return
@@ -114,6 +116,21 @@ def _to_centre(m: Machine, c: DrillCycle, surface: float, where: Where, blk: Sou
     d = -1.0 if c.depth < 0 else 1.0
     axis_move(m, "rapid", surface - d * max(c.setup, c.second_setup), math.inf, where, blk)
     target, _ = program_target(m, {"XYZ"[p]: c.place[0], "XYZ"[q]: c.place[1]}, m.pos)
+    if not np.array_equal(target, m.pos):
+        m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
+
+
+def _beside_tool(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """Cycles 251, 253, 256 with Q367 = 1..4 (``c.centre_offset``, heidenhain_cycles' ``beside_tool_offset``): the
+    tool goes at FMAX over the pocket's, slot's or stud's centre, from where the cycle runs as with Q367 = 0; below
+    the set-up clearance it first rises to it (our reading: the manual's cycle run starts over the centre and
+    names no path there; the plane move stays clear of the part above the set-up clearance)."""
+    p, q = PLANE_AXES[m.plane]
+    d = -1.0 if c.depth < 0 else 1.0
+    clear = surface - d * c.setup
+    if d * (m.pos[m.plane] - clear) > 0:
+        axis_move(m, "rapid", clear, math.inf, where, blk)
+    target, _ = program_target(m, {"I" + "XYZ"[p]: c.centre_offset[0], "I" + "XYZ"[q]: c.centre_offset[1]}, m.pos)
     if not np.array_equal(target, m.pos):
         m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
 

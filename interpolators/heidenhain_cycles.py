@@ -275,6 +275,9 @@ class DrillCycle:
     place : tuple of float or None
         Cycles 210, 212-215: the centre Q216, Q217 [mm, program] the tool goes to at the clearance height first
         (``None``: the cycle runs where the tool is).
+    centre_offset : tuple of float
+        Cycles 251, 253, 256 with Q367 = 1..4: the pocket's, slot's or stud's centre from the tool's position at
+        the call [mm, program directions, turned by Q224 / Q374] (see :func:`beside_tool_offset`).
     wall_only : bool
         Cycles 210, 211, 212, 214: the finishing runs round the wall only (no floor finishing, as 251/252's Q215 = 2
         has), with Q215 = 0 also without a side allowance.
@@ -337,6 +340,7 @@ class DrillCycle:
     place: tuple[float, float] | None = None
     wall_only: bool = False
     lead: float = 2.0
+    centre_offset: tuple[float, float] = (0.0, 0.0)
 
     @property
     def shape(self) -> int:
@@ -1018,16 +1022,16 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     heidenhain_cycle_moves' ``_circular_pocket``.
 
     ``number`` = 251: RECTANGULAR POCKET (TNC 640 manual, "RECTANGULAR POCKET (Cycle 251)") with Q218, Q219
-    side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 must be 0 (the tool
-    over the pocket's centre). The moves are heidenhain_cycle_moves' ``_circular_pocket``.
+    side lengths, Q220 corner radius, Q224 rotation instead of Q223; its position Q367 places the pocket
+    beside the tool (:func:`beside_tool_offset`). The moves are heidenhain_cycle_moves' ``_circular_pocket``.
 
     ``number`` = 256: RECTANGULAR STUD (TNC 640 manual, "RECTANGULAR STUD (Cycle 256)"): Q218, Q219, Q220,
     Q224 as 251, Q424, Q425 the blank's sides (at least the stud's), Q215 absent: 0. The moves are
     heidenhain_cycle_moves' ``_rectangular_stud``.
 
     ``number`` = 253: SLOT MILLING (TNC 640 manual, "SLOT MILLING (Cycle 253)"): Q218 slot length, Q219 slot
-    width, Q374 angle of rotation, Q367 slot position (0: the tool over the slot's centre; the others an
-    error), the rest as 251. The slot is the rectangle Q218 x Q219 with the corner radius Q219 / 2 (two
+    width, Q374 angle of rotation, Q367 slot position (:func:`beside_tool_offset`), the rest as 251. The slot is
+    the rectangle Q218 x Q219 with the corner radius Q219 / 2 (two
     half circles joined by straight sides), and is milled as cycle 251 mills its pocket: the manual
     leaves the roughing path to the control, and 251's rings (each an obround here) stay inside the slot.
 
@@ -1047,16 +1051,11 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
     stud is 256's rounded rectangle Q223 x Q223 with the corner radius Q223 / 2, i.e. a circle, from the
     blank Q222 (the cycle run is 256's: from the starting position 2 mm outside the blank, half circles on
     and off, revolutions stepping in to the finished diameter)."""
+    offset = beside_tool_offset(number, q, where, column)
     if number == 253:
-        if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle 253: Q367={q[367]:g} (the slot beside the tool) is not supported", column=column,
-                       text=where.text, expected="Q367=0 (the tool over the slot's centre)")
         q = {**q, 220: q[219] / 2.0, 224: q.get(374, 0.0)}
     slot = (0.0, 0.0, 0.0, 0.0, 0.0)
     if number == 254:
-        if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle 254: Q367={q[367]:g} (the slot placed from the tool position) is not supported",
-                       column=column, text=where.text, expected="Q367=0 (the slot from the centre Q216, Q217)")
         if not q[248] > 0 or not q[375] > q[219] > 0:
             where.fail("cycle 254: the angular length Q248 must be > 0, the pitch circle Q375 wider than the slot "
                        "width Q219 > 0", column=column, text=where.text, expected="Q248 > 0, Q375 > Q219 > 0")
@@ -1067,9 +1066,6 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         q = {**q, 218: q[223], 219: q[223], 220: q[223] / 2.0, 424: q[222], 425: q[222],
              224: 0.0 if start == -1.0 else start}
     if number in (251, 253, 256, 257):
-        if q.get(367, 0.0) != 0.0:
-            where.fail(f"cycle {number}: Q367={q[367]:g} (the pocket or stud beside the tool) is not supported",
-                       column=column, text=where.text, expected="Q367=0 (the tool over the centre)")
         if not q[218] > 0 or not q[219] > 0 or (number in (256, 257) and (q[424] < q[218] or q[425] < q[219])):
             where.fail(f"cycle {number}: the side lengths Q218 and Q219 must be > 0 (256: the blank's Q424, Q425 at "
                        "least as long)", column=column, text=where.text, expected="Q218 > 0, Q219 > 0, Q424 >= Q218, "
@@ -1093,7 +1089,40 @@ def circular_pocket_cycle(q: dict[int, float], *, feed_scale: float, scale: floa
         sides=(q.get(218, 0.0) * scale, q.get(219, 0.0) * scale), corner=abs(q.get(220, 0.0)) * scale,
         angle=q.get(224, 0.0), blank=(q.get(424, 0.0) * scale, q.get(425, 0.0) * scale),
         plunge_type=int(q.get(366, 0.0)) if number in (251, 252, 253, 254) else 0, slot=slot,
-        repeats=max(1, int(q.get(377, 1.0)))), where, column)
+        repeats=max(1, int(q.get(377, 1.0))), centre_offset=(offset[0] * scale, offset[1] * scale)), where, column)
+
+
+#: Q367 of cycles 251 and 256: the corner of the pocket or stud where the tool stands, in half side lengths.
+_CORNERS = {1: (1.0, 1.0), 2: (-1.0, 1.0), 3: (-1.0, -1.0), 4: (1.0, -1.0)}
+
+
+def beside_tool_offset(number: int, q: dict[int, float], where: Where, column: int) -> tuple[float, float]:
+    """The centre of a pocket, slot or stud from the tool's position at the call, by its position Q367 [program
+    units] (TNC 640 cycle programming manual, cycles 251 "Q367 Position of pocket" and 256 "Q367 Position of
+    stud": 0 the tool over the centre, 1 at the lower left corner, 2 the lower right, 3 the upper right, 4 the
+    upper left; cycle 253 "Q367 Position of slot": 0 the centre, 1 the slot's left end, 2 the centre of its left
+    circle, 3 the centre of its right circle, 4 its right end). The offset turns with the angle of rotation Q224
+    (253: Q374), whose centre the manual puts at the tool's position. No copy of those pages is in the search
+    index: our reading of their parameter texts. Cycle 257 has no position; 254's Q367 (a reference point for
+    the pitch circle) stays an error."""
+    where_q = q.get(367, 0.0)
+    if number == 254 and where_q != 0.0:
+        where.fail(f"cycle 254: Q367={where_q:g} (the slot placed from the tool position) is not supported",
+                   column=column, text=where.text, expected="Q367=0 (the slot from the centre Q216, Q217)")
+    if number not in (251, 253, 256) or where_q == 0.0:
+        return (0.0, 0.0)
+    if where_q not in (1.0, 2.0, 3.0, 4.0):
+        where.fail(f"cycle {number}: Q367={where_q:g} is not a position", column=column, text=where.text,
+                   expected="Q367=0 (centre), 1, 2, 3 or 4")
+    if number == 253:
+        half, radius = q[218] / 2.0, q[219] / 2.0
+        u, v = {1.0: (half, 0.0), 2.0: (half - radius, 0.0), 3.0: (radius - half, 0.0), 4.0: (-half, 0.0)}[where_q]
+        angle = q.get(374, 0.0)
+    else:
+        su, sv = _CORNERS[int(where_q)]
+        u, v, angle = su * q[218] / 2.0, sv * q[219] / 2.0, q.get(224, 0.0)
+    a = math.radians(angle)
+    return (u * math.cos(a) - v * math.sin(a), u * math.sin(a) + v * math.cos(a))
 
 
 def _checked(cycle: DrillCycle, where: Where, column: int) -> DrillCycle:
@@ -1206,24 +1235,100 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
 
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
+_FORM_RE = re.compile(r"\s*(ROW|CIRC|PITCHCIRC)(\d+)\s*\(([^)]*)\)", re.I)
+#: A form the reader reads whose parenthesis is left open (``ROW1 (X+0 Y+0 D+10 NUM2``).
+_OPEN_FORM_RE = re.compile(r"\s*(POS|ROW|CIRC|PITCHCIRC)(\d+)\s*\([^)]*$", re.I)
+_FORM_KEY_RE = re.compile(r"\s*(NUM|START|STEP|END|ROT|D|X|Y|Z)(?![A-Z])", re.I)
+#: The words of each generated pattern form, and those it must have.
+_FORM_WORDS = {"ROW": ({"X", "Y", "D", "NUM", "ROT", "Z"}, {"X", "Y", "D", "NUM"}),
+               "CIRC": ({"X", "Y", "D", "START", "NUM", "Z"}, {"X", "Y", "D", "NUM"}),
+               "PITCHCIRC": ({"X", "Y", "D", "START", "STEP", "END", "NUM", "Z"}, {"X", "Y", "D", "NUM"})}
+
+
+def _form_words(kind: str, text: str, start: int, where: Where, params: QParameters,
+                column0: int) -> dict[str, float]:
+    """The words of one ROW / CIRC / PITCHCIRC form, ``text[start:]`` its inside, values evaluated."""
+    allowed, needed = _FORM_WORDS[kind]
+    words: dict[str, float] = {}
+    pos = start
+    while text[pos:].strip():
+        m = _FORM_KEY_RE.match(text, pos)
+        key = m.group(1).upper() if m else ""
+        if m is None or key not in allowed or key in words:
+            tok = text[pos:].split()[0]
+            where.fail(f"word {tok!r} in PATTERN DEF {kind}", column=column0 + pos, text=tok,
+                       expected=", ".join(sorted(allowed)) + " (each once)")
+        words[key], pos = read_value(text, m.end(), where, params, what=key, column0=column0)
+    missing = sorted(needed - words.keys()) + (["STEP or END"] if kind == "PITCHCIRC" and
+                                                not {"STEP", "END"} & words.keys() else [])
+    inside = text[start:].strip()
+    if missing:
+        where.fail(f"PATTERN DEF {kind} without {', '.join(missing)}", column=column0 + start, text=inside,
+                   expected=f"{kind}n ({' '.join(sorted(needed))} ...)")
+    if words["NUM"] < 1 or words["NUM"] != int(words["NUM"]):
+        where.fail(f"PATTERN DEF {kind} with NUM{words['NUM']:g}", column=column0 + start, text=inside,
+                   expected="NUM a whole number >= 1")
+    if {"STEP", "END"} <= words.keys():
+        where.fail("PATTERN DEF PITCHCIRC with both STEP and END", column=column0 + start, text=inside,
+                   expected="STEP (the stepping angle) or END (the end angle)")
+    return words
+
+
+def _form_points(kind: str, w: dict[str, float]) -> list[dict[str, float]]:
+    """The positions of a generated pattern form, in program units (see :func:`pattern_positions`)."""
+    count, z = int(w["NUM"]), w.get("Z", 0.0)
+    if kind == "ROW":
+        a = math.radians(w.get("ROT", 0.0))
+        return [{"X": w["X"] + k * w["D"] * math.cos(a), "Y": w["Y"] + k * w["D"] * math.sin(a), "Z": z}
+                for k in range(count)]
+    first = w.get("START", 0.0)
+    if kind == "CIRC":
+        step = 360.0 / count
+    elif "STEP" in w:
+        step = w["STEP"]
+    else:
+        step = (w["END"] - first) / (count - 1) if count > 1 else 0.0
+    r = w["D"] / 2.0
+    return [{"X": w["X"] + r * math.cos(math.radians(first + k * step)),
+             "Y": w["Y"] + r * math.sin(math.radians(first + k * step)), "Z": z} for k in range(count)]
 
 
 def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: int) -> list[dict[str, float]]:
     """The machining positions of ``PATTERN DEF POS1 (X+25 Y+33.5 Z+0) POS2 (...)`` (TNC 640
     user's manual, "Pattern definition PATTERN DEF": up to 9 positions; ``Z`` is the workpiece
-    surface there, added to the cycle's Q203; ``IX``/``IY`` are from the previous position).
+    surface there, added to the cycle's Q203; ``IX``/``IY`` are from the previous position), and of the
+    generated forms of the same page, as the control's dialog names their data (TNC 640 cycle programming
+    manual, "PATTERN DEF": "Defining a single row", "Defining a full circle", "Defining a pitch circle"; no copy
+    of those pages is in the search index, so the rules below are our reading of their dialog):
+    ``ROW1 (X+25 Y+33.5 D+8 NUM5 ROT+0 Z+0)`` NUM positions from the starting point X/Y, D apart along the
+    direction ROT (degrees from the working plane's reference axis, about the starting point);
+    ``CIRC1 (X+25 Y+33 D80 START+45 NUM8 Z+0)`` NUM positions on the circle of diameter D about X/Y, the first at
+    the polar angle START, then 360/NUM apart counter-clockwise; ``PITCHCIRC1 (X+25 Y+33 D80 START+45 STEP+30
+    NUM8 Z+0)`` the same with the stepping angle STEP (its sign the direction), or with the end angle ``END``
+    instead (the steps (END - START) / (NUM - 1)). ``Z`` is the surface there, as in POS. The positions are
+    machined in the order the forms are written, each from its first position on.
 
     Returns one dict per position with the words as written (``"X"``, ``"IY"``, ``"Z"`` ...) in
-    program units. Other pattern forms (ROW, PATTERN, FRAME, CIRC, PITCHCIRC) are errors.
+    program units. The forms PAT and FRAME (rows of rows, their machining order not found) are errors.
     """
     out: list[dict[str, float]] = []
-    pos = 0
+    pos, listed = 0, 0
     while rest[pos:].strip():
         m = _POS_RE.match(rest, pos)
         if m is None:
-            tok = rest[pos:].split()[0]
-            where.fail(f"pattern {tok!r} is not supported", column=column0 + pos, text=tok,
-                       expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...)")
+            f = _FORM_RE.match(rest, pos)
+            if f is None:
+                tok = rest[pos:].split()[0]
+                open_form = _OPEN_FORM_RE.match(rest, pos)
+                what = (f"PATTERN DEF {open_form.group(1).upper()}{open_form.group(2)} without its closing ')'"
+                        if open_form else f"pattern {tok!r} is not supported")
+                where.fail(what, column=column0 + pos, text=tok,
+                           expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...) or "
+                                    "PITCHCIRC1 (...)")
+            kind = f.group(1).upper()
+            out += _form_points(kind, _form_words(kind, rest[: f.end(3)], f.start(3), where, params, column0))
+            pos = f.end()
+            continue
         words = read_words(rest[: m.end(2)], m.start(2), where, params, column0=column0)
         point: dict[str, float] = {}
         for w in words:
@@ -1232,9 +1337,10 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
                            expected="X, Y, Z (each once; IX, IY incremental)")
             point[w.key] = float(w.value)
         out.append(point)
+        listed += 1
         pos = m.end()
-    if not out or len(out) > 9:
-        where.fail(f"PATTERN DEF with {len(out)} positions", column=column0, text=rest.strip(),
+    if not out or listed > 9:
+        where.fail(f"PATTERN DEF with {listed} positions", column=column0, text=rest.strip(),
                    expected="1 to 9 positions POS1 .. POS9")
     return out
 

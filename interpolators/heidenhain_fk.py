@@ -1012,7 +1012,7 @@ def _solve_stretch(fk: FreeContour, count: int) -> list[list[FkElement]]:
             fk.degenerate |= all(ok or _back_to_start(c) for ok, c in zip(admissible, walked))
             continue
         chain = [c.element for c in walked]
-        if not any(_same_chain(chain, other) for other in found):
+        if not any(_same_chain(chain, other, fk.tol) for other in found):
             found.append(chain)
             since = 0
     return _ordered(found)
@@ -1042,8 +1042,15 @@ def _normalised(stretch: list[_Waiting], x: np.ndarray) -> np.ndarray:
     return x
 
 
-def _same_chain(a: list[FkElement], b: list[FkElement]) -> bool:
-    return all(np.hypot(*(x.end - y.end)) <= 1e-6 and (x.centre is None or np.hypot(*(x.centre - y.centre)) <= 1e-6)
+def _same_chain(a: list[FkElement], b: list[FkElement], tol: float) -> bool:
+    """Two chains of solutions are one when their ends and centres agree within the run's arc end tolerance
+    ``tol`` (at least 1e-6). Where an FK line touches the circle of an arc (``FCT DR+ R10`` then ``FL X+0 Y+0
+    AN-90`` along a tangent of that circle) the end is a double root: Newton's method meets it only to the square
+    root of its residual, about 1e-5 mm, from every start a little apart, and these are the one solution the
+    geometry has (our reading: the TNC offers a point of contact once; the iTNC 530 user's manual, 6.6, counts
+    solutions by the geometry)."""
+    same = max(tol, 1e-6)
+    return all(np.hypot(*(x.end - y.end)) <= same and (x.centre is None or np.hypot(*(x.centre - y.centre)) <= same)
                for x, y in zip(a, b))
 
 

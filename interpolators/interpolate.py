@@ -164,8 +164,10 @@ def _chains(program: Program) -> list[_Chain]:
             continue
         seg = b.segment
         if b.extra_start is not None and (np.any(b.extra_delta != 0) or _joins_extra(cur, b)):
-            if cur is not None and not cur.extra and np.any(b.extra_delta != 0) and not any(cur.rapid):
-                cur.extra = True  # a G64 chain of feed moves with these axes still, into one that moves them
+            if (cur is not None and not cur.extra and np.any(b.extra_delta != 0) and not any(cur.rapid)
+                    and b.kind != "rapid" and seg is not None and seg.length > 0):
+                cur.extra = True  # a G64 chain of feed moves with these axes still, into a feed move of X, Y, Z
+                # that moves them too (it joins: _extra_block); a rapid or a move of these axes alone starts its own
             cur = _extra_block(chains, items, cur, i, b, program.blocks)
             continue
         if seg is None or seg.length <= 0:

@@ -317,7 +317,8 @@ class State:
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
     tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
-    lathe_marks: dict[str, int] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe codes seen: line
+    lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
+    # codes seen: their file and line
 
     def tool(self, number: int) -> Tool | None:
         """The tool table's entry for ``number``: as the program wrote it (G10 L1), else the machine's."""
@@ -506,7 +507,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             dialect = st.context.dialect.name
             mill = (MILL_G.get(key, DIALECT_G[dialect].get(key)) if dialect in DIALECT_G
                     else LINUXCNC_G.get(key) if dialect == "linuxcnc" else None)
-            if dialect == "linuxcnc" and key == 80 and any(v.letter == "P" for v in words):
+            if dialect == "linuxcnc" and key == 80 and _fanuc_g08(w, words, where):
                 mill = None  # Fanuc's G08 P1 / P0 (look-ahead), named by _unsupported_g, not LinuxCNC's G8
             if mill is not None and mill[0] == "refused":  # LinuxCNC's code, another meaning in this dialect
                 where.fail(f"{mill[1]}: not supported", column=w.column, text=w.text,
@@ -884,6 +885,28 @@ def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
     return Word("T", float(tool), w.column, w.text)
 
 
+#: The G codes (10 x G) and M codes that read a P in rs274ngc (interp_check.cc check_other_codes: "P word with no
+#: G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ... to use it"; G74/G84 pass too; M62-M66 and M98 read
+#: theirs, M100-M199 user M codes P and Q).
+_P_READERS_G = frozenset((20, 30, 40, 100, 640, 50, 52, 60, 62, 760, 740, 820, 840, 860, 880, 890))
+_P_READERS_M = frozenset((62, 63, 64, 65, 66, 98, *range(100, 200)))
+
+
+def _fanuc_g08(g8: Word, words: list[Word], where: Where) -> bool:
+    """Whether the G8 ``g8`` of a ``linuxcnc`` block is Fanuc's ``G08 P1`` / ``P0`` (AI advanced preview control):
+    it has a P and no other code of the block reads one (:data:`_P_READERS_G`, :data:`_P_READERS_M`). LinuxCNC's G8
+    (lathe radius mode, modal group 15 of g-code.adoc "Modal Groups") takes no P: ``G8 G64 P0.01`` or ``G8 G4 P1``
+    gives the P to G64 or G4, while ``G90 G08 P1`` is Fanuc's."""
+    if not any(v.letter == "P" for v in words):
+        return False
+    for v in words:
+        if v is g8 or v.letter not in "GM":
+            continue
+        if v.letter == "G" and _gkey(v, where) in _P_READERS_G or v.letter == "M" and v.value in _P_READERS_M:
+            return False
+    return True
+
+
 def _unsupported_g(key: int, words: list[Word], dialect: str) -> str:
     """The error of a G code of :data:`G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
     block) with :data:`UNITS_HINT`; a G8 with P named as Fanuc's look-ahead (Fanuc 0i-MF "AI advanced preview
@@ -950,12 +973,14 @@ def _lathe_program(seen, gcodes, st: State, where: Where) -> None:
     if gcodes.get("spindle mode", (0,))[0] == 960:
         marks.append(("G96 (constant surface speed)", gcodes["spindle mode"][1]))
     for what, w in marks:
-        other = next(((k, line) for k, line in st.lathe_marks.items() if k != what), None)
+        other = next(((k, at) for k, at in st.lathe_marks.items() if k != what), None)
         if other is not None:
-            where.fail(f"a lathe program: {what} here and {other[0]} at line {other[1]} are a Fanuc/Haas lathe's "
+            file, line = other[1]
+            at = f"line {line}" if file == where.file else f"{file or '<input>'}:{line}"  # a subprogram's file
+            where.fail(f"a lathe program: {what} here and {other[0]} at {at} are a Fanuc/Haas lathe's "
                        "codes (its X is a diameter, U and W incremental X and Z): not supported", column=w.column,
                        text=w.text, expected="a milling program (vcnc reads mill programs)")
-        st.lathe_marks.setdefault(what, where.line)
+        st.lathe_marks.setdefault(what, (where.file, where.line))
 
 
 def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, notes: Notes) -> None:

@@ -68,6 +68,7 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
 
 from __future__ import annotations
 
+import cmath
 import copy
 import dataclasses
 import math
@@ -1271,6 +1272,15 @@ def _move_z(t: _Tnc, line: int, kind: str, z: float, *, optional: bool = False) 
     t.emit(line, kind, end, rows=rows)
 
 
+def _function_dwell(t: _Tnc, line: int, up: str) -> None:
+    """``FUNCTION DWELL TIME t`` / ``REV r`` (TNC 640 user's manual, "Defining a dwell time: FUNCTION DWELL"): a
+    dwell where the tool is, t seconds or r spindle revolutions."""
+    m = re.match(r"FUNCTION DWELL\s+(TIME|REV)\s*(\S+)\s*$", up)
+    if m is None:
+        raise ReferenceError(up)
+    _dwell(t, line, _val(m.group(2), t.q))
+
+
 def _dwell(t: _Tnc, line: int, seconds: float) -> None:
     t.out.append(Expected(line=line, kind="dwell", end=t.pos.copy(), rows="one" if seconds > 0 else "optional"))
 
@@ -1364,6 +1374,8 @@ def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
     kind_runs = {"212": _finishing, "213": _finishing, "214": _finishing, "215": _finishing, "210": _old_slot,
                  "211": _old_slot, "263": _thread_family, "264": _thread_family, "265": _thread_family,
                  "267": _thread_family, "203": _universal_drilling, "205": _universal_drilling}
+    if kind in ("251", "253", "256") and p.get("Q367", 0.0):
+        _to_shape_centre(t, line, kind, p)
     if kind in runs:
         runs[kind](t, line, p)
         return
@@ -1382,8 +1394,6 @@ def _run_cycle(t: _Tnc, line: int, *, fresh: bool = True) -> None:
         _rough_out(t, line, p)
         return
     if kind == "253":  # SLOT MILLING: 251's pocket Q218 x Q219 with half circles at the ends, turned by Q374
-        if p.get("Q367", 0.0):
-            raise ReferenceError("253 with the slot beside the tool")
         _circular_pocket(t, line, {"Q215": 0.0, **p, "Q220": p["Q219"] / 2, "Q224": p.get("Q374", 0.0)})
         return
     if kind == "254":  # CIRCULAR SLOT: Q377 slots Q378 apart, each as a pocket of width Q219 along the arc
@@ -1750,6 +1760,29 @@ def _universal_drilling(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _dwell(t, line, p.get("Q211", 0.0))
     _move_z(t, line, back, clear)
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _to_shape_centre(t: _Tnc, line: int, kind: str, p: dict) -> None:
+    """Q367 = 1..4 of 251 / 256 (the tool at the lower left, lower right, upper right, upper left corner) and 253
+    (the tool at the slot's left end, its left circle's centre, its right circle's centre, its right end), the
+    shape turned by Q224 / Q374 about the tool: up to the set-up clearance if below it, then at FMAX over the
+    centre, as the reader reads the TNC 640 cycle manual's Q367."""
+    if t.scl != 1 or not np.all(t.factors == 1) or t.turns_over() or t.rot:
+        raise ReferenceError(f"{kind} with Q367 under a transformation")
+    n = int(p["Q367"])
+    if kind == "253":
+        tool = {1: -p["Q218"] / 2, 2: p["Q219"] / 2 - p["Q218"] / 2, 3: p["Q218"] / 2 - p["Q219"] / 2,
+                4: p["Q218"] / 2}[n] + 0j
+        turn = p.get("Q374", 0.0)
+    else:
+        tool = complex(p["Q218"] * (1 if n in (2, 3) else -1), p["Q219"] * (1 if n in (3, 4) else -1)) / 2
+        turn = p.get("Q224", 0.0)
+    here = t.prog()
+    centre = complex(*here[:2]) - tool * t.scale * cmath.exp(1j * math.radians(turn))
+    clear = p["Q203"] - (-1.0 if p["Q201"] < 0 else 1.0) * p["Q200"]
+    if (here[2] / t.scale - clear) * (1.0 if p["Q201"] < 0 else -1.0) < 0:
+        _move_z(t, line, "rapid", clear)
+    t.emit(line, "rapid", t.machine(np.array([centre.real, centre.imag, t.prog()[2]])))
 
 
 def _circular_pocket(t: _Tnc, line: int, p: dict) -> None:
@@ -2168,6 +2201,33 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
         centre[2] = t.prog()[2]
         t.emit(line, "rapid", t.machine(centre))
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
+
+
+def _pattern_def(up: str, q: dict) -> list[dict]:
+    """PATTERN DEF's positions in the order written: POSn (X Y Z as words), and the generated forms ROWn (X Y
+    start, D apart NUM times along the angle ROT), CIRCn (NUM points on the circle X Y D from START, a full turn
+    shared out) and PITCHCIRCn (the same, STEP apart, or from START to END) as the reader reads them (TNC 640
+    cycle programming manual, "PATTERN DEF", its dialog); PAT and FRAME are not modelled."""
+    out: list[dict] = []
+    for kind, inner in re.findall(r"(POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\(([^)]*)\)", up):
+        if kind == "POS":
+            out.append(_words(inner, q))
+            continue
+        if kind in ("PAT", "FRAME"):
+            raise ReferenceError(f"PATTERN DEF {kind}")
+        v = {k: _val(x, q) for k, x in re.findall(r"(NUM|START|STEP|END|ROT|D|X|Y|Z)\s*([-+]?\s*(?:Q\d+|[\d.]+))",
+                                                   inner)}
+        n, z = int(v["NUM"]), v.get("Z", 0.0)
+        if kind == "ROW":
+            w = cmath.rect(v["D"], math.radians(v.get("ROT", 0.0)))
+            pts = [complex(v["X"], v["Y"]) + k * w for k in range(n)]
+        else:
+            first = v.get("START", 0.0)
+            step = 360.0 / n if kind == "CIRC" else v["STEP"] if "STEP" in v else (v["END"] - first) / max(n - 1, 1)
+            pts = [complex(v["X"], v["Y"]) + cmath.rect(v["D"] / 2, math.radians(first + k * step))
+                   for k in range(n)]
+        out += [{"X": c.real, "Y": c.imag, "Z": z} for c in pts]
+    return out
 
 
 def _pattern_def_call(t: _Tnc, line: int, between: str = "rapid") -> None:
@@ -2770,16 +2830,19 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _feed_dwell_def(t, up)
         elif up.startswith("FUNCTION TCPM") or up.startswith("FUNCTION RESET TCPM"):
             _function_tcpm(t, up)
+        elif up.startswith("FUNCTION DWELL"):
+            _function_dwell(t, line, up)
         elif up.startswith(("PLANE", "FUNCTION")):
             if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL"))
-                    or all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
+                    or up.startswith("PLANE")
+                    and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
                 raise ReferenceError(up)
         elif re.match(r"CYCLE? DEF", up):
             _cycle_def(t, line, up)
         elif re.match(r"TCH\s*PROBE", up):
             _touch_probe(t, line, up)
         elif up.startswith("PATTERN DEF"):
-            t.pattern = [_words(inner, t.q) for inner in re.findall(r"POS\d+\s*\(([^)]*)\)", up)]
+            t.pattern = _pattern_def(up, t.q)
         elif up.startswith("CYCL CALL PAT"):
             t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
             _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")
@@ -2787,13 +2850,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             t.modal = False
             _position_call(t, line, _words(up[len("CYCL CALL POS"):], t.q))
         elif up.startswith("CYCL CALL"):
-            if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
-                raise ReferenceError(up)
-            t.modal = False
-            _run_cycle(t, line)
-            mb = re.search(r"M140\s+MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
-            if mb:  # M140 at the block's end, after the cycle
-                _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
+            _cycl_call(t, line, up)
         elif re.fullmatch(r"(M\d+\s*)+(MB\s*(MAX|\d+\.?\d*)\s*(F\s*(MAX|\d+\.?\d*)\s*)?)?(M\d+\s*)*",
                           _m_words(up, t.q)[0]):
             _reduce_display(t, _m_words(up, t.q)[1])
@@ -2819,6 +2876,17 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         for k in [k for k in t.q if k.startswith("QL")]:
             del t.q[k]
         t.q.update(local)
+
+
+def _cycl_call(t: _Tnc, line: int, up: str) -> None:
+    """``CYCL CALL`` (with M words): the cycle defined last where the tool is, an ``M140 MB`` after it."""
+    if up.strip() != "CYCL CALL" and not re.match(r"CYCL CALL\s+M", up):
+        raise ReferenceError(up)
+    t.modal = False
+    _run_cycle(t, line)
+    mb = re.search(r"M140\s+MB\s*(MAX|\d+\.?\d*)\s*(?:F\s*(MAX|\d+\.?\d*))?", up)
+    if mb:  # M140 at the block's end, after the cycle
+        _retract(t, line, mb.group(1), "MAX" if mb.group(2) is None else mb.group(2))
 
 
 def _label_block(t: _Tnc, up: str, pc: int, labels: dict[str, int], counters: dict[int, int],

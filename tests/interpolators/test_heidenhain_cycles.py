@@ -287,8 +287,8 @@ def test_rectangular_pocket_251_stays_inside_the_turned_pocket():
             dx, dy = blk.target[0] - 10, blk.target[1] - 20
             u, v = dx * math.cos(a) + dy * math.sin(a), -dx * math.sin(a) + dy * math.cos(a)
             assert abs(u) <= 13 + 1e-9 and abs(v) <= 6 + 1e-9 and blk.target[2] >= -2 - 1e-9
-    with pytest.raises(GCodeError, match="Q367=1"):
-        run(RECT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q367=0", "Q367=1"))
+    with pytest.raises(GCodeError, match="Q367=5 is not a position"):
+        run(RECT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q220=0 Q224=0 Q351=1").replace("Q367=0", "Q367=5"))
 
 
 STUD = ("TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 FMAX\nCYCL DEF 256 RECTANGULAR STUD {q} Q218=20 Q424=26 "

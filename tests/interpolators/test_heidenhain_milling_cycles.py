@@ -53,8 +53,8 @@ def test_slot_milling_253_stays_inside_the_turned_slot(plunge):
             dx, dy = blk.target[0] - 10, blk.target[1] - 20
             u, v = dx * math.cos(a) + dy * math.sin(a), -dx * math.sin(a) + dy * math.cos(a)
             assert math.hypot(max(abs(u) - 10, 0.0), v) <= 3 + 1e-9 and blk.target[2] >= -4 - 1e-9
-    with pytest.raises(GCodeError, match="Q367=2"):
-        run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q367=0", "Q367=2"))
+    with pytest.raises(GCodeError, match="Q367=-1 is not a position"):
+        run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q367=0", "Q367=-1"))
     with pytest.raises(GCodeError, match="Q366=3 is not a plunging strategy"):
         run(SLOT.format(q="Q215=0 Q368=0 Q369=0 Q338=0 Q374=0 Q351=1").replace("Q366=0", "Q366=3"))
 

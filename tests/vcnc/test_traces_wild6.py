@@ -209,15 +209,15 @@ def test_kuka_rsi_log_reads_ist_and_sol_on_the_controllers_ipoc_clock(tmp_path):
     f = tmp_path / "robot_data.csv"
     f.write_text(text)
     cap = read_capture(f)  # IPOC, not the PC's whole seconds (12 rows in one second), is the time
-    assert cap.axes == ("x", "y", "a")
-    assert cap.meta["commanded"] == "x:X_RSol,y:Y_RSol,a:A_RSol"
-    assert cap.meta["measured"] == "x:X_RIst,y:Y_RIst,a:A_RIst"
+    assert cap.axes == ("x", "y")  # A_RIst/A_RSol: the tool's orientation angle, no axis (tracewild8)
+    assert cap.meta["commanded"] == "x:X_RSol,y:Y_RSol"
+    assert cap.meta["measured"] == "x:X_RIst,y:Y_RIst"
     assert cap.meta["columns"].startswith("from the header names: t=IPOC, x_ref=X_RSol, x=X_RIst")
+    assert "left out ['A_RIst', 'A_RSol']: KUKA RSI's orientation angles of the tool" in cap.meta["columns"]
     assert cap.meta["time_unit"] == "ms"
     np.testing.assert_allclose(cap.t, np.arange(12) * 0.012, atol=1e-12)
     np.testing.assert_allclose(cap.reference[:, 1], sol, atol=1e-9)
     np.testing.assert_allclose(cap.measured[:, 1], ist, atol=1e-9)
-    assert cap.reference[0, 2] == pytest.approx(80.5) and cap.measured[0, 2] == pytest.approx(80.4)  # deg on a
 
 
 def test_kuka_rsi_ipoc_given_as_the_time_column_counts_milliseconds(tmp_path):

@@ -24,7 +24,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, mtconnect, sinumerik, tncscope
+from vcnc.traces import emps, mtconnect, sinumerik, tncscope, twincat
 from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -85,10 +85,14 @@ def _head_text(head: bytes) -> str:
     return text.lstrip("\ufeff \t\r\n")
 
 
-def _xml_root(path: Path) -> str:
-    """The name of the first element of an XML file ('?' when none is found in its first 20 kB)."""
+def _xml_head(path: Path) -> str:
+    """The first 20 kB of an XML file as text (:func:`_head_text`)."""
     with path.open("rb") as f:
-        head = _head_text(f.read(20000))
+        return _head_text(f.read(20000))
+
+
+def _xml_root(head: str) -> str:
+    """The name of the first element of an XML file's ``head`` ('?' when none is found in it)."""
     m = re.search(r"<([A-Za-z_][\w.:-]*)", re.sub(r"<\?.*?\?>|<!--.*?-->|<!DOCTYPE[^>]*>", "", head, flags=re.S))
     return m.group(1) if m else "?"
 
@@ -154,11 +158,15 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
     if fmt == "shdr":
         raise CaptureError(mtconnect.shdr_reason(read_text(p, str(p))), file=str(p))
     if fmt == "xml":
-        root = _xml_root(p)
+        head = _xml_head(p)
+        root = _xml_root(head)
         local = root.rpartition(":")[2]  # also with a prefix (m:MTConnectStreams)
         if local == "MTConnectStreams":
             raise CaptureError(mtconnect.streams_reason(read_text(p, str(p))), file=str(p))
         reason = mtconnect.document_reason(local)
+        if reason is not None:
+            raise CaptureError(reason, file=str(p))
+        reason = sinumerik.measurement_reason(root, head) or twincat.scope_project_reason(root)
         if reason is not None:
             raise CaptureError(reason, file=str(p))
         raise CaptureError(f"an XML file with root <{root}>, not a SINUMERIK trace (<traceSession> or "

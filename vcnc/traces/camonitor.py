@@ -79,12 +79,15 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     Raises
     ------
     CaptureError
-        A line that is not a camonitor line or whose value is not a number (naming the line), a PV of
-        the mapping not found, channels whose names leave the mapping in doubt, non-uniform time
+        A line that is not a camonitor line, a value that is not a number of a PV the mapping uses (naming the
+        line; another PV's words, a binary input's ``One``/``Zero``, stay unread: tracewild8), a PV of the
+        mapping not found, channels whose names leave the mapping in doubt, non-uniform time
         stamps without ``resample``.
     """
     src = str(Path(path))
     updates: dict[str, list[tuple[float, float, int]]] = {}
+    texts: dict[str, tuple[int, str]] = {}  # a PV's first value that is no number ('One' of a binary input)
+    seen: dict[str, None] = {}
     for i, line in enumerate(read_text(path, src).splitlines(), start=1):
         if not line.strip():
             continue
@@ -92,13 +95,14 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         if not m:
             raise CaptureError("not a camonitor line (PV name, date, time, value)", file=src, line=i,
                                text=line.strip()[:80])
+        seen.setdefault(m["pv"])
         try:
             value = parse_number(m["value"])
         except ValueError:
-            raise CaptureError(f"the value of {m['pv']} is not a number", file=src, line=i,
-                               text=m["value"]) from None
+            texts.setdefault(m["pv"], (i, m["value"]))
+            continue
         updates.setdefault(m["pv"], []).append((parse_time_stamp(" ".join(m["stamp"].split())), value, i))
-    found = list(updates)
+    found = list(seen)
     if columns:
         mapping = {k: v for k, v in columns.items() if k != "t"}
     else:
@@ -108,6 +112,9 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
                                f"PVs found: {found} (not read from the names: {why})", file=src)
         mapping = named
     axes = mapped_axes(mapping, src)
+    for pv in mapping.values():
+        if pv in texts:
+            raise CaptureError(f"the value of {pv} is not a number", file=src, line=texts[pv][0], text=texts[pv][1])
     missing = [v for v in mapping.values() if v not in updates]
     if missing:
         raise CaptureError(f"PV(s) {missing} not found; PVs found: {found}", file=src)

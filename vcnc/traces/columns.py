@@ -14,8 +14,10 @@
 from __future__ import annotations
 
 import datetime
+import io
 import math
 import re
+import zipfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -87,12 +89,38 @@ def read_text(path: str | Path, src: str) -> str:
 
 
 def decode(raw: bytes, src: str) -> str:
-    """``raw`` as text (:func:`vcnc.core.text.decode_text`); CaptureError for binary data."""
+    """``raw`` as text (:func:`vcnc.core.text.decode_text`); CaptureError for binary data, naming a ZIP archive's
+    members (:func:`_archive_reason`)."""
+    reason = _archive_reason(raw)
+    if reason is not None:
+        raise CaptureError(reason, file=src, expected="a text trace export")
     try:
         return decode_text(raw)
     except BinaryDataError as exc:
         raise CaptureError(str(exc), file=src, line=exc.line, column=exc.column,
                            expected="a text trace export") from None
+
+
+def _archive_reason(raw: bytes) -> str | None:
+    """What a ZIP archive holds, for ``raw`` that starts with a ZIP local file header, else None: NumPy's ``savez``
+    writes arrays as ``NAME.npy`` members (a recording saved from Python, as anderssandstrom/ecmc_autotune's
+    ``veltest_*.npz`` of t, cmd, vel, pos, torque), which vcnc reads once saved as delimited text; an Excel workbook
+    (``xl/workbook.xml``, ECMA-376) is saved as CSV."""
+    if not raw.startswith(b"PK\x03\x04"):
+        return None
+    try:
+        with zipfile.ZipFile(io.BytesIO(raw)) as z:
+            names = z.namelist()
+    except (zipfile.BadZipFile, OSError):
+        return "a damaged ZIP archive"
+    if names and all(n.endswith(".npy") for n in names):
+        arrays = [n[:-4] for n in names]
+        return (f"a NumPy archive (.npz) of the arrays {arrays}: save the time, commanded and measured position as "
+                "delimited text with their names in a header line (numpy.savetxt(..., delimiter=',', header=...,"
+                " comments='')), which vcnc reads")
+    if "xl/workbook.xml" in names:  # Office Open XML (ECMA-376): a workbook's part
+        return "an Excel workbook (.xlsx): save the sheet that holds the trace as CSV, which vcnc reads"
+    return f"a ZIP archive of {names[:8]}: give vcnc the trace export inside it"
 
 
 def parse_number(cell: str, decimal_comma: bool = False) -> float:

@@ -62,6 +62,11 @@ by a stated lead as turns and radians are.
 that hold single spaces and are set apart by runs of spaces (``Commanded Pos   Encoder 1 Pos``) are the header of rows
 separated by spaces when they number the columns (:func:`_spaced_names`); a PI GCS array (:mod:`vcnc.traces.gcsarray`)
 is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
+
+**tracewild8** (session 32). A drive's parameter list (a line per object: index, subindex, value) is refused as such
+(:func:`_check_parameter_list`), as is an EPICS IOC's log with ecmc's axis diagnostics
+(:func:`_check_ecmc_diagnostics`). A column taken as sample numbers must step by 1 (:func:`_check_sample_numbers`):
+CoDeSys V2.3's trace names its first column ``Cycle`` whether it counts task cycles or, with a frequency scan, holds ms.
 """
 
 from __future__ import annotations
@@ -107,7 +112,14 @@ from vcnc.traces.columns import (
 from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
-from vcnc.traces.names import columns_from_names, counted, is_sample_number, mapping_note, no_positions
+from vcnc.traces.names import (
+    columns_from_names,
+    counted,
+    is_sample_number,
+    mapping_note,
+    no_positions,
+    rsi_orientation_note,
+)
 from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
@@ -545,15 +557,78 @@ def _column(name: str | int, header: list[str] | None, width: int, src: str, lin
     raise CaptureError(f"column {name!r} not found; columns found: {found}", file=src, line=line)
 
 
+#: A line of a drive's object dictionary: index in hexadecimal, subindex, value (``0x6065,  0, 4294967295``).
+_OBJECT_ENTRY = re.compile(r"\s*0x[0-9A-Fa-f]{4}\s*[,;\t ]\s*\d{1,3}\s*[,;\t ]")
+
+
+def _check_parameter_list(text: str, src: str) -> None:
+    """An error for a drive's parameter list, one object a line (index, subindex, value), as SOMANET drives' OBLAC
+    configuration export writes it (``META,FORMAT,2``, then ``0x2001,  0, 3693``; CiA 301's object indices): values of
+    settings, not samples over time (our reading of saikasener/altinay's LiftMotor.csv, beside its recordings); and
+    Rexroth IndraWorks' parameter save, whose first line is ``SERCOS-ASCII`` (anderssandstrom/tc_target_drive's
+    indradrive/params.par: a block per S-/P- parameter, ``|`` between blocks)."""
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if lines and lines[0].strip().lstrip("\ufeff") == "SERCOS-ASCII":
+        raise CaptureError("a drive's parameter file, not a recording: 'SERCOS-ASCII' in line 1 begins Rexroth "
+                           "IndraWorks' parameter save (S-/P- parameters, each with its name, attributes, unit and "
+                           "value); vcnc identifies a drive from a trace of its commanded and measured position (the "
+                           "drive tool's oscilloscope export)", file=src, line=1)
+    entries = [n for n, ln in enumerate(text.splitlines(), 1) if _OBJECT_ENTRY.match(ln)]
+    if len(entries) >= 10 and 2 * len(entries) >= len(lines):
+        first = text.splitlines()[entries[0] - 1].strip()
+        raise CaptureError(f"a drive's parameter list, not a recording: {len(entries)} lines of object index, "
+                           f"subindex and value (line {entries[0]}: {first!r}) are settings, no samples over time; "
+                           "vcnc identifies a drive from a trace of its commanded and measured position (the drive "
+                           "tool's recorder or scope export)", file=src, line=entries[0])
+
+
+#: The header ecmc prints above its axis diagnostics in an IOC's console log (``2023/01/23 16:08:46.963 ecmc::  Ax
+#: PosSet     PosAct     PosErr ...``, ecmccfg's examples/test/subst_hw_axes/readme.md).
+_ECMC_DIAGNOSTICS = re.compile(r"ecmc::\s+Ax\s+PosSet\s+PosAct\s+PosErr\b")
+
+
+def _check_ecmc_diagnostics(text: str, src: str) -> None:
+    """An error for an EPICS IOC's console log with ecmc's axis diagnostics (a line per axis now and then among the
+    IOC's messages, each after a time stamp and ``ecmc::``): no table of samples; the axis' ``PosSet``/``PosAct``
+    records logged with camonitor are (:mod:`vcnc.traces.camonitor`). Our reading of ecmccfg's logs (tracewild8)."""
+    m = _ECMC_DIAGNOSTICS.search(text)
+    if m is None:
+        return
+    line = text.count("\n", 0, m.start()) + 1
+    rows = sum(1 for ln in text.splitlines() if re.search(r"ecmc::\s+\d+\s+-?\d", ln))
+    raise CaptureError(f"an EPICS IOC's console log with ecmc's axis diagnostics ({rows} lines 'ecmc:: Ax PosSet "
+                       "PosAct PosErr ...' among its messages), no table of samples: log the axis' PosSet and PosAct "
+                       "records with camonitor, which vcnc reads", file=src, line=line)
+
+
+def _check_no_recording(text: str, src: str) -> None:
+    """Errors for text that is no recording: a drive's parameters, an IOC's log with ecmc's diagnostics."""
+    _check_parameter_list(text, src)
+    _check_ecmc_diagnostics(text, src)
+
+
+def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: str) -> None:
+    """An error for a table of one row: MATLAB's and numpy's savetxt write a vector as one row; among more than 20
+    lines of text it is a program's printout or log with one line of numbers in it (tracewild8)."""
+    if data.shape[0] >= 2:
+        return
+    text_lines = sum(1 for ln in lines if ln.strip()) - 1
+    if text_lines > 20:
+        raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: no "
+                           "table of samples (a program's printed output or a log?); a trace has a row per sample and "
+                           "a column per channel", file=src, line=row_lines[0])
+    raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a column "
+                       "per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
+                       file=src, line=row_lines[0])
+
+
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    _check_no_recording(text, src)
     table = _table(text, src)
     header, units_row, data, row_lines, delimiter, overruns = table[:6]
     lines = table.lines
-    if data.shape[0] < 2:  # MATLAB's and numpy's savetxt write a vector as one row
-        raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a "
-                           "column per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
-                           file=src, line=row_lines[0])
+    _check_rows(data, lines, row_lines, src)
     above = lines[:row_lines[0] - 1]
     hline = table.header_line or len(above) or None  # the names' line; None without a header above the first row
     period = stated_period(above) if sample_time is None and time_unit is None else None
@@ -570,7 +645,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
-                               f"(not read from the names: {why})"
+                               f"(not read from the names: {why})" + _sample_step_hint(header, data)
                                + (servo_period_hint(src) if header is None and not known else ""), file=src,
                                line=hline)
     axes = mapped_axes(columns, src)
@@ -591,9 +666,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         raise CaptureError(f"fewer than two rows with all of {list(columns.values())}", file=src)
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
-    _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
-                          src, in_counts=_in_counts(header, units_row, idx, above, unit))
     units = _header_units(header, units_row, idx, time_unit, unit)
+    _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
+                          src, in_counts=_in_counts(header, units_row, idx, above, unit, units))
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
     stated.update(_turn_travel(units, above))
     if unit is None:
@@ -611,6 +686,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     if sample_time is None:
         t = d[:, idx["t"]] * TIME_UNITS[units["t"]]
     else:  # a column of sample numbers, or none: the row's place
+        if "t" in idx:
+            _check_sample_numbers(d[:, idx["t"]], columns["t"], src, hline)
         t = np.round((d[:, idx["t"]] if "t" in idx else np.flatnonzero(keep)) * sample_time, 12)
     if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
         with np.errstate(over="ignore", invalid="ignore"):
@@ -643,7 +720,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
             "unit": ",".join(shown), **mapping_meta(axes, columns), **lag, **how, **stated}
     if guessed:
-        meta["columns"] = _guessed_note(columns, units, time_known)
+        meta["columns"] = _guessed_note(columns, units, time_known) + rsi_orientation_note(header or [])
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)
 
 
@@ -767,19 +844,19 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
 
 
 def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
-               above: list[str], unit: str | None) -> dict[str, str]:
+               above: list[str], unit: str | None, units: Mapping[str, str | None]) -> dict[str, str]:
     """The position columns whose values are counts, each with what says so (for a message): a count unit in its name
     or units row (:func:`_counted_columns`), or, for every position, a count size the preamble states (``Resolution:
     0.5 um``: the file logs counts, whatever ``--unit`` says; a count is a whole number, so ``19.725`` in every cell
     there is 19725 grouped by thousands, never 19.725 counts). A plain unit given (``--unit mm``, not a count size
     such as ``0.5um``) says the positions are no counts, and so does a column's own plain unit without one given
-    (``X Soll [mm]``: the resolution is the encoder's, the column mm)."""
+    (``X Soll [mm]``: the resolution is the encoder's, the column mm). ``units``: each column's unit as
+    :func:`_header_units` reads it."""
     marked = {k: f"a count unit ({c!r})" for k, c in _counted_columns(header, units_row, idx).items()}
     size = stated_count_size(above)
     if size is not None and (unit is None or unit_named(unit, "length") is None):
         said = f"counts (line {size.line} states {size.text!r})"
-        own = _header_units(header, units_row, idx, None, unit)
-        marked.update({k: said for k in idx if k != "t" and k not in marked and own[k] not in LENGTH_UNITS})
+        marked.update({k: said for k in idx if k != "t" and k not in marked and units[k] not in LENGTH_UNITS})
     return marked
 
 
@@ -857,6 +934,33 @@ def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], t
     return (mapping_note("header", columns)
             + (f"; not stated in the file, assumed {', '.join(assumed)}" if assumed else "")
             + " (--columns, --time-unit, --unit set them)")
+
+
+def _check_sample_numbers(numbers: np.ndarray, name: str, src: str, line: int | None) -> None:
+    """A column taken as sample numbers (with a sampling period) counts samples: its median step is 1 (halsampler
+    -t; a lost sample leaves a larger step here and there). One that steps by another number holds something else:
+    CoDeSys V2.3 writes the time in ms in its ``Cycle`` column when the trace has a frequency scan (names.py), and a
+    sampling period times those would stretch the time by the step (our reading: refuse rather than guess)."""
+    step = float(np.median(np.diff(numbers))) if numbers.size > 1 else 1.0
+    if step != 1.0:
+        raise CaptureError(f"the column {name!r}, taken as sample numbers with the sampling period, steps by "
+                           f"{step:.6g}, not 1: it holds no sample numbers (a time in ms, as CoDeSys' 'Cycle' with a "
+                           "frequency scan?)", file=src, line=line,
+                           expected=f"--columns t={name} with --time-unit ms|us|s and no --sample-time")
+
+
+def _sample_step_hint(header: list[str] | None, data: np.ndarray) -> str:
+    """A note for the question of a header whose one column of sample numbers does not step by 1 (CoDeSys' ``Cycle``
+    holding ms, :func:`_check_sample_numbers`): it is no count of samples but likely a time; else ``""``."""
+    samples = [j for j, h in enumerate(header or []) if is_sample_number(h)]
+    if len(samples) != 1 or data.shape[0] < 2:
+        return ""
+    step = float(np.nanmedian(np.diff(data[:, samples[0]])))
+    if step == 1.0 or not math.isfinite(step):
+        return ""
+    name = (header or [])[samples[0]]
+    return (f"; {name!r} steps by {step:.6g}, not 1: a time rather than sample numbers? give --columns t={name},... "
+            "with --time-unit ms|us|s")
 
 
 def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: int) -> None:

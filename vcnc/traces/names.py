@@ -44,12 +44,21 @@ vcnc addition (tracewild7, robot controllers): KUKA.RobotSensorInterface names t
 and the setpoint ``RSol`` (the controller's XML elements, as ROS' ``kuka_rsi_hw_interface`` ``rsi_state.h`` reads them
 beside ``AIPos``/``ASPos`` and ``IPOC``): a logger's ``X_RIst`` / ``X_RSol`` are axis x's measured and commanded
 position, and its ``IPOC``, the controller's interpolation-cycle time stamp, counts milliseconds (a KR C4 logs it in
-steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. Universal Robots' RTDE
-recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's target
-and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual joint
-positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
+steps of 12 in IPO mode, 4 in IPO_FAST) and is the time before a logging PC's own time stamp. (tracewild8)
+``RIst``/``RSol`` hold the pose of the tool, X, Y, Z in mm and A, B, C in degrees, KUKA's E6POS angles of its
+orientation (A about Z, B about Y, C about X, as ``$POS_ACT``); they are no axes, and a machine's A, B, C turn about X,
+Y, Z: the names do not map ``A_RIst``... (:func:`rsi_orientation`), and the capture's note names them as left out; a
+joint's positions ``ASPos``/``AIPos`` (A1..A6, deg) are a question naming them (:func:`rsi_joints`). Universal Robots'
+RTDE recorder (``record.py``, ``rtde/csv_writer.py``: a VECTOR6D field as ``name_0`` ... ``name_5``) names joint N's
+target and actual position ``target_q_N`` / ``actual_q_N``, in radians (RTDE guide: "Target joint positions", "Actual
+joint positions"), and the tool's pose ``target_TCP_pose_N`` / ``actual_TCP_pose_N`` (x, y, z in m, then a rotation
 vector): a robot's joint is no axis of the capture by itself, so such a header is a question naming them and the
 unit (:func:`rtde_joints`), never millimetres.
+
+vcnc addition (tracewild8): CoDeSys V2.3's "Trace in ASCII-File" (ABB Automation Builder 2.2 help, "'Trace in
+ASCII-File'": a title line, the project's path, the names line, then the values separated by a blank) writes the task
+cycle in the first column, named ``Cycle``, when the trace has no frequency scan: a column of sample numbers; with a
+frequency scan that column holds the time in ms instead (the reader refuses sample numbers that do not step by 1).
 
 vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``, ``Encoder 2 Pos``) are in counts
 (:func:`counted`), and two of them beside one ``Commanded Pos`` are a question (which encoder closes the loop, the
@@ -70,7 +79,7 @@ from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, IPOC, LAG_SUFFIX, unit_in_name
 
 __all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions",
-           "rtde_joints"]
+           "rtde_joints", "rsi_orientation", "rsi_orientation_note", "rsi_joints"]
 
 _TIME = frozenset({"t", "time", "times", "zeit", "timestamp", "stamp", "zeitstempel", "temps", "tiempo", "tempo",
                    "sec", "secs", "seconds", "ms", "msec", "elapsed", "rel", "relative", "us", "\u00b5s",
@@ -93,8 +102,10 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
                     "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain"})
-#: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``).
-_SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num"})
+#: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``; CoDeSys V2.3's
+#: ``Cycle``, module docstring).
+_SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num", "cycle",
+                     "cycles"})
 #: Words of a name that say its values are counts (Mitsubishi's "Cumulative feedback pulses").
 _COUNT_WORDS = frozenset({"pulse", "pulses", "counts", "increments", "inc", "incr", "cnt", "cnts"})
 #: German compounds are one word: a commanded "Lagesollwert", a measured "Lageistwert", a velocity
@@ -219,8 +230,24 @@ def is_sample_number(name: str) -> bool:
     return bool(words) and set(words) <= _SAMPLE or name.strip() == "#"
 
 
+def rsi_orientation(name: str) -> bool:
+    """True for KUKA RSI's orientation angles of the tool, ``A_RIst``, ``B_RSol``, ``RIst.C`` (module docstring)."""
+    words = _words(name)
+    rsi = any(a == "r" and b in ("ist", "sol") for a, b in zip(words, words[1:]))
+    return rsi and any(w in ("a", "b", "c") for w in words)
+
+
+def rsi_orientation_note(header: Sequence[str]) -> str:
+    """The note for a header's KUKA RSI orientation angles that the names leave out, else ``""``."""
+    angles = [h for h in header if rsi_orientation(h)]
+    return (f"; left out {angles}: KUKA RSI's orientation angles of the tool (E6POS A about Z, B about Y, C about X), "
+            "no axes" if angles else "")
+
+
 def _position(name: str) -> tuple[str, str | None] | None:
     """(role, axis or None) of a position column, or None for any other column."""
+    if rsi_orientation(name):
+        return None
     if _TRAILING_UNIT.search(name) and unit_in_name(name, "length") is None and counted(name) is None:
         return None  # a unit that is neither a length nor counts: mm/min, A, Nm, %
     words = _split_axis(_words(name))
@@ -273,9 +300,31 @@ def rtde_joints(header: Sequence[str]) -> str | None:
     return None
 
 
+def rsi_joints(header: Sequence[str]) -> str | None:
+    """The question for a header of KUKA RSI's axis-specific positions (``ASPos`` setpoint, ``AIPos`` actual, joints
+    A1..A6 in deg, as ``kuka_rsi_hw_interface`` reads them; a logger's ``A1_AIPos`` or ``AIPos.A1``) without the
+    Cartesian ``RIst``/``RSol`` pair, else None: a robot's joint is no axis of the capture by itself (as
+    :func:`rtde_joints`); our reading of the names, no such log seen."""
+    roles: dict[str, dict[int, str]] = {"ASPos": {}, "AIPos": {}}
+    for h in header:
+        words = _words(h)
+        kind = next((f"A{a[1].upper()}Pos" for a, b in zip(words, words[1:]) if a in ("as", "ai") and b == "pos"),
+                    None)
+        joint = next((int(b) for a, b in zip(words, words[1:]) if a == "a" and b.isdigit()), None)
+        if kind is not None and joint is not None:
+            roles[kind].setdefault(joint, h)
+    both = sorted(set(roles["ASPos"]) & set(roles["AIPos"]))
+    if not both or any(_position(h) is not None for h in header):
+        return None
+    n = both[0]
+    return (f"KUKA RSI axis-specific positions ASPos (setpoint) and AIPos (actual), joints "
+            f"{[f'A{j}' for j in both]}, in deg: choose a joint and name it as a rotary axis, e.g. --columns "
+            f"a_ref={roles['ASPos'][n]},a={roles['AIPos'][n]} with the time (IPOC, ms)")
+
+
 def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
     """:func:`columns_from_names` of the names as they are."""
-    rtde = rtde_joints(header)
+    rtde = rtde_joints(header) or rsi_joints(header)
     if rtde is not None:
         return None, rtde
     if len(set(header)) != len(header):

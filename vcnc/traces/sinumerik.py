@@ -47,13 +47,32 @@ from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.lag import subtract_following_error
 
-__all__ = ["read_sinumerik", "MAGIC", "MAGICS"]
+__all__ = ["read_sinumerik", "MAGIC", "MAGICS", "measurement_reason"]
 
 #: Root element that identifies the format (read by content).
 MAGIC = "<traceSession"
 #: The root elements of SINUMERIK trace files (``<traceDataRoot>`` in older versions, as the
 #: open-source viewer ``hailongchenn/sinumerik-trace-viewer`` reads them).
 MAGICS = (MAGIC, "<traceDataRoot")
+
+#: An attribute of every element of SINUMERIK Operate's measuring-function and auto-servo-tuning files
+#: (``<ResponseTestCustom satclassid="174" ver="4.7.6.0.3">``, Trace-Tools' ``demo/freq_trace.XML``; its
+#: ``tuning_files.py`` reads them).
+SAT_CLASS = "satclassid="
+
+
+def measurement_reason(root: str, head: str) -> str | None:
+    """Why a SINUMERIK Operate measurement (a control loop's frequency or step response, from Setup/Optimize) or an
+    auto servo tuning result is no trace, when ``head`` (the file's first bytes) is one: its root element ``root``
+    carries ``satclassid`` (Trace-Tools' readme: trace files come from the Diagnostics menu, measurements and
+    auto-tuning results from Setup/Optimize); else None."""
+    m = re.search(r"<" + re.escape(root) + r"\b[^>]*>", head)
+    if m is None or SAT_CLASS not in m.group(0):
+        return None
+    return (f"a SINUMERIK Operate measurement or auto servo tuning file (root <{root}>): a control loop's frequency or "
+            "step response under its excitation, no commanded and measured position of a move; record the axis with "
+            "SINUMERIK Operate's trace (Diagnostics > Trace) and save that as XML")
+
 
 #: Values above this are the control's "no value" marker (about 2**63, as Trace-Tools reads them).
 NO_VALUE = 9.2e18

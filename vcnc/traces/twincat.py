@@ -73,9 +73,12 @@ from vcnc.traces.columns import (
 )
 from vcnc.traces.names import channels_from_names, mapping_note
 
-__all__ = ["read_twincat", "looks_like_twincat"]
+__all__ = ["read_twincat", "looks_like_twincat", "scope_project_reason"]
 
 _FIRST = re.compile(r'^"?Name"?([\t;,: ])')
+#: The root element of a TwinCAT 3 Scope project (``.tcscopex``: ``<ScopeProject
+#: AssemblyName="TwinCAT.Measurement.Scope.API.Model">``, anderssandstrom/tc_target_drive's DataLog/Phasing.tcscopex).
+SCOPE_PROJECT = "ScopeProject"
 _FILETIME_TICK_S = 1e-7
 _NAMES = {"\t": "tab", ";": "semicolon", ",": "comma", ":": "colon", " ": "space"}
 #: How an NC axis' lag is signed, and where Beckhoff says so.
@@ -411,3 +414,13 @@ def _nc_pairs(channels: list[_Channel], axes: Sequence[str] | None, src: str,
     for a, (ref, suffix, other) in zip(names, pairs):
         out[f"{a}_ref"], out[a + suffix] = ref, other
     return out, ""
+
+
+def scope_project_reason(root: str) -> str | None:
+    """Why a TwinCAT 3 Scope project is not read, for the XML root element ``root``, else None: the project configures
+    the scope's charts and channels; a recording is exported to CSV from TwinCAT Scope ("Export to csv", TE13xx Scope
+    View; TC3ScopeExportTool), which :func:`read_twincat` reads (our reading of the layout: no sample values in it)."""
+    if root.rpartition(":")[2] != SCOPE_PROJECT:
+        return None
+    return ("a TwinCAT Scope project (root <ScopeProject>): the scope's configuration, its charts and channels; vcnc "
+            "reads a recording exported to CSV (TwinCAT Scope: Export to csv, or TC3ScopeExportTool)")
