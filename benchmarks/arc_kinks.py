@@ -33,6 +33,16 @@ between the half circles); their curvature steps are now blended by a curvature 
 that passes faster (:func:`interpolators.lookahead._kink_blend`). S-curve seconds before -> after: line/arc/line
 0.0 rad 1.071 -> 1.030 (F1200 P0.01), 1.818 -> 1.805 (F600 P0.05); alternating arcs 4.298 -> 3.901 (F1200 P0.01),
 5.327 -> 4.892 (F600 P0.05); trapezoid 0.925, 1.734, 2.497, 4.876 s, unchanged.
+
+The alternating arcs' ramps (opposite-sense arcs: a ramp that ends on both arcs with their tangents must overshoot
+their curvature) then had their leg bisected to the longest that fits and their shape ranked by the planner's own
+bound (:func:`interpolators.kinematics.curved_speed_bound`): 3.901 -> 3.534 s at F1200 P0.01 (the legs of every
+ramp between lines and arcs bisected; now of those between opposite-sense arcs only), the ramp's bound 11.88 ->
+12.33 mm/s, about what the best piecewise-linear curvature profile within P allows (12.5 mm/s, a linear
+program on the linearised offset). Then each chain keeps the faster of its curves' speed at 0.3 and at 0.6 of the
+jerk limit (``interpolators.interpolate._faster_jerk_share``). S-curve seconds at the start of that work -> now, in
+the table's order: F1200 P0.01 1.030 -> 1.005 (0.0 rad), 1.017 -> 1.003, 1.104 -> 1.088, 1.103, 1.169 (kept),
+alternating arcs 3.901 -> 3.028; F600 P0.05 1.805, 1.806, 1.800 (kept), 1.801 -> 1.778, 2.199, 4.892 (kept).
 """
 
 from __future__ import annotations

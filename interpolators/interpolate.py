@@ -20,6 +20,7 @@ from interpolators.axis_blends import (
 from interpolators.dense import MergedRun, fit_axes, merge_dense_runs
 from interpolators.kinematics import (
     CURVE_BOUND_MARGIN,
+    JERK_SPEED_SHARE,
     AxisLimitArrays,
     curvature_step_speed_limit,
     curve_limits,
@@ -327,7 +328,7 @@ def interpolate(
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
     if g.extra is not None:
         v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
-    v0, v1 = _junction_speeds(g, c, v_max, a_max, j_max, jerk_limited)
+    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max), jerk_limited)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
 
@@ -963,15 +964,16 @@ def _curve_blocks(g: _Geom, ids: list[int], piece: np.ndarray, u: np.ndarray) ->
     return out
 
 
-def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
-            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool,
+            jerk_share: float = JERK_SPEED_SHARE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`path_limits` of the motion segments ``idx``; smooth curve pieces by :func:`curve_limits`."""
-    v, a, j = path_limits(g.packed.subset(idx), g.feed[idx], g.rapid[idx], lims, jerk_limited=jerk_limited)
+    v, a, j = path_limits(g.packed.subset(idx), g.feed[idx], g.rapid[idx], lims, jerk_limited=jerk_limited,
+                          jerk_share=jerk_share)
     on_curve = np.flatnonzero(np.isin(idx, list(g.runs))) if g.runs else np.zeros(0, dtype=np.int64)
     if len(on_curve):
         k = idx[on_curve]
         v[on_curve], a[on_curve], j[on_curve] = curve_limits([g.segments[i] for i in k], g.feed[k], lims,
-                                                             jerk_limited=jerk_limited)
+                                                             jerk_limited=jerk_limited, jerk_share=jerk_share)
     return v, a, j
 
 
@@ -1105,10 +1107,11 @@ def _extra_junctions(g: _Geom, inner: np.ndarray, jl: np.ndarray, jl_tiny: np.nd
     return jl, jl_tiny
 
 
-def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool,
+                 jerk_share: float = JERK_SPEED_SHARE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """3. The path's speed, acceleration and jerk bounds per segment (chains passing a
-    discontinuity at speed keep JUNCTION_SHARE of the limits in reserve)."""
+    discontinuity at speed keep JUNCTION_SHARE of the limits in reserve; ``jerk_share``: the share of the jerk
+    limits a curve's speed may take, :func:`interpolators.kinematics.curved_speed_bound`)."""
     n_seg = len(g.segments)
     lim_chain = lim.scaled(acceleration=1.0 - JUNCTION_SHARE, jerk=1.0 - JUNCTION_SHARE)
     v_max = np.zeros(n_seg)
@@ -1118,9 +1121,53 @@ def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool
     for mask, lims in ((motion & ~c.reserved_segment, lim), (motion & c.reserved_segment, lim_chain)):
         idx = np.flatnonzero(mask)
         if len(idx):
-            v, a, j = _limits(g, idx, lims, jerk_limited)
+            v, a, j = _limits(g, idx, lims, jerk_limited, jerk_share)
             v_max[idx], a_max[idx], j_max[idx] = v, a, j
     return v_max, a_max, j_max
+
+
+#: Share of the jerk limits a curve's speed may take (``v^3 |(k^2, dk/ds)|``) tried beside
+#: :data:`interpolators.kinematics.JERK_SPEED_SHARE` in each chain under the S-curve (:func:`_faster_jerk_share`):
+#: with ``3 k v a`` at :data:`interpolators.kinematics.JERK_ACCEL_SHARE` (0.3) the path jerk keeps at least
+#: ``sqrt(1 - (0.3 + s sin(phi))^2) - s cos(phi) >= 0.26`` of the limit whatever the share of ``k^2`` and ``dk/ds``
+#: (angle ``phi``); at 0.7 it keeps none where ``dk/ds`` dominates (a curve piece then has no path jerk at all).
+_CRUISE_JERK_SHARE = 0.6
+
+
+def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool
+                       ) -> tuple[np.ndarray, ...]:
+    """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` and the junction speeds
+    (:func:`_junction_speeds`) they give; under the S-curve, in each chain where that is faster, the bounds of its
+    curves at :data:`_CRUISE_JERK_SHARE` of the jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of
+    :data:`interpolators.kinematics.JERK_SPEED_SHARE` (not in a program moving the axes beyond X, Y, Z, whose
+    curve bounds, :func:`interpolators.kinematics.extra_curve_bounds`, keep it).
+
+    The share splits one budget: at constant speed the jerk of a curve is ``v^3 |(k^2, dk/ds)|`` alone, while a
+    speed change on it needs the rest for ``3 k v a`` and the path jerk (:mod:`interpolators.kinematics`).
+    Either bound set keeps every axis within its limits (the jerk vector's norm); which is faster depends on how
+    much the speed changes on the curves, so both are planned and each chain (it starts and ends at rest, its
+    time its own) keeps the shorter, measured by the segments' S-curve profiles. Controls let the share follow
+    need likewise: LinuxCNC's ``pmCircleActualMaxVel`` (``src/emc/tp/blendmath.c``) gives an arc's normal
+    acceleration what its speed needs, at most ``BLEND_ACC_RATIO_NORMAL`` (sqrt(3)/2) of the limit, and the
+    tangential acceleration the rest; no manual found states a jerk split (our reading: choose the faster)."""
+    plan = (*bounds, *_junction_speeds(g, c, *bounds, jerk_limited))
+    if not jerk_limited or g.extra is not None:
+        return plan
+    v_max, a_max, j_max, v0, v1 = plan
+    alt = _path_bounds(g, c, lim, True, _CRUISE_JERK_SHARE)
+    differs = (alt[0] != v_max) | (alt[1] != a_max) | (alt[2] != j_max)
+    chains = np.unique(c.of_segment[differs])
+    if not len(chains):
+        return plan
+    v0_alt, v1_alt = _junction_speeds(g, c, *alt, True)
+    rows = np.flatnonzero(np.isin(c.of_segment, chains) & (g.packed.kind != HOLD))
+    length = g.profile_length[rows]
+    times = [np.bincount(c.of_segment[rows], weights=scurve_phases(length, b[3][rows], b[4][rows], b[0][rows],
+                                                                   b[1][rows], b[2][rows])[0].sum(axis=1),
+                         minlength=c.count)
+             for b in (plan, (*alt, v0_alt, v1_alt))]
+    take = np.isin(c.of_segment, np.flatnonzero(times[1] < times[0]))
+    return tuple(np.where(take, new, old) for old, new in zip(plan, (*alt, v0_alt, v1_alt)))
 
 
 def _junction_speeds(g: _Geom, c: _Chains, v_max: np.ndarray, a_max: np.ndarray, j_max: np.ndarray,

@@ -14,7 +14,8 @@ limits of the two in-plane axes:
 
 * centripetal share: ``v_p^2 / R <= CENTRIPETAL_SHARE * A`` (this caps the feed on small arcs);
 * tangential: ``sqrt(a_p^2 + (v_max,p^2/R)^2) <= A``;
-* jerk (S-curve only): ``v_p^3/R^2 <= JERK_SPEED_SHARE * J``,
+* jerk (S-curve only): ``v_p^3/R^2 <= JERK_SPEED_SHARE * J`` (``jerk_share``: ``interpolators.interpolate`` plans
+  each chain at 0.3 and at 0.6 and keeps the faster),
   ``3 v_p a_p / R <= JERK_ACCEL_SHARE * J``, and ``j_p`` takes what is left of ``J``: the norm of the jerk
   vector, whose tangential and normal parts are orthogonal, ``(|j_p| + v_p^3/R^2)^2 + (3 v_p a_p / R)^2 <=
   J^2``, so ``|j_p| <= sqrt(J^2 - (3 v_p a_p / R)^2) - v_p^3/R^2`` (the sum of the parts' magnitudes, which
@@ -130,6 +131,7 @@ def path_limits(
     limits: AxisLimitArrays,
     *,
     jerk_limited: bool,
+    jerk_share: float = JERK_SPEED_SHARE,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Bounds of path speed, acceleration and jerk per segment.
 
@@ -146,6 +148,8 @@ def path_limits(
         Axis limits.
     jerk_limited : bool
         True to include the jerk terms of arcs (S-curve profile).
+    jerk_share : float
+        Share of the jerk limit ``v^3 |(k^2, dk/ds)|`` may take on arcs and clothoids (:func:`curved_speed_bound`).
 
     Returns
     -------
@@ -178,7 +182,8 @@ def path_limits(
         with np.errstate(divide="ignore", invalid="ignore"):
             v = np.minimum(v_max[ia], V_p / cos_a)
             v = np.minimum(v, np.where(sin_a > 0, _weighted_min(vel_lim[ia], normal) / sin_a, np.inf))
-            v, a, j = _curved_bounds(v, cos_a, 1.0 / R, np.zeros(len(ia)), A_p, J_p, jerk_limited=jerk_limited)
+            v, a, j = _curved_bounds(v, cos_a, 1.0 / R, np.zeros(len(ia)), A_p, J_p, jerk_limited=jerk_limited,
+                                     jerk_share=jerk_share)
             a = np.minimum(a, np.where(sin_a > 0, _weighted_min(limits.acceleration, normal) / sin_a, np.inf))
             if jerk_limited:
                 j = np.minimum(j, np.where(sin_a > 0, _weighted_min(limits.jerk, normal) / sin_a, np.inf))
@@ -200,7 +205,7 @@ def path_limits(
             v = np.minimum(v_max[ic], _min_ratio_rows(vel_lim[ic], t_abs))
             v, a, j = _curved_bounds(v, np.ones(len(ic)), packed.sharpness[ic] * 0.5 * packed.length[ic],
                                      packed.sharpness[ic], _min_ratio(limits.acceleration, m),
-                                     _min_ratio(limits.jerk, m), jerk_limited=jerk_limited)
+                                     _min_ratio(limits.jerk, m), jerk_limited=jerk_limited, jerk_share=jerk_share)
         v_max[ic], a_max[ic], j_max[ic] = v, a, j
     if not (np.all(v_max > 0) and np.all(a_max > 0) and np.all(j_max > 0)):  # pragma: no cover - limits > 0
         raise InputError("axis limits leave no admissible path speed")
@@ -239,7 +244,8 @@ def line_limits(direction: np.ndarray, feed: np.ndarray, rapid: np.ndarray, limi
 
 
 def curve_limits(
-    curves: list[SplineCurve], feed: np.ndarray, limits: AxisLimitArrays, *, jerk_limited: bool
+    curves: list[SplineCurve], feed: np.ndarray, limits: AxisLimitArrays, *, jerk_limited: bool,
+    jerk_share: float = JERK_SPEED_SHARE,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Bounds of path speed, acceleration and jerk on smooth curves (:class:`toolpaths.geometry.SplineCurve`).
 
@@ -256,6 +262,8 @@ def curve_limits(
         Programmed feed [mm/s].
     limits : AxisLimitArrays
     jerk_limited : bool
+    jerk_share : float
+        As in :func:`path_limits`.
 
     Returns
     -------
@@ -271,7 +279,7 @@ def curve_limits(
     with np.errstate(divide="ignore", invalid="ignore"):
         v = np.minimum(np.asarray(feed, float), _min_ratio(limits.velocity, t_abs))
         v, a, j = _curved_bounds(v, np.ones(n), kappa, dkappa, _min_ratio(limits.acceleration, moving),
-                                 _min_ratio(limits.jerk, moving), jerk_limited=jerk_limited)
+                                 _min_ratio(limits.jerk, moving), jerk_limited=jerk_limited, jerk_share=jerk_share)
     return v, a, j
 
 
@@ -282,23 +290,23 @@ def _weighted_min(limit: np.ndarray, mask: np.ndarray) -> np.ndarray:
 
 def curved_speed_bound(
     kappa: np.ndarray | float, dkappa: np.ndarray | float, A: np.ndarray | float, J: np.ndarray | float, *,
-    jerk_limited: bool
+    jerk_limited: bool, jerk_share: float = JERK_SPEED_SHARE
 ) -> np.ndarray:
     """Largest in-plane speed [mm/s] on a curve of curvature ``kappa`` [1/mm] and ``|dk/ds|`` [1/mm^2].
 
-    ``v^2 kappa <= CENTRIPETAL_SHARE A`` and, jerk limited, ``v^3 |(kappa^2, dkappa)| <=
-    JERK_SPEED_SHARE J`` (``A``, ``J``: in-plane acceleration [mm/s^2] and jerk [mm/s^3] bounds): at constant
-    speed the jerk vector is ``-k^2 v^3 t + (dk/ds)_perp v^3 n``, two orthogonal parts, so its norm.
+    ``v^2 kappa <= CENTRIPETAL_SHARE A`` and, jerk limited, ``v^3 |(kappa^2, dkappa)| <= jerk_share J``
+    (:data:`JERK_SPEED_SHARE` by default; ``A``, ``J``: in-plane acceleration [mm/s^2] and jerk [mm/s^3] bounds): at
+    constant speed the jerk vector is ``-k^2 v^3 t + (dk/ds)_perp v^3 n``, two orthogonal parts, so its norm.
     """
     kappa, dkappa = np.asarray(kappa, float), np.asarray(dkappa, float)
     with np.errstate(divide="ignore"):
         v = np.sqrt(CENTRIPETAL_SHARE * np.asarray(A, float) / kappa)
         if jerk_limited:
-            v = np.minimum(v, np.cbrt(JERK_SPEED_SHARE * np.asarray(J, float) / np.hypot(kappa * kappa, dkappa)))
+            v = np.minimum(v, np.cbrt(jerk_share * np.asarray(J, float) / np.hypot(kappa * kappa, dkappa)))
     return v
 
 
-def _curved_bounds(v, cos_a, kappa, dkappa, A_p, J_p, *, jerk_limited: bool):
+def _curved_bounds(v, cos_a, kappa, dkappa, A_p, J_p, *, jerk_limited: bool, jerk_share: float = JERK_SPEED_SHARE):
     """Speed, acceleration and jerk bounds on a curve (in-plane share ``cos_a`` of the motion).
 
     In the tangent/normal frame the in-plane acceleration is ``(a_p, k v_p^2)`` and the jerk
@@ -306,7 +314,8 @@ def _curved_bounds(v, cos_a, kappa, dkappa, A_p, J_p, *, jerk_limited: bool):
     norm, so the bounds hold whatever the orientation of the plane (module docstring): ``j_p`` is what keeps
     ``(|j_p| + k^2 v_p^3)^2 + (3 k v_p a_p + k' v_p^3)^2 <= J_p^2`` at the bounds ``v``, ``a``.
     """
-    v = np.minimum(v, curved_speed_bound(kappa, dkappa, A_p, J_p, jerk_limited=jerk_limited) / cos_a)
+    v = np.minimum(v, curved_speed_bound(kappa, dkappa, A_p, J_p, jerk_limited=jerk_limited,
+                                         jerk_share=jerk_share) / cos_a)
     vp = v * cos_a
     a_n = vp * vp * kappa
     a = np.sqrt(np.maximum(A_p * A_p - a_n * a_n, 0.0)) / cos_a

@@ -62,6 +62,7 @@ import numba
 import numpy as np
 
 from interpolators.dense import FIT_SHARE
+from interpolators.kinematics import curved_speed_bound
 from interpolators.profiles import reach_passes
 from toolpaths.geometry import Arc, ClothoidPair, Line, SplineCurve, curve_frame_rates, piece_of
 
@@ -240,6 +241,16 @@ def _kinkable(seg: object) -> bool:
     return isinstance(seg, (Line, SplineCurve)) and seg.length > 0
 
 
+def _within_spline(a: object, b: object) -> bool:
+    """Do ``a`` and ``b`` join inside one spline (consecutive pieces of a merged curve, cut where its speed bound
+    changes) at a knot of multiplicity at most its degree less 2, where tangent and curvature are continuous: no
+    kink blend to make (:func:`_kink_blend` would find none after evaluating both ends; 13,130 of the 19,291
+    junctions it was asked about in the corpus program 0274)."""
+    if not (isinstance(a, SplineCurve) and isinstance(b, SplineCurve) and a.spline is b.spline and a.u1 == b.u0):
+        return False
+    return int(np.count_nonzero(a.spline.t == a.u1)) <= a.spline.k - 2
+
+
 @numba.njit(cache=True, nogil=True)
 def _path_distance(points, path):  # pragma: no cover - compiled
     """Distance [mm] of each of ``points`` (m, 3) from the polyline ``path`` (n, 3)."""
@@ -275,14 +286,21 @@ def _quintic_basis(u: np.ndarray, order: int = 0) -> np.ndarray:
 _CHECK_BASIS = tuple(_quintic_basis(np.linspace(0.0, 1.0, _KINK_CHECK_POINTS), r) for r in range(4))
 
 
+#: :func:`_quintic_basis` of :data:`_KINK_CHECK_POINTS` parameters between the two neighbours of each check
+#: parameter (:func:`_blend_deviation`'s second pass), made when first needed.
+_FINE_BASIS: dict[int, np.ndarray] = {}
+
+
 def _blend_deviation(controls: np.ndarray, path: np.ndarray) -> float:
     """Largest distance [mm] of the quintic of ``controls`` from the polyline ``path``: at
     :data:`_KINK_CHECK_POINTS` parameters, then as many again between the two neighbours of the farthest one."""
     dist = _path_distance(_CHECK_BASIS[0] @ controls, path)
     i = int(np.argmax(dist))
-    h = 1.0 / (_KINK_CHECK_POINTS - 1)
-    fine = np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h, _KINK_CHECK_POINTS)
-    return float(max(dist[i], _path_distance(_quintic_basis(fine) @ controls, path).max()))
+    if i not in _FINE_BASIS:
+        h = 1.0 / (_KINK_CHECK_POINTS - 1)
+        _FINE_BASIS[i] = _quintic_basis(np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h,
+                                                    _KINK_CHECK_POINTS))
+    return float(max(dist[i], _path_distance(_FINE_BASIS[i] @ controls, path).max()))
 
 
 def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolerance: float,
@@ -299,10 +317,13 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
     tolerance at the segments' intersection (``blendmath.c``); our reading of G64 P for kinks.
 
     For each end-tangent stretch of :data:`_KINK_STRETCHES`, ``d`` starts from the clothoid pair's leg for the
-    same turn and is rescaled by ``tolerance`` over the deviation measured (the largest fitting ``d`` kept); of
-    these the blend with the highest speed bound under the path limits ``limits = (A, J)`` is taken (the smaller
-    of ``(A / k)^(1/2)`` and ``(J / |dk/ds|)^(1/3)``, :func:`interpolators.kinematics.curved_speed_bound` without
-    its coupling term, ``k`` and ``dk/ds`` at :data:`_KINK_CHECK_POINTS` parameters). LinuxCNC sizes its line/arc
+    same turn and is rescaled by ``tolerance`` over the deviation measured (a kink's deviation grows as ``d``, a
+    curvature ramp's as ``d^2``: rescaled by the ratio's square root), and bisected between the longest leg that
+    fits and the shortest that does not once the rescaling overshoots (the largest fitting ``d`` kept: a longer
+    leg bends less); of these the blend with the highest speed bound under the path limits ``limits = (A, J)`` is
+    taken, :func:`interpolators.kinematics.curved_speed_bound` of its largest ``k`` and ``|dk/ds|`` at
+    :data:`_KINK_CHECK_POINTS` parameters, the bound the planner gives it (with the ``k^2`` of the jerk: an
+    overshoot of the curvature costs speed too). LinuxCNC sizes its line/arc
     and arc/arc blend arcs alike, the largest the tolerance and the segment lengths allow
     (``blendComputeParameters``, ``src/emc/tp/blendmath.c``). A tangent junction (turn up to
     :data:`_MIN_BLEND_ANGLE`) with a curvature step above :data:`_MIN_BLEND_STEP` starts from the leg of a curvature
@@ -320,34 +341,62 @@ def _kink_blend(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve, tolera
         d_start = float(min(tolerance / dev_f, d_max / leg_f) * leg_f)
     else:  # a tangent junction with a curvature step: the blend's curvature ramps over 2 d, off by about dk d^2 / 8
         d_start = min(math.sqrt(8.0 * tolerance / step), d_max)
-    u = np.linspace(0.0, 1.0, _KINK_CHECK_POINTS)
     corner = b.point_at(np.zeros(1))
+    at_leg = _legs(a, b)
+    # a curvature ramp between arcs of opposite sense: its leg bisected to the longest that fits, the ramp's
+    # curvature derivative the lower for it; elsewhere the longer legs passed slower on the whole (their bound held
+    # over a longer stretch; measured: corpus 0274 1754.5 -> 1760.4 s beside merged curves, 0028 15.456 -> 15.495 s
+    # at line/arc junctions)
+    ramp = (theta <= _MIN_BLEND_ANGLE and isinstance(a, Arc) and isinstance(b, Arc)
+            and float(np.dot(k_a, k_b)) < 0.0)
     best, best_v = None, 0.0
     for stretch in _KINK_STRETCHES:
-        d, fit = d_start, None
+        d, fit, fail = d_start, None, math.inf
         for _ in range(_KINK_TRIES):
             if d <= 1e-9:
                 break
-            ends = (*_frame(a, la - d), *_frame(b, d))
+            ends, path = at_leg(d)
             controls = SplineCurve.hermite_controls(*ends, stretch=stretch)
-            path = np.concatenate([a.point_at(la - min(2.0 * d, la) * (1.0 - u)), b.point_at(min(2.0 * d, lb) * u)])
             deviation = max(_blend_deviation(controls, path),
                             float(_path_distance(corner, _CHECK_BASIS[0] @ controls)[0])) / _KINK_FIT_SHARE
-            if deviation <= tolerance and (fit is None or d > fit[2]):
+            if deviation > tolerance:
+                fail = min(fail, d)
+            elif fit is None or d > fit[2]:
                 fit = (ends, controls, d)
             if deviation <= tolerance and (deviation >= 0.8 * tolerance or d >= d_max):
                 break
             d = min(d * 0.95 * tolerance / max(deviation, 1e-3 * tolerance), d_max)
+            if ramp and fit is not None and d >= fail:  # between the longest leg that fits and the shortest that not
+                d = 0.5 * (fit[2] + fail)
         if fit is not None:
             k, k_s, _ = curve_frame_rates(*(basis @ fit[1] for basis in _CHECK_BASIS[1:]))
-            kappa, dkappa = float(np.linalg.norm(k, axis=1).max()), float(np.linalg.norm(k_s, axis=1).max())
-            v = min(math.sqrt(limits[0] / kappa) if kappa > 0 else math.inf,
-                    (limits[1] / dkappa) ** (1.0 / 3.0) if dkappa > 0 else math.inf)
+            v = float(curved_speed_bound(float(np.linalg.norm(k, axis=1).max()),
+                                         float(np.linalg.norm(k_s, axis=1).max()), limits[0], limits[1],
+                                         jerk_limited=True))
             if best is None or v > best_v:
                 best, best_v = (fit[0], stretch, fit[2]), v
     if best is None:
         return None
     return SplineCurve.hermite(*best[0], stretch=best[1]), best[2]
+
+
+def _legs(a: Line | Arc | SplineCurve, b: Line | Arc | SplineCurve
+          ) -> Callable[[float], tuple[tuple[np.ndarray, ...], np.ndarray]]:
+    """For :func:`_kink_blend`: the ends (point, tangent, curvature on ``a`` at ``d`` [mm] before its end and on
+    ``b`` at ``d`` after its start) and the polyline of both pieces within ``2 d`` of the junction, for a leg
+    ``d``; each leg's computed once for all the end-tangent stretches tried."""
+    la, lb = a.length, b.length
+    # a line's stretch of the polyline is its two end points (the points between lie on it)
+    u_a, u_b = (np.linspace(0.0, 1.0, 2 if isinstance(seg, Line) else _KINK_CHECK_POINTS) for seg in (a, b))
+    made: dict[float, tuple[tuple[np.ndarray, ...], np.ndarray]] = {}
+
+    def at(d: float) -> tuple[tuple[np.ndarray, ...], np.ndarray]:
+        if d not in made:
+            path = np.concatenate([a.point_at(la - min(2.0 * d, la) * (1.0 - u_a)), b.point_at(min(2.0 * d, lb) * u_b)])
+            made[d] = ((*_frame(a, la - d), *_frame(b, d)), path)
+        return made[d]
+
+    return at
 
 
 def _kink_blends(segments: list, candidates: list[int], tolerances: np.ndarray, limits: tuple[float, float],
@@ -438,7 +487,8 @@ def blend_corners(
     legs: dict[int, float] = {}
     if curvature_continuous and kinks:
         kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
-        cand = np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
+        cand = [k for k in np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
+                if not _within_spline(segments[k], segments[k + 1])]
         if offsets is None:  # NaN: a curve piece whose fit may take FIT_SHARE of the tolerance
             offsets = [math.nan if isinstance(sg, SplineCurve) else 0.0 for sg in segments]
         corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits,

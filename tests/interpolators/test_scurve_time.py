@@ -73,3 +73,42 @@ def test_curve_bounds_keep_the_jerk_vector_norm_within_the_limit():
     assert v[0] > (JERK_SPEED_SHARE * J / (kappa * kappa + dkappa)) ** (1.0 / 3.0)
     normal = 3.0 * kappa * v[0] * a[0] + dkappa * v[0] ** 3
     assert math.hypot(j[0] + kappa * kappa * v[0] ** 3, normal) == pytest.approx(J, rel=1e-9)
+
+
+@pytest.mark.parametrize("turn", [0.05, 0.5, 1.5])
+def test_curve_bounds_at_the_higher_jerk_share_leave_path_jerk(turn):
+    """At jerk_share 0.6 (interpolate._faster_jerk_share's second plan) a curve whose bound is set by dk/ds (a
+    short quintic turning ``turn`` rad, from and back to curvature 0) or by k^2 still keeps a path jerk of at least
+    0.26 J (``sqrt(1 - (0.3 + 0.6 sin(phi))^2) - 0.6 cos(phi)``, phi the angle of ``(k^2, dk/ds)``; measured phi 89,
+    80 and 47 deg: 0.43, 0.35 and 0.265 J, the last next to the least, 0.2646 J at 48.6 deg), and its speed bound
+    is (0.6 / 0.3)^(1/3) times the one at JERK_SPEED_SHARE."""
+    end = np.array([math.cos(turn), math.sin(turn), 0.0])
+    curve = SplineCurve.hermite(np.zeros(3), np.array([1.0, 0, 0]), np.zeros(3), 2.0 * np.array([1.0, 0, 0])
+                                + 0.5 * end, end, np.zeros(3))
+    limits = AxisLimitArrays(dict(DEFAULT_LIMITS), {0, 1})
+    J = DEFAULT_LIMITS["x"].jerk
+    v3, _, _ = curve_limits([curve], np.array([1e4]), limits, jerk_limited=True)
+    v6, a6, j6 = curve_limits([curve], np.array([1e4]), limits, jerk_limited=True, jerk_share=0.6)
+    assert j6[0] >= 0.26 * J and a6[0] > 0
+    assert v6[0] == pytest.approx(v3[0] * 2.0 ** (1.0 / 3.0), rel=1e-9)
+
+
+@pytest.mark.parametrize("text, seconds, forced", [
+    # a full circle R2 from rest at F3000: its speed changes on the curve; at 0.6 of J for v^3 k^2 the
+    # acceleration ramps would take longer than the higher cruise gains (0.619 s): the 0.3 plan is kept
+    ("G21 G90 G17 G61\nG0 X2 Y0\nF3000\nG3 X2 Y0 I-2 J0\nM30\n", 0.592, 0.619),
+    # a quarter arc R0.5 from rest at F6000: likewise (0.234 s at 0.6)
+    ("G21 G90 G17 G61\nG0 X0.5 Y0\nF6000\nG3 X0 Y0.5 I-0.5 J0\nM30\n", 0.214, 0.234),
+    # a helix R1 of three turns at F2400: cruising on the curve, the 0.6 plan (0.980 s at 0.3)
+    ("G21 G90 G17 G61\nG0 X1 Y0 Z0\nF2400\nG3 X1 Y0 Z-3 I-1 J0 P3\nM30\n", 0.896, 0.896),
+    # line, G2 R1 half circle, line under G64 P0.01 at F3000: the lines change the speed (0.635 s at 0.3)
+    ("G21 G90 G17 G64 P0.01\nG0 X0 Y-5\nF3000\nG1 X0 Y0\nG2 X2 Y0 R1\nG1 X2 Y-5\nM30\n", 0.601, 0.601),
+])
+def test_curve_jerk_share_follows_need(text, seconds, forced):
+    """Under the S-curve each chain is planned with its curves' speed at JERK_SPEED_SHARE (0.3) and at 0.6 of the
+    jerk limit for ``v^3 |(k^2, dk/ds)|`` (interpolate._faster_jerk_share), and keeps the faster: cruising on a
+    curve needs the jerk for ``v^3 k^2`` only, changing speed on it for ``3 k v a`` and the path jerk too. Cycle
+    times measured, ``forced`` the time with 0.6 on every chain; every axis limit held on the setpoints."""
+    sp = _plan(text, "scurve")
+    assert sp.meta["duration"] == pytest.approx(seconds, abs=1.5e-3)
+    assert sp.meta["duration"] <= forced + 1e-9
