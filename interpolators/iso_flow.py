@@ -757,6 +757,20 @@ def _block(prog: _Program, pc: int, words: list[Word], where: Where, modal: Moda
     return _modal_call(prog, pc, words, modal, due, params, frames, decimal_point_input, on_note)
 
 
+def _repeat_count(words: list[Word], m98: Word, where: Where) -> int:
+    """The number of calls an M97/M98 block makes: its L (or K) word, else 1. A whole number of at least 0 (``L0``
+    calls nothing, as rs274 runs it); rs274 refuses ``L-1`` ("Negative l word used") and ``L0.5`` ("Non integer
+    value for integer"), and so does vcnc; FANUC's L is a repetition count 1-9999 (0i-MC operator's manual
+    B-64124EN 12.3 "Subprogram")."""
+    rep = next((w for w in words if w.letter in "LK"), None)
+    if rep is None:
+        return 1
+    if rep.value < 0 or rep.value != int(rep.value):
+        where.fail(f"M{m98.value:g} {rep.letter}{rep.value:g}: the number of calls must be a whole number of at "
+                   "least 0", column=rep.column, text=rep.text, expected=f"{rep.letter}<count> (0 calls nothing)")
+    return int(rep.value)
+
+
 def _call_words_only(words: list[Word], m98: Word, where: Where,
                      on_call_words: Callable[[list[Word], Where], None]) -> list[Word]:
     """The words of an M98 block LinuxCNC executes: the call's own (M98 P L). LinuxCNC reads ``M98 P100`` as
@@ -778,7 +792,7 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
         if params.fanuc:
             words = _fanuc_packed_count(prog, words, m98)
         start, q = _subprogram_start(prog, pc, words, m98, where, on_note)
-        count = next((int(w.value) for w in words if w.letter in "LK"), 1)
+        count = _repeat_count(words, m98, where)
         rest = [w for w in words if w is not m98 and w is not q and w.letter not in "PLK"]
         if rest:
             yield FlowLine(where.line, where.text, rest, where.file)

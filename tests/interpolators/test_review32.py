@@ -80,3 +80,17 @@ def test_a_pattern_form_left_open_is_named_as_such(form):
     text = _DRILL + f"PATTERN DEF ~\n {form}\nCYCL CALL PAT F500\nEND PGM T MM\n"
     with pytest.raises(GCodeError, match=rf":14:12: PATTERN DEF {form[:4]} without its closing '\)'"):
         parse_heidenhain(text, context=MachineContext())
+
+
+@pytest.mark.parametrize("count, column", [("L-1", 10), ("L0.5", 10)])
+def test_a_call_count_that_is_no_whole_number_of_at_least_zero_is_refused(count, column):
+    # review32: int(w.value) made L-1 and L0.5 call nothing (L0.5 -> 0), silently; rs274 refuses both ("Negative l
+    # word used", "Non integer value for integer")
+    with pytest.raises(GCodeError, match=rf":2:{column}: M98 {count}: the number of calls must be a whole number "
+                                         r"of at least 0"):
+        parse_program(f"G21 G90\nM98 P100 {count}\nM2\nO100\nG1 X1 F100\nM99\n", context=LINUXCNC)
+
+
+def test_a_call_count_of_zero_calls_nothing_and_two_calls_twice():
+    prog = checked_iso("G21 G91\nM98 P100 L0\nM98 P100 L2\nM2\nO100\nG1 X1 F100\nM99\n", LINUXCNC)
+    assert [b.target[0] for b in prog.blocks] == [1.0, 2.0]
