@@ -175,7 +175,7 @@ def _chains(program: Program) -> list[_Chain]:
         if cur is None or cur.extra:
             cur = _Chain(items)
             chains.append(cur)
-        cur.add(seg, i, b.feed, b.kind == "rapid", DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+        cur.add(seg, i, b.feed, b.kind == "rapid", _tolerance(b))
         if b.exact_stop:
             cur = None
     return chains
@@ -219,7 +219,7 @@ def _extra_block(chains: list[_Chain], items: _Items, cur: _Chain | None, i: int
         cur = _Chain(items)
         cur.extra = True
         chains.append(cur)
-    cur.add(seg if moves_xyz else b.start, i, b.feed, rapid, DEFAULT_TOLERANCE if b.tolerance is None else b.tolerance)
+    cur.add(seg if moves_xyz else b.start, i, b.feed, rapid, _tolerance(b))
     return cur if moves_xyz and not b.exact_stop else None
 
 
@@ -813,6 +813,7 @@ def _ramp_worth(ch: _Chain, lim: AxisLimitArrays, limits: Mapping[str, AxisLimit
 
 
 def _tolerance(block) -> float:
+    """A block's G64 path tolerance [mm]: its ``P``, else :data:`interpolators.lookahead.DEFAULT_TOLERANCE`."""
     return DEFAULT_TOLERANCE if block.tolerance is None else block.tolerance
 
 
