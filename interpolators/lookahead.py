@@ -287,8 +287,10 @@ _CHECK_BASIS = tuple(_quintic_basis(np.linspace(0.0, 1.0, _KINK_CHECK_POINTS), r
 
 
 #: :func:`_quintic_basis` of :data:`_KINK_CHECK_POINTS` parameters between the two neighbours of each check
-#: parameter (:func:`_blend_deviation`'s second pass), made when first needed.
-_FINE_BASIS: dict[int, np.ndarray] = {}
+#: parameter (:func:`_blend_deviation`'s second pass).
+_FINE_BASIS = tuple(_quintic_basis(np.linspace(max(i - 1, 0) * (1.0 / (_KINK_CHECK_POINTS - 1)),
+                                               min(i + 1, _KINK_CHECK_POINTS - 1) * (1.0 / (_KINK_CHECK_POINTS - 1)),
+                                               _KINK_CHECK_POINTS)) for i in range(_KINK_CHECK_POINTS))
 
 
 def _blend_deviation(controls: np.ndarray, path: np.ndarray) -> float:
@@ -296,10 +298,6 @@ def _blend_deviation(controls: np.ndarray, path: np.ndarray) -> float:
     :data:`_KINK_CHECK_POINTS` parameters, then as many again between the two neighbours of the farthest one."""
     dist = _path_distance(_CHECK_BASIS[0] @ controls, path)
     i = int(np.argmax(dist))
-    if i not in _FINE_BASIS:
-        h = 1.0 / (_KINK_CHECK_POINTS - 1)
-        _FINE_BASIS[i] = _quintic_basis(np.linspace(max(i - 1, 0) * h, min(i + 1, _KINK_CHECK_POINTS - 1) * h,
-                                                    _KINK_CHECK_POINTS))
     return float(max(dist[i], _path_distance(_FINE_BASIS[i] @ controls, path).max()))
 
 
