@@ -32,18 +32,17 @@ from __future__ import annotations
 import dataclasses
 import re
 
+from interpolators.iso_corners import CORNER_LETTERS
 from interpolators.iso_words import Word
 
-__all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "CORNER_LETTERS", "integer_literal", "decimal_literal",
-           "decimal_point_words", "decimal_point_note"]
+__all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "integer_literal", "decimal_literal", "decimal_point_words",
+           "decimal_point_note"]
 
 #: Values of ``MachineContext.decimal_point_input``: Fanuc DPI = 1 and DPI = 0.
 DECIMAL_POINT_INPUTS: tuple[str, ...] = ("calculator", "increment")
 #: Addresses whose numbers without a decimal point are counted in least input increments under DPI = 0.
 DECIMAL_LETTERS = frozenset("XYZUVWABCIJKQR")
 
-#: The corner words (:mod:`interpolators.iso_corners`): lengths, read as R (our reading, see the module docstring).
-CORNER_LETTERS = frozenset((",R", ",C"))
 #: Least input increment of IS-B [program unit]: mm, inch, and deg (rotary axes, angles).
 _INCREMENT = {"mm": 0.001, "inch": 0.0001, "deg": 0.001}
 _CYCLE_CODES = {73, 74, 76, 77, 81, 82, 83, 84, 85, 86, 87, 88, 89}
