@@ -63,13 +63,13 @@ class ModalStates:
             setattr(st, f, copy.copy(v))
         return True
 
-    def enter(self, st, level: int, lowest: int | None = None) -> bool:
-        """The call level of the next line is ``level``, the lowest level since the last line ``lowest`` (a
-        subroutine's return then a call of the next: LinuxCNC tests/m70-m73/m73autorestore, ``o1000 call`` twice
-        in a row): the levels left lose their states, an M73 state of a level returned from is restored (True
-        when one was)."""
+    def enter(self, st, level: int, lowest: int) -> bool:
+        """The call level of the next line is ``level``, the lowest level since the last line ``lowest`` (at most
+        ``level``; below it after a subroutine's return then a call of the next: LinuxCNC
+        tests/m70-m73/m73autorestore, ``o1000 call`` twice in a row): the levels left lose their states, an M73
+        state of a level returned from is restored (True when one was)."""
         restored = False
-        while self.level > min(level, self.level if lowest is None else lowest):
+        while self.level > lowest:
             state = self.saved.pop(self.level, None)
             if state is not None and state[1]:
                 self.saved[self.level] = state
