@@ -1666,10 +1666,10 @@ def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None
     """Fanuc DPI = 0 (0i-MF operator's manual B-64604EN "Decimal point programming", parameter No. 3401#0): a
     distance or angle written without a decimal point counts least input increments of IS-B, 0.001 mm / deg or
     0.0001 in (X Y Z U V W A B C I J K Q R and the corner words ,R ,C; ``G04 X`` 0.001 s; K of a cycle block is
-    its repeat count); in a G51
-    block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 arguments without a decimal point are not
-    modelled (ReferenceError)."""
-    letters = "xyz" if 510 in g else "xyzuvwabcijkqr"  # G51: the centre; its factors have their own rule
+    its repeat count); in a G51 block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 arguments
+    without a decimal point are not modelled (ReferenceError)."""
+    # G51: the centre, its factors have their own rule; ",r" ",c": corner lengths, as r (our reading)
+    letters = set("xyz") if 510 in g else {*"xyzuvwabcijkqr", ",r", ",c"}
     if 650 in g:
         if re.search(r"(?<![a-z#])[xyzuvwabcijkqr][+-]?\d+(?![\d.])", text):
             raise ReferenceError("G65 arguments without a decimal point under DPI = 0")
@@ -1682,13 +1682,12 @@ def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None
         depth += (ch == "[") - (ch == "]")
         if not ch.isalpha() or depth:
             continue
-        letter = "," + ch if k and text[k - 1] == "," else ch  # ",r" ",c": corner lengths, as r (our reading)
+        letter = "," + ch if k and text[k - 1] == "," else ch
         index = seen.get(letter, 0)
         seen[letter] = index + 1
         literal = re.match(r"[+-]?\d+(?![\d.#\[])", text[k + 1:])
-        if letter not in letters and (510 in g or letter not in (",r", ",c")) or literal is None or \
-                (k and text[k - 1].isalpha()) or letter == "k" and cycle or letter not in words or \
-                index >= len(words[letter]):
+        if letter not in letters or literal is None or (k and text[k - 1].isalpha()) or letter == "k" and cycle \
+                or letter not in words or index >= len(words[letter]):
             continue
         unit = 0.001 if letter in "abc" or not inch or (40 in g and letter == "x") else 0.0001
         words[letter][index] *= unit
