@@ -210,21 +210,22 @@ _SKIP_LEVEL = re.compile(r"[ \t]*/([1-9])")
 SKIP_AFTER_NUMBER = re.compile(r"[ \t]*[Nn][ \t]*\d+(?:\.\d*)?[ \t]*(?=/)")
 
 
-def _block_delete(code: str, where: Where, *, levels: bool) -> str:
-    """A line opened by '/' (block delete), the '/' blanked: the line runs, as with its switch off. With
+def _block_delete(code: str, where: Where, *, levels: bool, start: int = 0) -> str:
+    """A line opened by '/' (block delete; ``start``: the index its '/' follows, with blanks between, as after a
+    sequence number), the '/' blanked: the line runs, as with its switch off. With
     ``levels`` (Fanuc) '/1'-'/9' opens it as well: the optional block skip of level n, '/1' the same as '/'
     (FANUC 0i-MF operator's manual, "Optional block skip", the additional optional block skip option;
     ISG kernel "Extended skipping (skip levels)": '/1'-'/10', '/' and '/1' one switch); its switch off too.
     Without (LinuxCNC, Haas, grbl, whose manuals give only '/') the level is named, with the dialect that
     reads it: a Mazak program of Keycult's writes "/1 #[#22 + 1] = 0" per level."""
-    m = _SKIP_LEVEL.match(code)
+    m = _SKIP_LEVEL.match(code, start)
     if m is None:
         return code.replace("/", " ", 1)
     if not levels:
         where.fail(f"'/{m.group(1)}': optional block skip level {m.group(1)} (Fanuc's additional optional block "
                    "skip /2-/9), which this dialect does not have (--dialect fanuc reads it)",
                    column=m.start(1), text=f"/{m.group(1)}", expected="'/' block delete")
-    return " " * m.end() + code[m.end():]
+    return code[:start] + " " * (m.end() - start) + code[m.end():]
 
 
 def _skip_after_number(code: str, where: Where, *, levels: bool, reads: bool) -> str:
@@ -245,7 +246,7 @@ def _skip_after_number(code: str, where: Where, *, levels: bool, reads: bool) ->
         where.fail(f"'/' after the line number {number!r}: LinuxCNC reads block delete only as a line's first "
                    "character, before its line number (G-code overview, \"Format of a Line\")", column=m.end() + 1,
                    text="/", expected=f"'/{number} ...' (the '/' first) or no '/'")
-    return code[:m.end()] + _block_delete(" " * m.end() + code[m.end():], where, levels=levels)[m.end():]
+    return _block_delete(code, where, levels=levels, start=m.end())
 
 
 def _keyword(code: str, m: re.Match[str] | None) -> tuple[str | None, str, int]:
