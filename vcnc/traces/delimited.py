@@ -567,15 +567,16 @@ def _check_parameter_list(text: str, src: str) -> None:
     settings, not samples over time (our reading of saikasener/altinay's LiftMotor.csv, beside its recordings); and
     Rexroth IndraWorks' parameter save, whose first line is ``SERCOS-ASCII`` (anderssandstrom/tc_target_drive's
     indradrive/params.par: a block per S-/P- parameter, ``|`` between blocks)."""
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    all_lines = text.splitlines()
+    lines = [ln for ln in all_lines if ln.strip() and not ln.lstrip().startswith("#")]
     if lines and lines[0].strip().lstrip("\ufeff") == "SERCOS-ASCII":
         raise CaptureError("a drive's parameter file, not a recording: 'SERCOS-ASCII' in line 1 begins Rexroth "
                            "IndraWorks' parameter save (S-/P- parameters, each with its name, attributes, unit and "
                            "value); vcnc identifies a drive from a trace of its commanded and measured position (the "
                            "drive tool's oscilloscope export)", file=src, line=1)
-    entries = [n for n, ln in enumerate(text.splitlines(), 1) if _OBJECT_ENTRY.match(ln)]
+    entries = [n for n, ln in enumerate(all_lines, 1) if _OBJECT_ENTRY.match(ln)]
     if len(entries) >= 10 and 2 * len(entries) >= len(lines):
-        first = text.splitlines()[entries[0] - 1].strip()
+        first = all_lines[entries[0] - 1].strip()
         raise CaptureError(f"a drive's parameter list, not a recording: {len(entries)} lines of object index, "
                            f"subindex and value (line {entries[0]}: {first!r}) are settings, no samples over time; "
                            "vcnc identifies a drive from a trace of its commanded and measured position (the drive "
