@@ -985,9 +985,12 @@ def _backward_check(stages: list[Stage], data: Data, plan: FoldPlan, rounds: lis
         name, why, without = failing
         final = stages[-1]
         rest = [e for e in final.full_model.elements if e.NAME != name]
-        if without is None or not any(e.KIND == "element" for e in rest):
-            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect)
-            without = _judge(augment(final.full_model, rest), data, plan, opt) if rest else None
+        if not rest:
+            without = None
+        elif without is None or len(without.model.elements) != len(rest):
+            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect):
+            # judged against its null (_without), a dropped element left one where no other element remains
+            without = _judge(augment(final.full_model, rest), data, plan, opt)
         log.info("diagnosis: %s dropped: %s", name, why)
         w = without.held_out_rms_um if without is not None else stages[0].validation_rms_um
         rounds[-1].setdefault("dropped", {})[name] = {"reason": why, "validation_rms_with_um": final.validation_rms_um,
