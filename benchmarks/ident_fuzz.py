@@ -251,12 +251,12 @@ def run(case: dict) -> dict:
     row = {"case": case, "outcome": "ok", "detail": "", "cpu_s": 0.0, "named": []}
     try:
         unstable = unstable_delay(case)
+        if unstable:  # known before the two simulations of build
+            row.update(outcome="skip", detail=unstable)
+            return row
         rec, clean, visible, floor = build(case)
     except (MachineError, SimulationError) as exc:  # an effect the machine cannot take, or an unstable truth
         row.update(outcome="skip", detail=str(exc))
-        return row
-    if unstable:
-        row.update(outcome="skip", detail=unstable)
         return row
     row["visible"], row["floor"] = visible, floor
     try:

@@ -158,8 +158,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
         moving = [a for j, a in enumerate(capture.axes) if j != i and np.ptp(capture.reference[:, j]) > 0.0]
         hint = f"; the commanded motion is on {', '.join(moving)} (identify one of them: --axis {moving[0]})" \
             if moving else ""
-        what = "no motion" if float(np.ptp(x)) == 0.0 else "no commanded motion"
-        stays = "reference and measurement stay" if what == "no motion" else "the reference stays"
+        what, stays = (("no motion", "reference and measurement stay") if float(np.ptp(x)) == 0.0
+                       else ("no commanded motion", "the reference stays"))
         raise IdentificationError(f"{what} on axis {axis!r}: {stays} at {float(xr[0])!r} {u}{hint}", file=src)
     vmax = float(np.max(np.abs(np.diff(xr)))) / T
     if span < 1.0 and vmax < 2.0:

@@ -985,9 +985,12 @@ def _backward_check(stages: list[Stage], data: Data, plan: FoldPlan, rounds: lis
         name, why, without = failing
         final = stages[-1]
         rest = [e for e in final.full_model.elements if e.NAME != name]
-        if without is None or not any(e.KIND == "element" for e in rest):
-            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect)
-            without = _judge(augment(final.full_model, rest), data, plan, opt) if rest else None
+        if not rest:
+            without = None
+        elif without is None or len(without.model.elements) != len(rest):
+            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect):
+            # judged against its null (_without), a dropped element left one where no other element remains
+            without = _judge(augment(final.full_model, rest), data, plan, opt)
         log.info("diagnosis: %s dropped: %s", name, why)
         w = without.held_out_rms_um if without is not None else stages[0].validation_rms_um
         rounds[-1].setdefault("dropped", {})[name] = {"reason": why, "validation_rms_with_um": final.validation_rms_um,
@@ -1003,14 +1006,18 @@ def _dropped(stages: list[Stage], name: str, without: _Judged | None) -> list[St
     kept = [s for s in stages if s.effect != name]
     if len(kept) == 1 or without is None:
         return kept[:1]
-    j = without
     kept[-1] = dataclasses.replace(
-        kept[-1], train_model=j.model, full_model=j.model, validation_rms_um=j.held_out_rms_um,
-        validation_max_um=j.held_out_max_um, identification_rms_um=j.rms_um, identification_max_um=j.max_um,
-        fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um, in_sample_folds=j.in_sample_folds,
+        kept[-1], **_judged_fields(without),
         evidence=dict(kept[-1].evidence, refitted_without=sorted({*kept[-1].evidence.get("refitted_without", []),
                                                                   name})))
     return kept
+
+
+def _judged_fields(j: _Judged) -> dict:
+    """The fields of a :class:`Stage` that the judged model ``j`` gives: its model and its errors."""
+    return dict(train_model=j.model, full_model=j.model, validation_rms_um=j.held_out_rms_um,
+                validation_max_um=j.held_out_max_um, identification_rms_um=j.rms_um, identification_max_um=j.max_um,
+                fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um, in_sample_folds=j.in_sample_folds)
 
 
 def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
@@ -1087,10 +1094,7 @@ def _accepted_stage(chosen: tuple, tried: list[tuple], stage: Stage, record: dic
                                           for t in sorted(tried, key=lambda t: t[0].held_out_rms_um)}
     ev["fold_rms_before_um"] = list(stage.fold_rms_um)
     ev["fold_rms_after_um"] = list(j.fold_rms_um)
-    return Stage(effect=c.effect.NAME, train_model=j.model, full_model=j.model,
-                 validation_rms_um=j.held_out_rms_um, validation_max_um=j.held_out_max_um,
-                 identification_rms_um=j.rms_um, identification_max_um=j.max_um, evidence=ev,
-                 fold_rms_um=j.fold_rms_um, fold_max_um=j.fold_max_um, in_sample_folds=j.in_sample_folds)
+    return Stage(effect=c.effect.NAME, evidence=ev, **_judged_fields(j))
 
 
 def _lowers(before: float, after: float, opt: DiagnosisOptions) -> bool:

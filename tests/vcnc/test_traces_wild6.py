@@ -234,21 +234,33 @@ def _rtde(names: list[str], rows: list[list[float]]) -> str:
     return " ".join(names) + "\n" + "".join(" ".join(repr(v) for v in r) + "\n" for r in rows)
 
 
-def test_ur_rtde_joint_positions_are_a_question_never_millimetres(tmp_path):
-    target = [0.5 + 0.01 * k for k in range(8)]
-    actual = [0.5 + 0.01 * max(k - 1, 0) for k in range(8)]
+@pytest.mark.parametrize("q, t0, start, step, unit, scale, message", [
+    ("q", 1234.5, 0.5, 0.01, "rad", 180.0 / np.pi,
+     "(not read from the names: Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N "
+     "(measured), joints [0], in rad: choose a joint and name it as a rotary axis, e.g. --columns "
+     "t=timestamp,a_ref=target_q_0,a=actual_q_0 --unit rad)"),
+    ("TCP_pose", 0.0, -0.58, 0.001, "m", 1000.0,
+     "Universal Robots RTDE tool (TCP) pose target_TCP_pose_N (commanded) and actual_TCP_pose_N (measured): "
+     "N = 0, 1, 2 are x, y, z in m (3-5 a rotation vector), e.g. --columns "
+     "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m"),
+], ids=["joint_rad", "tcp_m"])
+def test_ur_rtde_positions_are_a_question_never_millimetres(tmp_path, q, t0, start, step, unit, scale, message):
+    # joint positions in rad (a rotary axis), the tool pose in m: neither is read as mm from the names
+    target = [start + step * k for k in range(8)]
+    actual = [start + step * max(k - 1, 0) for k in range(8)]
     f = tmp_path / "robot_data.csv"
-    f.write_text(_rtde(["timestamp", "target_q_0", "actual_q_0"],
-                       [[1234.5 + 0.008 * k, target[k], actual[k]] for k in range(8)]))
+    f.write_text(_rtde(["timestamp", f"target_{q}_0", f"actual_{q}_0"],
+                       [[t0 + 0.008 * k, target[k], actual[k]] for k in range(8)]))
     with pytest.raises(CaptureError) as err:
         read_capture(f)
-    assert ("(not read from the names: Universal Robots RTDE joint positions target_q_N (commanded) and actual_q_N "
-            "(measured), joints [0], in rad: choose a joint and name it as a rotary axis, e.g. --columns "
-            "t=timestamp,a_ref=target_q_0,a=actual_q_0 --unit rad)") in str(err.value)
-    cap = read_capture(f, columns={"t": "timestamp", "a_ref": "target_q_0", "a": "actual_q_0"}, unit="rad")
-    np.testing.assert_allclose(cap.reference[:, 0], np.degrees(target), atol=1e-9)
-    np.testing.assert_allclose(cap.measured[:, 0], np.degrees(actual), atol=1e-9)
+    assert message in str(err.value)
+    ax = "a" if unit == "rad" else "x"
+    cap = read_capture(f, columns={"t": "timestamp", f"{ax}_ref": f"target_{q}_0", ax: f"actual_{q}_0"}, unit=unit)
+    np.testing.assert_allclose(cap.reference[:, 0], np.multiply(target, scale), atol=1e-9)
+    np.testing.assert_allclose(cap.measured[:, 0], np.multiply(actual, scale), atol=1e-9)
     np.testing.assert_allclose(cap.t, np.arange(8) * 0.008, atol=1e-9)
+    if unit == "m":
+        assert cap.reference[5, 0] == pytest.approx(-575.0) and cap.measured[5, 0] == pytest.approx(-576.0)
 
 
 def test_ur_rtde_question_comes_before_a_repeated_name(tmp_path):
@@ -289,19 +301,6 @@ def test_ur_rtde_actual_positions_alone_say_the_command_is_missing(tmp_path):
         read_capture(f, sample_time=0.008)
     assert ("Universal Robots RTDE joint positions actual_q_N only (N = [0, 1, 2]), no target_q_N: identification "
             "needs the commanded and the measured position (record both target_q and actual_q)") in str(err.value)
-
-
-def test_ur_rtde_tool_pose_is_in_metres_never_millimetres(tmp_path):
-    f = tmp_path / "tcp.csv"
-    f.write_text(_rtde(["timestamp", "target_TCP_pose_0", "actual_TCP_pose_0"],
-                       [[0.008 * k, -0.58 + 0.001 * k, -0.58 + 0.001 * max(k - 1, 0)] for k in range(6)]))
-    with pytest.raises(CaptureError) as err:
-        read_capture(f)
-    assert ("Universal Robots RTDE tool (TCP) pose target_TCP_pose_N (commanded) and actual_TCP_pose_N (measured): "
-            "N = 0, 1, 2 are x, y, z in m (3-5 a rotation vector), e.g. --columns "
-            "t=timestamp,x_ref=target_TCP_pose_0,x=actual_TCP_pose_0 --unit m") in str(err.value)
-    cap = read_capture(f, columns={"t": "timestamp", "x_ref": "target_TCP_pose_0", "x": "actual_TCP_pose_0"}, unit="m")
-    assert cap.reference[5, 0] == pytest.approx(-575.0) and cap.measured[5, 0] == pytest.approx(-576.0)
 
 
 def test_counts_under_a_stated_resolution_with_three_decimals_are_grouped_not_fractions(tmp_path):

@@ -567,15 +567,16 @@ def _check_parameter_list(text: str, src: str) -> None:
     settings, not samples over time (our reading of saikasener/altinay's LiftMotor.csv, beside its recordings); and
     Rexroth IndraWorks' parameter save, whose first line is ``SERCOS-ASCII`` (anderssandstrom/tc_target_drive's
     indradrive/params.par: a block per S-/P- parameter, ``|`` between blocks)."""
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    all_lines = text.splitlines()
+    lines = [ln for ln in all_lines if ln.strip() and not ln.lstrip().startswith("#")]
     if lines and lines[0].strip().lstrip("\ufeff") == "SERCOS-ASCII":
         raise CaptureError("a drive's parameter file, not a recording: 'SERCOS-ASCII' in line 1 begins Rexroth "
                            "IndraWorks' parameter save (S-/P- parameters, each with its name, attributes, unit and "
                            "value); vcnc identifies a drive from a trace of its commanded and measured position (the "
                            "drive tool's oscilloscope export)", file=src, line=1)
-    entries = [n for n, ln in enumerate(text.splitlines(), 1) if _OBJECT_ENTRY.match(ln)]
+    entries = [n for n, ln in enumerate(all_lines, 1) if _OBJECT_ENTRY.match(ln)]
     if len(entries) >= 10 and 2 * len(entries) >= len(lines):
-        first = text.splitlines()[entries[0] - 1].strip()
+        first = all_lines[entries[0] - 1].strip()
         raise CaptureError(f"a drive's parameter list, not a recording: {len(entries)} lines of object index, "
                            f"subindex and value (line {entries[0]}: {first!r}) are settings, no samples over time; "
                            "vcnc identifies a drive from a trace of its commanded and measured position (the drive "
@@ -941,7 +942,7 @@ def _check_sample_numbers(numbers: np.ndarray, name: str, src: str, line: int | 
     -t; a lost sample leaves a larger step here and there). One that steps by another number holds something else:
     CoDeSys V2.3 writes the time in ms in its ``Cycle`` column when the trace has a frequency scan (names.py), and a
     sampling period times those would stretch the time by the step (our reading: refuse rather than guess)."""
-    step = float(np.median(np.diff(numbers))) if numbers.size > 1 else 1.0
+    step = _sample_step(numbers)
     if step != 1.0:
         raise CaptureError(f"the column {name!r}, taken as sample numbers with the sampling period, steps by "
                            f"{step:.6g}, not 1: it holds no sample numbers (a time in ms, as CoDeSys' 'Cycle' with a "
@@ -949,13 +950,18 @@ def _check_sample_numbers(numbers: np.ndarray, name: str, src: str, line: int | 
                            expected=f"--columns t={name} with --time-unit ms|us|s and no --sample-time")
 
 
+def _sample_step(numbers: np.ndarray) -> float:
+    """The median step of a column of sample numbers, its blank cells left out (1.0 for fewer than two)."""
+    return float(np.nanmedian(np.diff(numbers))) if numbers.size > 1 else 1.0
+
+
 def _sample_step_hint(header: list[str] | None, data: np.ndarray) -> str:
     """A note for the question of a header whose one column of sample numbers does not step by 1 (CoDeSys' ``Cycle``
     holding ms, :func:`_check_sample_numbers`): it is no count of samples but likely a time; else ``""``."""
     samples = [j for j, h in enumerate(header or []) if is_sample_number(h)]
-    if len(samples) != 1 or data.shape[0] < 2:
+    if len(samples) != 1:
         return ""
-    step = float(np.nanmedian(np.diff(data[:, samples[0]])))
+    step = _sample_step(data[:, samples[0]])
     if step == 1.0 or not math.isfinite(step):
         return ""
     name = (header or [])[samples[0]]
