@@ -127,7 +127,10 @@ def _machine_and_program(truth, toolpath: str, args: argparse.Namespace) -> tupl
 
 def run(args: argparse.Namespace) -> int:
     from vcnc.contour_compare import compare
+    from vcnc.core.io import check_output
 
+    check_output(args.json, option="--json", what="the summary file", inputs=(args.truth, args.toolpath))
+    check_output(args.report, option="--report", what="the report", folder=True)
     models = parse_models(args.model)
     truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
     with sample_guard(command="compare", max_samples=MAX_SAMPLES):

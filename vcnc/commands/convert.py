@@ -20,8 +20,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from vcnc.core.io import check_output
     from vcnc.traces import trace_format
 
+    check_output(args.output, option="-o", what="the capture (CSV)", inputs=(args.trace,))
     fmt = trace_format(args.trace)
     cap = read_trace_argument(args.trace, args)
     if args.axis:

@@ -21,7 +21,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from vcnc import demo
+    from vcnc.core.io import check_output
 
+    check_output(args.out, option="--out", what="the report", folder=True)
     if args.emps is not None:
         out = args.out or "vcnc-demo-emps"
         summary = demo.run_emps_demo(args.emps or os.environ.get("VCNC_EMPS_DIR"), out)

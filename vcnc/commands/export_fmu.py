@@ -20,8 +20,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from vcnc.core.io import check_output
     from vcnc.fmu import export_fmu, export_spec
 
+    check_output(args.output, option="-o", what="the FMU", inputs=(args.model,))
     spec = export_spec(args.model)  # a bad model file fails here, before any build
     path = export_fmu(args.model, args.output, fmi_version=args.fmi)
     effects = spec.effect_names

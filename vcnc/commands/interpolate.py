@@ -276,8 +276,12 @@ def plot_setpoints(setpoints, *, title: str | None = None):
 
 
 def run(args: argparse.Namespace) -> int:
-    from vcnc.core.io import atomic_path
+    from vcnc.core.io import atomic_path, check_output
 
+    inputs = (args.program, args.machine)
+    check_output(args.output, option="-o", what="the setpoints (CSV)", inputs=inputs)
+    check_output(args.blocks, option="--blocks", what="the block table (CSV)", inputs=inputs)
+    check_output(args.plot, option="--plot", what="the plot (PNG)", inputs=inputs)
     ts = 1e-3
     machine = None
     if args.machine:

@@ -55,18 +55,14 @@ def run(args: argparse.Namespace) -> int:
 
 
 def check_outputs(args: argparse.Namespace) -> None:
-    """:class:`vcnc.InputError` before any work when an output cannot be written where it is asked: ``-o`` or
-    ``--json`` naming a folder, ``--report`` naming a file (a long program would otherwise run to its end and
-    fail on the rename, with an internal error)."""
-    from vcnc.core.errors import InputError
+    """:class:`vcnc.InputError` before any work when an output cannot be written where it is asked
+    (:func:`vcnc.core.io.check_output`: a long program would otherwise run to its end and fail on the rename)."""
+    from vcnc.core.io import check_output
 
-    for option, name, what in (("-o", args.output, "the capture file (CSV)"),
-                               ("--json", args.json, "the summary file")):
-        if name and Path(name).is_dir():
-            raise InputError(f"{option} {name}: a folder of that name exists; expected a file name for {what}")
-    if args.report and Path(args.report).exists() and not Path(args.report).is_dir():
-        raise InputError(f"--report {args.report}: a file of that name exists; expected a folder for the report "
-                         "(made if absent)")
+    inputs = (args.program, args.machine)
+    check_output(args.output, option="-o", what="the capture file (CSV)", inputs=inputs)
+    check_output(args.json, option="--json", what="the summary file", inputs=inputs)
+    check_output(args.report, option="--report", what="the report", folder=True)
 
 
 def read_for_machine(args: argparse.Namespace, machine, *, option: str = "--machine"):

@@ -47,6 +47,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     import toolpaths
     from vcnc.core.errors import InputError
+    from vcnc.core.io import check_output
+
+    if args.output != "-":
+        check_output(args.output, option="-o", what="the program")
 
     def opt_feed(default: float) -> float:
         return default if args.feed is None else args.feed

@@ -12,7 +12,9 @@ from typing import TextIO
 
 import numpy as np
 
-__all__ = ["atomic_path", "atomic_dir", "write_rows"]
+from vcnc.core.errors import InputError
+
+__all__ = ["atomic_path", "atomic_dir", "check_output", "write_rows"]
 
 #: Rows formatted per call of :func:`write_rows`: large enough that the per-call cost vanishes, small enough
 #: that the text of one chunk stays a few MB.
@@ -29,14 +31,16 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     On any exception the temporary file is removed and ``path`` is left untouched.
     """
     final = Path(path)
-    final.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{final.name}.", suffix=".part", dir=final.parent)
+    with _cannot_write(final, "file"):
+        final.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{final.name}.", suffix=".part", dir=final.parent)
     os.close(fd)
     tmp_path = Path(tmp)
     os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; output files get the usual mode
     try:
         yield tmp_path
-        os.replace(tmp_path, final)
+        with _cannot_write(final, "file"):
+            os.replace(tmp_path, final)
     finally:
         if tmp_path.exists():
             tmp_path.unlink()
@@ -50,12 +54,14 @@ def atomic_dir(path: str | os.PathLike[str]) -> Iterator[Path]:
     ``path`` changes.
     """
     final = Path(path)
-    final.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{final.name}.", suffix=".part", dir=final.parent))
+    with _cannot_write(final, "folder"):
+        final.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{final.name}.", suffix=".part", dir=final.parent))
     os.chmod(tmp, 0o777 & ~_umask())
     try:
         yield tmp
-        final.mkdir(parents=True, exist_ok=True)
+        with _cannot_write(final, "folder"):
+            final.mkdir(parents=True, exist_ok=True)
         for item in tmp.iterdir():
             target = final / item.name
             if target.is_dir() and not target.is_symlink():
@@ -63,6 +69,50 @@ def atomic_dir(path: str | os.PathLike[str]) -> Iterator[Path]:
             os.replace(item, target)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def _cannot_write(final: Path, kind: str) -> Iterator[None]:
+    """An :class:`OSError` making or renaming an output as an :class:`InputError` naming it (exit 2, one line):
+    the place asked for cannot hold it (a file where a folder is needed or the reverse, no permission)."""
+    try:
+        yield
+    except OSError as exc:
+        raise InputError(f"cannot write the {kind} here: {exc.strerror or exc}", file=str(final),
+                         expected=f"a {kind} name in a writable folder") from None
+
+
+def check_output(name: str | os.PathLike[str] | None, *, option: str, what: str, folder: bool = False,
+                 inputs: Sequence[str | os.PathLike[str] | None] = ()) -> None:
+    """:class:`InputError` before any work when the output ``name`` of ``option`` cannot be written there.
+
+    ``what`` says what it holds (``"the capture file (CSV)"``). Refused: a folder where a file is asked for
+    (or a file where ``folder`` asks for a folder); a path under an existing file (``part.nc/out.csv``); a
+    folder without write permission; a file that is one of the command's ``inputs`` (``vcnc interpolate
+    part.nc -o part.nc`` would replace the program by its setpoints). Missing folders are made later, when the
+    output is written (:func:`atomic_path`). Without this a long run would reach its end and fail on the rename.
+    """
+    if not name:
+        return
+    path = Path(name)
+    if folder and path.exists() and not path.is_dir():
+        raise InputError(f"{option} {name}: a file of that name exists; expected a folder for {what} "
+                         "(made if absent)")
+    if not folder and path.is_dir():
+        raise InputError(f"{option} {name}: a folder of that name exists; expected a file name for {what}")
+    parent = path.absolute().parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise InputError(f"{option} {name}: {parent} is a file, not a folder; expected a path for {what} "
+                         "in a folder")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise InputError(f"{option} {name}: the folder {parent} is not writable; expected a writable place "
+                         f"for {what}")
+    for source in inputs:
+        if source and not folder and path.is_file() and Path(source).is_file() and path.samefile(source):
+            raise InputError(f"{option} {name}: it is the input {source} itself, which {what} would replace; "
+                             "expected another file name")
 
 
 def _umask() -> int:

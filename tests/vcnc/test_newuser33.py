@@ -1,0 +1,86 @@
+"""A new user's whole chain with their own files (session 33): outputs that cannot be written where asked,
+machine files with the usual mistakes, wrong files given to the commands."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from vcnc.cli import main
+
+PROGRAM = "G21 G90 G94\nG0 X0 Y0\nG1 X5 Y0 F600\nG1 X5 Y5\nM2\n"
+
+
+def _run(argv: list[str], capsys) -> tuple[int, str]:
+    code = main(argv)
+    err = capsys.readouterr().err.strip()
+    return code, err
+
+
+@pytest.fixture
+def work(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    Path("part.nc").write_text(PROGRAM)
+    Path("note.txt").write_text("a file, not a folder\n")
+    Path("out").mkdir()
+    return tmp_path
+
+
+def _nothing_new(folder: Path, before: set[str]) -> None:
+    assert {p.name for p in folder.iterdir()} == before  # no partial or temporary file left
+
+
+def test_an_output_under_a_file_is_refused_before_any_work_naming_it(work, capsys):
+    before = {p.name for p in work.iterdir()}
+    code, err = _run(["interpolate", "part.nc", "-o", "note.txt/sp.csv"], capsys)
+    assert code == 2
+    assert err.startswith("error: -o note.txt/sp.csv: ") and "note.txt is a file, not a folder" in err
+    assert "\n" not in err and "Traceback" not in err
+    _nothing_new(work, before)
+
+
+@pytest.mark.parametrize("argv", [
+    ["interpolate", "part.nc", "-o", "out"],
+    ["toolpath", "circle", "-o", "out"],
+    ["simulate", "part.nc", "--machine", "fadal-pid", "-o", "out"],
+])
+def test_an_output_file_named_by_an_existing_folder_is_exit_2(work, capsys, argv):
+    code, err = _run(argv, capsys)
+    assert code == 2
+    assert err.startswith("error: -o out: a folder of that name exists; expected a file name for ")
+    assert list(Path("out").iterdir()) == []
+
+
+def test_a_report_folder_named_by_a_file_is_exit_2_for_compare(work, capsys):
+    code, err = _run(["compare", "--truth", "fadal-pid", "--model", "none.json", "--report", "note.txt"], capsys)
+    assert code == 2
+    assert err == ("error: --report note.txt: a file of that name exists; expected a folder for the report "
+                   "(made if absent)")
+
+
+def test_the_program_itself_as_output_is_refused_and_kept(work, capsys):
+    code, err = _run(["interpolate", "part.nc", "-o", "part.nc"], capsys)
+    assert code == 2
+    assert err == ("error: -o part.nc: it is the input part.nc itself, which the setpoints (CSV) would replace; "
+                   "expected another file name")
+    assert Path("part.nc").read_text() == PROGRAM
+
+
+def test_a_missing_output_folder_is_made(work, capsys):
+    code, _ = _run(["interpolate", "part.nc", "-o", "new/deeper/sp.csv"], capsys)
+    assert code == 0
+    rows = Path("new/deeper/sp.csv").read_text().splitlines()
+    assert rows[0].startswith("t,x_ref,")
+    assert [float(v) for v in rows[-1].split(",")[:2]][1] == pytest.approx(5.0)
+
+
+def test_atomic_path_turns_a_folder_in_the_way_into_an_input_error(work):
+    from vcnc.core.errors import InputError
+    from vcnc.core.io import atomic_path
+
+    with pytest.raises(InputError, match=r"out: cannot write the file here: Is a directory"):
+        with atomic_path("out") as tmp:
+            tmp.write_text("x")
+    assert list(Path("out").iterdir()) == []
+    assert not [p for p in work.iterdir() if p.name.endswith(".part")]
