@@ -133,9 +133,21 @@ def check_program_axes(program: Program, machine: Machine, *, option: str = "--m
             f"{', '.join(a.upper() for a in machine.axes)})",
             file=program.source,
             line=b.line,
-            expected=f"a machine with axis {names}: {_add_axis_hint(machine, lacking, option)}write `vcnc machines "
-            f"--show {machine.name}` to a TOML file and add an [axes.{missing[0]}] section",
+            expected=f"a machine with axis {names}: {_add_axis_hint(machine, lacking, option)}"
+            f"{_axis_section_hint(machine, missing[0])}",
         )
+
+
+def _axis_section_hint(machine: Machine, axis: str) -> str:
+    """Where the ``[axes.AXIS]`` section goes: the machine's own file when it came from one (``vcnc machines
+    --show`` knows only built-in names), else a TOML file written from the built-in machine."""
+    from vcnc.core.axes import ROTARY_NAMES
+
+    unit = " in degrees (limits in deg/s, deg/s^2, deg/s^3)" if axis in ROTARY_NAMES else ""
+    source = machine.source or ""
+    if source and not source.startswith("<"):
+        return f"add an [axes.{axis}] section{unit} to {source}"
+    return f"write `vcnc machines --show {machine.name}` to a TOML file and add an [axes.{axis}] section{unit}"
 
 
 def _add_axis_hint(machine: Machine, lacking: set[str], option: str) -> str:

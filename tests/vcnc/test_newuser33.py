@@ -84,3 +84,27 @@ def test_atomic_path_turns_a_folder_in_the_way_into_an_input_error(work):
             tmp.write_text("x")
     assert list(Path("out").iterdir()) == []
     assert not [p for p in work.iterdir() if p.name.endswith(".part")]
+
+
+def _machine_without(text: str, axis: str) -> str:
+    """The TOML ``text`` without the tables of ``axis``."""
+    out, on = [], False
+    for line in text.splitlines(keepends=True):
+        if line.startswith("[axes."):
+            on = line.startswith(f"[axes.{axis}]") or line.startswith(f"[axes.{axis}.")
+        if not on:
+            out.append(line)
+    return "".join(out)
+
+
+def test_a_machine_file_lacking_an_axis_the_program_moves_names_that_file(work, capsys):
+    from vcnc.engine.machine import builtin_machine_text
+
+    Path("mill.toml").write_text(_machine_without(builtin_machine_text("fadal-pid"), "y").replace(
+        'name = "fadal-pid"', 'name = "mill"'))
+    code, err = _run(["simulate", "part.nc", "--machine", "mill.toml", "-o", "c.csv"], capsys)
+    assert code == 2
+    # `vcnc machines --show mill` would fail: the way forward is the user's own file
+    assert err == ("error: part.nc:4: the program moves axis Y, which machine 'mill' does not have (its axes: X); "
+                   "expected a machine with axis Y: add an [axes.y] section to mill.toml")
+    assert not Path("c.csv").exists()

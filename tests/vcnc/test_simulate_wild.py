@@ -50,7 +50,8 @@ def test_a_rotary_move_on_a_machine_without_it_names_line_axis_and_how_to_add_it
     # the reader's error (line, column, the word) and the way forward of vcnc.facade.check_program_axes
     assert err.startswith(f"error: {prog}:4:4: axis word 'A' is not supported: this machine has no rotary axis A")
     assert err.endswith("(got 'A90'); expected axis words X, Y, Z, or a machine with axis A: write `vcnc machines "
-                        "--show fadal-pid` to a TOML file and add an [axes.a] section\n")
+                        "--show fadal-pid` to a TOML file and add an [axes.a] section in degrees (limits in deg/s, "
+                        "deg/s^2, deg/s^3)\n")
     assert not out.exists()
 
 
@@ -60,8 +61,9 @@ def test_a_move_of_an_axis_the_machine_file_lacks_is_named_with_the_file_machine
                  "-o", str(tmp_path / "c.csv")]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"error: {prog}:4:4: axis word 'B' is not supported: this machine has no rotary axis B")
-    assert err.endswith("or a machine with axis B: write `vcnc machines --show xya` to a TOML file and add an "
-                        "[axes.b] section\n") and "--machine" not in err
+    # the section goes into the machine's own file (`vcnc machines --show xya` knows built-in names only)
+    assert err.endswith("or a machine with axis B: add an [axes.b] section in degrees (limits in deg/s, deg/s^2, "
+                        f"deg/s^3) to {tmp_path / 'xya.toml'}\n") and "--machine" not in err
 
 
 def test_another_error_of_a_program_naming_a_missing_axis_stays_the_readers(tmp_path, capsys):
