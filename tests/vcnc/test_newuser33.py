@@ -108,3 +108,27 @@ def test_a_machine_file_lacking_an_axis_the_program_moves_names_that_file(work, 
     assert err == ("error: part.nc:4: the program moves axis Y, which machine 'mill' does not have (its axes: X); "
                    "expected a machine with axis Y: add an [axes.y] section to mill.toml")
     assert not Path("c.csv").exists()
+
+
+@pytest.mark.parametrize(("name", "text", "kind"), [
+    ("empty.nc", "", "an empty file"),
+    ("blank.nc", "\n  \n", "an empty file"),
+    ("capture.csv", "# machine: fadal-pid\nt,x_ref,x\n0,0,0\n", "a capture (CSV)"),
+    ("x.json", '{"format": "vcnc.axis-model/1"}\n', "a JSON file (a model file?)"),
+    ("mill.toml", "# my mill\nname = \"m\"\nsample_time = 0.001\n[axes.x]\n", "a machine definition (TOML)"),
+])
+def test_a_file_that_is_no_program_is_named_for_what_it_is(work, capsys, name, text, kind):
+    Path(name).write_text(text)
+    for argv in (["interpolate", name, "-o", "sp.csv"], ["simulate", name, "--machine", "fadal-pid", "-o", "c.csv"]):
+        code, err = _run(argv, capsys)
+        assert code == 2
+        assert err == (f"error: {name}: this is {kind}, not a part program; expected a part program (ISO G-code or "
+                       "Heidenhain conversational)")
+    assert not Path("sp.csv").exists() and not Path("c.csv").exists()
+
+
+def test_a_program_beginning_with_a_parameter_is_still_read(work, capsys):
+    Path("p.ngc").write_text("#1 = 4\nG21 G90\nG1 X#1 F600\nM2\n")
+    code, _ = _run(["interpolate", "p.ngc", "-o", "sp.csv"], capsys)
+    assert code == 0
+    assert float(Path("sp.csv").read_text().splitlines()[-1].split(",")[1]) == pytest.approx(4.0)

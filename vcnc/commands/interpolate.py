@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import re
 import sys
 
 HELP = "interpolate a program (ISO or Heidenhain) into setpoints sampled every Ts (CSV)"
@@ -93,6 +94,37 @@ def program_context(args: argparse.Namespace, machine=None):
 HINT_MAX_BYTES = 4_000_000
 
 
+#: How the files vcnc itself reads and writes begin, for :func:`other_file_kind`: (start of the text, what it is).
+_OTHER_FILES = (
+    (b"PK\x03\x04", "a zip archive (an FMU?)"),
+    (b"{", "a JSON file (a model file?)"),
+    (b"# machine:", "a capture (CSV)"),
+    (b"t,", "a capture or setpoints (CSV)"),
+)
+#: A line of a machine definition (its first lines may be comments, as `vcnc machines --show` writes them; no
+#: program line starts with these).
+_MACHINE_LINE = re.compile(rb"^(sample_time\s*=|\[axes\.[a-z]\])", re.MULTILINE)
+
+
+def other_file_kind(path: str) -> str | None:
+    """What the file ``path`` is when it is plainly no part program: empty (nothing but white space), or one of
+    the files vcnc writes and reads elsewhere (a capture or setpoints CSV, a model JSON, a machine TOML, an
+    FMU), told by how it begins; None otherwise (a missing file is the reader's error). A program starts with
+    a block, a comment, ``%`` or ``BEGIN PGM``, never with these, so nothing a reader would take is refused."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(4096)
+    except OSError:
+        return None
+    if not head.strip():
+        return "an empty file"
+    start = head.lstrip(b"\xef\xbb\xbf \t\r\n")
+    for prefix, kind in _OTHER_FILES:
+        if start.startswith(prefix):
+            return kind
+    return "a machine definition (TOML)" if _MACHINE_LINE.search(head) else None
+
+
 def read_program(args: argparse.Namespace, machine=None):
     """The part program ``args.program`` read in :func:`program_context`.
 
@@ -108,6 +140,10 @@ def read_program(args: argparse.Namespace, machine=None):
     from vcnc.core.errors import GCodeError
 
     context = program_context(args, machine)
+    kind = other_file_kind(args.program)
+    if kind is not None:
+        raise GCodeError(f"this is {kind}, not a part program", file=args.program,
+                         expected="a part program (ISO G-code or Heidenhain conversational)")
     try:
         return load_program(args.program, context=context)
     except GCodeError as exc:
