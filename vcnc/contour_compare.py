@@ -495,15 +495,34 @@ def _models_per_axis(models: Any, axes: tuple[str, ...]) -> dict[str, Any]:
             )
         if unknown:
             log.info("models for axes %s are not used: the toolpath moves %s", unknown, axes)
-        return {a: _load_one(models[a], f"model of axis {a}") for a in axes}
+        per_axis = {a: _load_one(models[a], f"model of axis {a}") for a in axes}
+        for a, model in per_axis.items():
+            _check_unit(getattr(model, "axis", None), [a], f"--model {a}={models[a]}"
+                        if isinstance(models[a], (str, os.PathLike)) else f"the model of axis {a}")
+        return per_axis
     one = _load_one(models, "model")
     own = getattr(one, "axis", None)
     borrowed = [a for a in axes if own is not None and a != own]
+    _check_unit(own, borrowed, f"--model {models}" if isinstance(models, (str, os.PathLike)) else "the model")
     if borrowed:
         log.warning("the model of axis %s stands in for axis %s, which has no model of its own: the prediction "
                     "assumes the axes are alike (give --model %s=FILE for each axis)", own, ", ".join(borrowed),
                     "/".join(borrowed))
     return {a: one for a in axes}
+
+
+def _check_unit(own: str | None, axes: list[str], given: str) -> None:
+    """:class:`InputError` when a model identified on axis ``own`` is to predict an axis of ``axes`` in another unit
+    (a rotary axis' model, in deg, for a linear axis in mm, or the reverse): its friction and offsets are in its
+    own axis' unit, and the contour error would mix the two (our reading: no control couples them so)."""
+    if own is None:
+        return
+    other = [a for a in axes if axis_unit(a) != axis_unit(own)]
+    if other:
+        raise InputError(
+            f"{given}: a model identified on axis {own} [{axis_unit(own)}] cannot predict axis "
+            f"{', '.join(other)} [{axis_unit(other[0])}]",
+            expected=f"a model of each such axis: {' '.join(f'--model {a}=FILE' for a in other)}")
 
 
 def _other_axis_notes(models: Any, per_axis: dict[str, Any]) -> list[str]:

@@ -132,3 +132,20 @@ def test_a_program_beginning_with_a_parameter_is_still_read(work, capsys):
     code, _ = _run(["interpolate", "p.ngc", "-o", "sp.csv"], capsys)
     assert code == 0
     assert float(Path("sp.csv").read_text().splitlines()[-1].split(",")[1]) == pytest.approx(4.0)
+
+
+def test_a_rotary_axis_model_cannot_stand_in_for_linear_axes(work, capsys):
+    from identification import ReducedAxisModel
+    from vcnc.engine.machine import load_machine
+
+    m = load_machine("fadal-pid")
+    ReducedAxisModel(parameters=m.axis("x").reduced_parameters(), sample_time=m.sample_time, axis="a").to_json("a.json")
+    code, err = _run(["compare", "--truth", "fadal-pid", "--model", "a.json", "--toolpath", "part.nc"], capsys)
+    assert code == 2
+    # its friction is in deg/s^2: the contour error in mm would mix units
+    assert err == ("error: --model a.json: a model identified on axis a [deg] cannot predict axis x, y [mm]; expected "
+                   "a model of each such axis: --model x=FILE --model y=FILE")
+    code, err = _run(["compare", "--truth", "fadal-pid", "--model", "x=a.json", "--model", "y=a.json",
+                      "--toolpath", "circle"], capsys)
+    assert code == 2
+    assert err.startswith("error: --model x=a.json: a model identified on axis a [deg] cannot predict axis x [mm]")
