@@ -149,3 +149,43 @@ def test_a_rotary_axis_model_cannot_stand_in_for_linear_axes(work, capsys):
                       "--toolpath", "circle"], capsys)
     assert code == 2
     assert err.startswith("error: --model x=a.json: a model identified on axis a [deg] cannot predict axis x [mm]")
+
+
+def _capture_text(rows: list[str]) -> str:
+    return "# machine: my-mill\nt,x_ref,x\n" + "".join(r + "\n" for r in rows)
+
+
+@pytest.mark.parametrize(("bad", "message"), [
+    ("0.002,0.2,nan", "c.csv:5:3: column 'x' is not finite (got 'nan')"),
+    ("0.002,0.2", "c.csv:5: 2 fields, expected 3 (as in the header)"),
+    ("0.002,0.2,1_0", None),  # Python's float reads 1_0 as 10: the row-by-row reading decides, as before
+    ("0.002,0.2,0.1 # note", "c.csv:5:3: column 'x' is not a number (got '0.1 # note')"),
+])
+def test_a_capture_csv_the_fast_reader_doubts_is_read_row_by_row_with_its_line(work, bad, message):
+    from vcnc.core.capture import read_capture_csv
+    from vcnc.core.errors import CaptureError
+
+    rows = ["0,0,0", "0.001,0.1,0.05", bad, "0.003,0.3,0.2"]
+    Path("c.csv").write_text(_capture_text(rows))
+    if message is None:
+        assert read_capture_csv("c.csv").measured[2, 0] == 10.0
+        return
+    with pytest.raises(CaptureError) as exc:
+        read_capture_csv("c.csv")
+    assert str(exc.value) == message
+
+
+def test_a_capture_csv_as_vcnc_writes_it_reads_the_same_numbers_with_its_lines(work):
+    from vcnc.core.capture import read_capture_csv
+    from vcnc.core.errors import CaptureError
+
+    rows = [f"{k * 0.001:.12g},{k * 0.1:.12g},{k * 0.1 - 0.003:.12g}" for k in range(50)]
+    Path("c.csv").write_text(_capture_text(rows))
+    cap = read_capture_csv("c.csv")
+    assert cap.t.size == 50 and cap.measured[49, 0] == pytest.approx(4.897)
+    assert cap.reference[:, 0].tolist() == [float(f"{k * 0.1:.12g}") for k in range(50)]
+    # a sampling error still names the file line of its row (header on line 2, rows from line 3)
+    rows[20] = "0.0195,2,1.997"
+    Path("c.csv").write_text(_capture_text(rows))
+    with pytest.raises(CaptureError, match=r"^c\.csv:23:"):
+        read_capture_csv("c.csv")

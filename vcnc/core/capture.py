@@ -267,7 +267,24 @@ def _header_axes(names: list[str], src: str, hline: int) -> list[str]:
 
 def _data_rows(lines: list[str], header_idx: int, names: list[str], src: str) -> tuple[np.ndarray, list[int]]:
     """The numeric rows after the header, and the file line of each (finite numbers, as many as
-    the header's columns, at least two rows)."""
+    the header's columns, at least two rows).
+
+    A file as vcnc writes it (a number in every field, no blank or comment line among the rows) is read by
+    numpy's compiled reader in one call (a 1.24-million-row capture of three axes: 39 s and 1.8 GB before);
+    anything else, or any doubt, goes through the row-by-row reading, which names the line and column at fault."""
+    body = lines[header_idx + 1:]
+    if len(body) >= 2:
+        try:
+            data = np.loadtxt(body, delimiter=",", comments=None, dtype=float, ndmin=2)
+        except ValueError:
+            data = None
+        if (data is not None and data.shape == (len(body), len(names)) and np.isfinite(data).all()):
+            return data, list(range(header_idx + 2, header_idx + 2 + len(body)))
+    return _data_rows_checked(lines, header_idx, names, src)
+
+
+def _data_rows_checked(lines: list[str], header_idx: int, names: list[str], src: str) -> tuple[np.ndarray, list[int]]:
+    """:func:`_data_rows` row by row, each field read by ``float`` and checked (the error names its line and column)."""
     rows: list[list[float]] = []
     row_lines: list[int] = []
     for i in range(header_idx + 1, len(lines)):
