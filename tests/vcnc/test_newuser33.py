@@ -189,3 +189,20 @@ def test_a_capture_csv_as_vcnc_writes_it_reads_the_same_numbers_with_its_lines(w
     Path("c.csv").write_text(_capture_text(rows))
     with pytest.raises(CaptureError, match=r"^c\.csv:23:"):
         read_capture_csv("c.csv")
+
+
+def test_a_servo_period_too_coarse_for_the_gains_is_named_after_a_saturated_run(work, capsys):
+    from vcnc.engine.machine import builtin_machine_text, load_machine
+
+    text = builtin_machine_text("fadal-pid")
+    Path("slow.toml").write_text(text.replace("sample_time = 0.001", "sample_time = 0.01"))
+    assert load_machine("fadal-pid").unstable_axes() == {}
+    unstable = load_machine("slow.toml").unstable_axes()
+    assert set(unstable) == {"x", "y"} and 1.8 < unstable["x"] < 2.1  # |z| of the sampled PID loop
+    Path("sq.nc").write_text("G21 G90 G94\nG0 X0 Y0\nG1 X20 F600\nG1 Y20\nM2\n")
+    code = main(["simulate", "sq.nc", "--machine", "slow.toml", "-o", "c.csv"])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert ("sq.nc: warning: at the machine's sample_time 0.01 s the closed loop of axis x, y is unstable (largest "
+            "pole x |z| = ") in out
+    assert "check 'sample_time' [s] in slow.toml" in out

@@ -65,6 +65,22 @@ def check_outputs(args: argparse.Namespace) -> None:
     check_output(args.report, option="--report", what="the report", folder=True)
 
 
+def sampling_note(summary: dict, machine) -> str | None:
+    """A warning naming the machine's ``sample_time`` when the run saturated (``summary["saturated"]``) and an axis'
+    sampled loop is unstable at it (:meth:`vcnc.engine.machine.Machine.unstable_axes`): the saturation note
+    alone points at the acceleration limits, while the cause is a servo period too coarse for the gains (a
+    unit slip such as 0.01 s for 1 ms). Checked only after a saturated run: the loops cost seconds to build."""
+    if not summary.get("saturated"):
+        return None
+    unstable = machine.unstable_axes()
+    if not unstable:
+        return None
+    poles = ", ".join(f"{a} |z| = {r:.3g}" for a, r in unstable.items())
+    return (f"warning: at the machine's sample_time {machine.sample_time:g} s the closed loop of axis "
+            f"{', '.join(unstable)} is unstable (largest pole {poles}): the controller's gains need a shorter "
+            f"servo period; check 'sample_time' [s] in {machine.source or machine.name}")
+
+
 def read_for_machine(args: argparse.Namespace, machine, *, option: str = "--machine"):
     """The program ``args.program`` read for ``machine`` (:func:`vcnc.commands.interpolate.read_program`).
 
@@ -130,7 +146,7 @@ def _run(args: argparse.Namespace) -> int:
         # the temporary names are renamed or removed)
         writing = stack.enter_context(ThreadPoolExecutor(max_workers=1)).submit(capture.to_csv, cap_tmp)
         summary = summarize(capture, program)
-        for line in (saturation_note(summary), feed_contour_line(summary)):
+        for line in (saturation_note(summary), sampling_note(summary, machine), feed_contour_line(summary)):
             if line:
                 print(f"{args.program}: {line}")
         report = build_report(capture, summary) if args.report else None

@@ -279,6 +279,29 @@ class Machine:
         return f"Machine(name={self.name!r}, axes={self.axes}, sample_time={self.sample_time})"
 
     # ------------------------------------------------------------------ variants
+    def unstable_axes(self) -> dict[str, float]:
+        """The axes whose sampled closed loop is unstable at this machine's ``sample_time``: axis -> the largest
+        pole magnitude |z| (>= 1) of its loop (controller law, ZOH plant, computation delay:
+        :func:`controllers.discrete_closed_loop`). Laws tuned in continuous time (PID, P-PI, SMC) lose stability
+        when sampled too coarsely (fadal-pid's gains at 5 ms: |z| = 1.16), which a run shows only as a saturated
+        actuator and errors beyond the travel. FMU axes and loops that cannot be built here are left out."""
+        from controllers import discrete_closed_loop
+
+        out: dict[str, float] = {}
+        for a in self.axes:
+            ax = self.axis(a)
+            if not isinstance(ax, AxisDefinition):
+                continue
+            try:
+                delay = 0 if ax.delay is None else ax.delay.samples
+                _, g_dist = discrete_closed_loop(ax.controller, ax.drive, self.sample_time, delay=delay)
+            except (MachineError, ValueError, ArithmeticError):
+                continue
+            radius = float(np.max(np.abs(g_dist.poles()))) if len(g_dist.poles()) else 0.0
+            if radius >= 1.0:
+                out[a] = radius
+        return out
+
     def with_axis(self, name: str, definition: AxisDefinition | ExternalAxis, *, suffix: str = "") -> Machine:
         """A copy with axis ``name`` replaced (or added)."""
         axes = dict(self._axes)
