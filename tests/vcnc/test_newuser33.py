@@ -206,3 +206,18 @@ def test_a_servo_period_too_coarse_for_the_gains_is_named_after_a_saturated_run(
     assert ("sq.nc: warning: at the machine's sample_time 0.01 s the closed loop of axis x, y is unstable (largest "
             "pole x |z| = ") in out
     assert "check 'sample_time' [s] in slow.toml" in out
+
+
+def test_a_machine_file_is_checked_for_its_servo_period_on_every_run(work, capsys):
+    from vcnc.engine.machine import builtin_machine_text
+
+    text = builtin_machine_text("fadal-pid")
+    Path("mine.toml").write_text(text)
+    Path("coarse.toml").write_text(text.replace("sample_time = 0.001", "sample_time = 0.004"))
+    assert main(["simulate", "part.nc", "--machine", "mine.toml", "-o", "a.csv"]) == 0
+    assert "sample_time" not in capsys.readouterr().out  # stable at 1 ms: nothing said
+    assert main(["simulate", "part.nc", "--machine", "coarse.toml", "-o", "b.csv"]) == 0
+    out = capsys.readouterr().out
+    # fadal-pid's X loop at 4 ms: |z| = 1.015, just outside the unit circle; Y (heavier) stays inside
+    assert ("at the machine's sample_time 0.004 s the closed loop of axis x is unstable (largest pole x |z| = 1.01)"
+            in out)
