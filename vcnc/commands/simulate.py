@@ -71,7 +71,9 @@ def sampling_note(summary: dict, machine) -> str | None:
     such as 0.01 s for 1 ms, or fadal-pid's gains at 4 ms, |z| = 1.015, whose run of corpus 0077 ends with
     plausible errors of 130 um). Checked for a machine from a file, where a user sets
     the period, and after a saturated run (``summary["saturated"]``), whose own note points at the acceleration
-    limits instead; the built-in machines are stable at theirs (the check imports python-control, 2 s)."""
+    limits instead; the built-in machines are stable at theirs (the check imports python-control, 2 s). A
+    computation delay counts (fadal-ppi with a 2-sample delay: |z| = 1.008, the limit cycle that
+    ``benchmarks/ident_fuzz.unstable_delay`` skips)."""
     from_file = bool(machine.source) and not machine.source.startswith("<")
     if not (from_file or summary.get("saturated")):
         return None
@@ -81,7 +83,7 @@ def sampling_note(summary: dict, machine) -> str | None:
     poles = ", ".join(f"{a} |z| = {r:.3g}" for a, r in unstable.items())
     return (f"warning: at the machine's sample_time {machine.sample_time:g} s the closed loop of axis "
             f"{', '.join(unstable)} is unstable (largest pole {poles}): the controller's gains need a shorter "
-            f"servo period; check 'sample_time' [s] in {machine.source or machine.name}")
+            f"servo period (or less [axes.*.delay]); check 'sample_time' [s] in {machine.source or machine.name}")
 
 
 def read_for_machine(args: argparse.Namespace, machine, *, option: str = "--machine"):
