@@ -128,3 +128,22 @@ def test_rough_out_without_a_tool_radius_names_the_tool_and_the_tool_table():
     with pytest.raises(GCodeError, match=r"t\.h:\d+:\d+: cycle 22 needs a tool radius > 0 .*tool 20 has none.*"
                                          r"\[program\.tools\.N\] radius"):
         parse_heidenhain(text, source="t.h", context=CTX)
+
+
+def test_m114_is_an_error_naming_it():
+    # a Python 5-axis generator's form (M114 before the L X Y Z B C lines, M115 after): iTNC 530 user's manual,
+    # "Automatic compensation of machine geometry when working with tilted axes: M114"; ignored, every point
+    # after it would be off by the compensation the TNC adds
+    text = ("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S9000 F1200\n2 L X+0 Y-30 R0 FMAX\n3 M114\n"
+            "4 L X+10 Y-28 Z-2 R0\n5 M115\n6 END PGM T MM\n")
+    with pytest.raises(GCodeError, match=r"t\.h:4:3: M114 \(automatic compensation .*tilted axes\) is not modelled"
+                                         r".*expected M128 or FUNCTION TCPM"):
+        parse_heidenhain(text, source="t.h", context=CTX)
+
+
+def test_sysread_of_the_traverse_range_says_the_machine_context_holds_no_travel():
+    # the same generator starts with FN 18: SYSREAD Q30 = ID230 NR3 IDX3 and L ZQ30 R0 FMAX M91
+    text = "0 BEGIN PGM T MM\n1 FN 18: SYSREAD Q30 = ID230 NR3 IDX3\n2 L ZQ30 R0 FMAX M91\n3 END PGM T MM\n"
+    with pytest.raises(GCodeError, match=r"t\.h:2:\d+: FN 18 SYSREAD ID230 NR3 reads the machine's traverse range "
+                                         r"\(its software limit switches\), which the machine context does not hold"):
+        parse_heidenhain(text, source="t.h", context=CTX)
