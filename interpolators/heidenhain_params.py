@@ -268,8 +268,10 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         op, test = FN_CONDITIONS[n]
         cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
         if cm is None:
+            other = [f"{word} is FN {k}" for k, (word, _) in FN_CONDITIONS.items()
+                     if k != n and re.search(rf"\s{word}\s", rest, re.I)]
             where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
-                       expected=f"FN {n}: IF a {op} b GOTO LBL n")
+                       expected=f"FN {n}: IF a {op} b GOTO LBL n" + (f" ({', '.join(other)})" if other else ""))
         a = params.evaluate(cm.group(1), where, column=col + cm.start(1))
         b = params.evaluate(cm.group(2), where, column=col + cm.start(2))
         lm = LABEL_RE.match(cm.group(3))

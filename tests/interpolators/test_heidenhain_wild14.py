@@ -147,3 +147,12 @@ def test_sysread_of_the_traverse_range_says_the_machine_context_holds_no_travel(
     with pytest.raises(GCodeError, match=r"t\.h:2:\d+: FN 18 SYSREAD ID230 NR3 reads the machine's traverse range "
                                          r"\(its software limit switches\), which the machine context does not hold"):
         parse_heidenhain(text, source="t.h", context=CTX)
+
+
+def test_fn_9_with_another_comparison_names_the_fn_of_that_comparison():
+    # a programming guide's "FN 9: IF +Q10 GT +114 GOTO LBL 11": FN 9 jumps on EQU only, GT is FN 11 (TNC 640
+    # user's manual, "If-then decisions with Q parameters": FN 9 EQU, FN 10 NE, FN 11 GT, FN 12 LT)
+    text = "0 BEGIN PGM T MM\n1 Q10 = +120\n2 FN 9: IF +Q10 GT +114 GOTO LBL 11\n3 LBL 11\n4 END PGM T MM\n"
+    with pytest.raises(GCodeError, match=r"t\.h:3:\d+: malformed FN 9 condition .*expected FN 9: IF a EQU b GOTO "
+                                         r"LBL n \(GT is FN 11\)"):
+        parse_heidenhain(text, source="t.h", context=CTX)
