@@ -1346,7 +1346,7 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
                 open_form = _OPEN_FORM_RE.match(rest, pos)
                 what = (f"PATTERN DEF {open_form.group(1).upper()}{open_form.group(2)} without its closing ')'"
                         if open_form else f"pattern {tok!r} is not supported")
-                where.fail(what, column=column0 + pos, text=tok,
+                where.fail(what, column=column0 + pos + len(rest[pos:]) - len(rest[pos:].lstrip()), text=tok,
                            expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...) or "
                                     "PITCHCIRC1 (...)")
             kind = f.group(1).upper()

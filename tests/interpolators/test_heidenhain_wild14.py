@@ -156,3 +156,19 @@ def test_fn_9_with_another_comparison_names_the_fn_of_that_comparison():
     with pytest.raises(GCodeError, match=r"t\.h:3:\d+: malformed FN 9 condition .*expected FN 9: IF a EQU b GOTO "
                                          r"LBL n \(GT is FN 11\)"):
         parse_heidenhain(text, source="t.h", context=CTX)
+
+
+@pytest.mark.parametrize(("block", "where"), [
+    # a CAM cycle definition over lines: the value on its fourth line, 'Q206=ZZ' at column 8 there
+    ("1 CYCL DEF 200 DRILLING ~\n  Q200=2 ;SET-UP ~\n  Q201=-5 ;DEPTH ~\n  Q206=ZZ ;FEED\n",
+     r"t\.h:5:8: malformed number"),
+    # without '~', as a TNC simulator's test program writes it
+    ("1 CYCL DEF 200 DRILLING\n  Q200=2\n  Q201=-5\n  Q206=ZZ\n", r"t\.h:5:8: malformed number"),
+    # a PATTERN DEF's form on its second line
+    ("1 PATTERN DEF ~\n  PAT1 (X+25 Y+33 DX+8 Z+0)\n", r"t\.h:3:3: pattern 'PAT1' is not supported"),
+    ("1 PATTERN DEF ~\n  ROW1 (X+10 Y+20 D+15 NUM5 Z+0) ~\n  ROW2 (X+10 Y+60 D+15 NUM100000 Z+0)\n",
+     r"t\.h:4:9: PATTERN DEF ROW with NUM100000"),
+])
+def test_an_error_in_a_block_over_several_lines_names_the_line_and_column_of_the_word(block, where):
+    with pytest.raises(GCodeError, match=where):
+        parse_heidenhain("0 BEGIN PGM T MM\n" + block + "2 END PGM T MM\n", source="t.h", context=CTX)
