@@ -7,6 +7,7 @@ chords of random curves 1 um - 2 mm long, tangent arc chains, tiny arcs, zig-zag
 short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`: the same in TNC conversational
 with cycle 32 tolerances; :func:`rotary_cam_program`: coarse chords with A-C swinging and cornering under G94 and
 G93, tangent arc chains of alternating sense, an axis of A-C/U-W written on some blocks only along lines and arcs,
+long lines and small tangent arcs of either sense with one or two of A-C/U-W moving on every block,
 a third in G20), each run under the trapezoid and the S-curve with random but sane limits per axis
 (:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, 400x for rotary_cam, rapid
 rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
@@ -59,6 +60,8 @@ from vcnc.errors import GCodeError, ProgramTooLongError  # noqa: E402
 SOURCES = ("cam", "tnc_cam", "rotary_cam", "linuxcnc", "fanuc", "haas", "tnc")
 #: Largest number of samples a case may take (a longer one is skipped as ``too_long``).
 MAX_SAMPLES = 3_000_000
+#: rotary_cam seeds from this one run a quarter each at 0.25 ms and 4 ms (seeds below keep their sample times).
+ROTARY_EDGE_TS_SEED = 43000
 #: A point "on" a sample [mm] (exact stops, program start and end).
 EXACT = 1e-6
 #: Allowance beyond a tolerance [mm] for the rounding of the measurement.
@@ -322,6 +325,38 @@ def _staircase(g: _Cam) -> None:
             g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0], extra=word)
 
 
+def _rotary_tangent_chain(g: _Cam) -> None:
+    """Tangent chains of long lines (2 - 30 mm) and small arcs (radii 0.02 - 0.5 mm, some 2 - 10 mm) of either
+    sense, arc/arc pairs often of opposite sense, with one or two of A-C/U-W moving on every block at a rate per
+    mm that steps from block to block: line/arc and arc/arc junctions tangent in X/Y with the axes moving on both
+    sides, curvature steps beside them (the chains ``blend_corners`` and the one-sample junction rule handle)."""
+    r = g.r
+    axes = r.sample("ABCUVW", r.choice((1, 1, 2)))
+    values = {a: r.uniform(-30, 30) if a in "ABC" else r.uniform(-5, 5) for a in axes}
+    heading = r.uniform(0, 2 * math.pi)
+    g.extra = True
+    g.move(g.pos, feed=g.feed(), extra=_rotary_words(values))
+    ccw = r.random() < 0.5
+    for _ in range(r.randint(3, 14)):
+        arc = r.random() < 0.55
+        length = 10 ** r.uniform(math.log10(2), math.log10(30)) if not arc else 0.0
+        rad = 10 ** r.uniform(math.log10(0.02), math.log10(0.5)) if r.random() < 0.8 else r.uniform(2, 10)
+        sweep = r.uniform(0.1, 2.5) if arc else 0.0
+        travel = length or rad * sweep
+        for a in axes:
+            values[a] += travel * 10 ** r.uniform(-1.5, 1) * (1 if a in "ABC" else 0.1) * r.choice((1, 1, -1))
+        if arc:
+            side = 1 if ccw else -1
+            c = g.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * side
+            a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
+            g.arc(c, c + rad * np.array([math.cos(a0 + sweep * side), math.sin(a0 + sweep * side)]), ccw,
+                  extra=_rotary_words(values))
+            heading += sweep * side
+            ccw = not ccw if r.random() < 0.6 else ccw
+        else:
+            g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0], extra=_rotary_words(values))
+
+
 _ROTARY_SECTIONS = (_rotary_chords, _rotary_chords, lambda g: _rotary_chords(g, inverse_time=True),
                     _alternating_arcs, _extra_axes, _chords, _arc_chain)
 
@@ -337,13 +372,15 @@ def rotary_cam_program(seed: int) -> str:
     g.lines.append(f"{'G20' if g.unit != 1.0 else 'G21'} G17 G90 G40 G94")
     g.move([0, 0, 5], rapid=True)
     stairs = random.Random(f"rotary_cam:stairs:{seed}")
+    chains = random.Random(f"rotary_cam:chains:{seed}")
     for _ in range(r.randint(2, 5)):
         g.mode()
         r.choice(_ROTARY_SECTIONS)(g)
-        if stairs.random() < 0.5:  # drawn apart: the other sections of a seed stay as they were before
-            g.r, main = stairs, g.r
-            _staircase(g)
-            g.r = main
+        for extra_rng, section in ((stairs, _staircase), (chains, _rotary_tangent_chain)):
+            if extra_rng.random() < 0.5:  # drawn apart: the other sections of a seed stay as they were before
+                g.r, main = extra_rng, g.r
+                section(g)
+                g.r = main
         if r.random() < 0.2:
             g.move(g.pos + [0, 0, r.uniform(0.5, 5)], rapid=True)
     return "\n".join([*g.lines, "M2"]) + "\n"
@@ -632,6 +669,8 @@ def run_case(source: str, seed: int) -> list[tuple[str, str, float, list[str]]]:
     text, context = program_of(source, seed)
     rng = random.Random(f"limits:{source}:{seed}")
     Ts = 10 ** rng.uniform(math.log10(2.5e-4), math.log10(4e-3))
+    if source == "rotary_cam" and seed >= ROTARY_EDGE_TS_SEED:
+        Ts = random.Random(f"ts:{seed}").choice((Ts, Ts, 2.5e-4, 4e-3))  # the range's ends, as often as the rest
     try:
         program = parse_program(text, source=f"{source}-{seed}", context=context)
     except GCodeError as e:

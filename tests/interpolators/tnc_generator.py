@@ -254,6 +254,9 @@ class _Gen:
                       f"  Q257=+{r.choice([0, 2])} ;DEPTH FOR CHIP BRKNG ~", "  Q256=+0.2 ;DIST FOR CHIP BRKNG ~"]
         lines.append(f"  Q211=+{r.choice([0, 0.2])} ;DWELL TIME AT DEPTH")
         self.emit(*lines)
+        if r.random() < 0.3:
+            self.pattern_cycle()
+            return
         for _ in range(r.randint(1, 3)):
             call = r.random()
             x, y = _n(r.uniform(0, 100)), _n(r.uniform(0, 100))
@@ -267,6 +270,35 @@ class _Gen:
             else:
                 self.emit("PATTERN DEF ~", f"POS1 (X{x} Y{y} Z+0) ~", f"POS2 (IX+{r.choice([5, 12])} Y{y} Z+0)")
                 self.emit("CYCL CALL PAT FMAX")
+        self.known = False
+
+    def pattern_cycle(self) -> None:
+        """Cycle 220 (a pitch circle, Q365 = 0 straight or 1 on the circle, full or partial, either sense,
+        Q247 = 0 or a given step) or 221 (a grid turned by Q224), calling the machining cycle just defined."""
+        r = self.r
+        common = ["  Q200=+2 ;SET-UP CLEARANCE ~", f"  Q203={_n(r.choice([0, -1, 2]))} ;SURFACE COORDINATE ~",
+                  f"  Q204=+{r.choice([10, 50])} ;2ND SET-UP CLEARANCE ~",
+                  f"  Q301=+{r.choice([0, 1])} ;MOVE TO CLEARANCE"]
+        if r.random() < 0.7:
+            start = r.choice([0, 30, -45, 90, 200])
+            stop = start + r.choice([360, -360, 180, -90, 270, 45])
+            step = r.choice([0, 0, (stop - start) / 4])
+            lines = ["CYCL DEF 220 POLAR PATTERN ~", f"  Q216={_n(r.uniform(20, 80))} ;CENTER IN 1ST AXIS ~",
+                     f"  Q217={_n(r.uniform(20, 80))} ;CENTER IN 2ND AXIS ~",
+                     f"  Q244=+{r.choice([10, 40, 75.5])} ;PITCH CIRCLE DIAMETR ~",
+                     f"  Q245={_n(start)} ;STARTING ANGLE ~", f"  Q246={_n(stop)} ;STOPPING ANGLE ~",
+                     f"  Q247={_n(step)} ;STEPPING ANGLE ~", f"  Q241=+{r.choice([1, 2, 3, 5])} ;NR OF REPETITIONS ~"]
+            common[-1] += " ~"
+            common.append(f"  Q365=+{r.choice([0, 1])} ;TYPE OF TRAVERSE")
+        else:
+            lines = ["CYCL DEF 221 CARTESIAN PATTERN ~", f"  Q225={_n(r.uniform(0, 50))} ;STARTNG PNT 1ST AXIS ~",
+                     f"  Q226={_n(r.uniform(0, 50))} ;STARTNG PNT 2ND AXIS ~",
+                     f"  Q237=+{r.choice([5, 12.5])} ;SPACING IN 1ST AXIS ~",
+                     f"  Q238=+{r.choice([4, 10])} ;SPACING IN 2ND AXIS ~",
+                     f"  Q242=+{r.choice([1, 2, 3])} ;NUMBER OF COLUMNS ~",
+                     f"  Q243=+{r.choice([1, 2, 3])} ;NUMBER OF LINES ~",
+                     f"  Q224={_n(r.choice([0, 30, -15]))} ;ANGLE OF ROTATION ~"]
+        self.emit(*lines, *common)
         self.known = False
 
     def reset_transforms(self) -> None:
