@@ -1,0 +1,32 @@
+"""Readings settled by the wild20 set of public programs (LinuxCNC's tests/interp, Bantam Tools' firmware tests)."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+
+
+@pytest.mark.parametrize(("width", "end", "noted"), [(252, "\n", False), (253, "\n", True), (252, "\r\n", True),
+                                                     (253, "", False), (254, "", True)])
+def test_linuxcnc_line_length_limit_is_noted(width, end, noted):
+    # linuxcnc.h LINELEN 255; interp_read.cc read_text refuses a line whose fgets buffer is full, 254 bytes with its
+    # line end ("Command too long": rs274 refuses 253 characters + LF and 252 + CR LF, runs 252 + LF); vcnc reads
+    # it and notes it under the linuxcnc dialect only
+    line = "G0 X10 Y10 Z10 (" + "x" * (width - 17) + ")"
+    assert len(line) == width
+    text = "G21 G90\n" + line + end if end == "" else "G21 G90\n" + line + end + "M2\n"
+    for name in ("linuxcnc", "fanuc"):
+        prog = parse_program(text, context=MachineContext(dialect=DIALECTS[name]))
+        assert [b.target.tolist() for b in prog.blocks] == [[10.0, 10.0, 10.0]]
+        long = [n for n in prog.notes if "Command too long" in n]
+        assert long == ([f"line 2 is {width + len(end)} bytes long with its line end (LinuxCNC refuses it: "
+                         "\"Command too long\", it takes at most 253 bytes, line end included)"]
+                        if noted and name == "linuxcnc" else [])
+
+
+def test_a_bare_cr_file_gets_one_command_too_long_note():
+    # a bare-CR file is one line to rs274: its own note says so, the line-length note is not added twice
+    prog = parse_program("G21 G90\r" + "G0 X1 (" + "x" * 300 + ")\rM2\r", context=MachineContext())
+    assert [n for n in prog.notes if "Command too long" in n] == [n for n in prog.notes if "bare CR" in n]
