@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.iso_checks import checked_iso
 
 
 @pytest.mark.parametrize(("width", "end", "noted"), [(252, "\n", False), (253, "\n", True), (252, "\r\n", True),
@@ -30,3 +32,16 @@ def test_a_bare_cr_file_gets_one_command_too_long_note():
     # a bare-CR file is one line to rs274: its own note says so, the line-length note is not added twice
     prog = parse_program("G21 G90\r" + "G0 X1 (" + "x" * 300 + ")\rM2\r", context=MachineContext())
     assert [n for n in prog.notes if "Command too long" in n] == [n for n in prog.notes if "bare CR" in n]
+
+
+def test_g10_l20_under_a_g10_rotation_sets_the_offset_in_the_unrotated_system():
+    # LinuxCNC tests/interp/g10/g10-l20-while-active: the current and the wanted point are in the rotated system,
+    # both turned by R before the offset is their difference (interp_convert.cc convert_setup); checked against
+    # the reference, which takes the same rule
+    text = ("G21 G54\nG10 L2 P1 X0 Y0 Z0 R90\nG53 G0 X0 Y0 Z0\nG10 L20 P1 X-10\nG1 X0 F100\nY5\n"
+            "G10 L20 P1 X3 Y4\nG1 X0 Y0\nM2\n")
+    prog = checked_iso(text, MachineContext(dialect=DIALECTS["linuxcnc"]))
+    # X-10 at machine 0: offset rot90((0, 0) - (-10, 0)) = (0, 10); X0 is machine (0, 10), Y5 turns to (-5, 10);
+    # X3 Y4 at program (0, 5): offset (0, 10) + rot90((0, 5) - (3, 4)) = (-1, 7), so X0 Y0 is machine (-1, 7)
+    assert [np.round(b.target, 9).tolist() for b in prog.blocks][1:] == [
+        [0.0, 10.0, 0.0], [-5.0, 10.0, 0.0], [-1.0, 7.0, 0.0]]
