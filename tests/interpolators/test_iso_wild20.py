@@ -8,6 +8,7 @@ import pytest
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
 
 
 @pytest.mark.parametrize(("width", "end", "noted"), [(252, "\n", False), (253, "\n", True), (252, "\r\n", True),
@@ -45,3 +46,15 @@ def test_g10_l20_under_a_g10_rotation_sets_the_offset_in_the_unrotated_system():
     # X3 Y4 at program (0, 5): offset (0, 10) + rot90((0, 5) - (3, 4)) = (-1, 7), so X0 Y0 is machine (-1, 7)
     assert [np.round(b.target, 9).tolist() for b in prog.blocks][1:] == [
         [0.0, 10.0, 0.0], [-5.0, 10.0, 0.0], [-1.0, 7.0, 0.0]]
+
+
+@pytest.mark.parametrize("name", ["fanuc", "linuxcnc", "grbl"])
+def test_a_wincnc_bracket_comment_is_named(name):
+    # Vectric's CAMaster post (WinCNC) writes comments in [ ]; no dialect of vcnc reads them
+    text = "[TOOLPATH NAME: Drill 1]\nG90\nG0 X1 Y1\nM30\n"
+    with pytest.raises(GCodeError, match=r":1:1: '\[TOOLPATH NAME: Drill 1\]': text in square brackets at the "
+                                         r"start of a block, a comment as WinCNC \(CAMaster routers\) writes them"):
+        parse_program(text, context=MachineContext(dialect=DIALECTS[name]))
+    # a bracket without prose keeps the placeholder message
+    with pytest.raises(GCodeError, match=r":1:1: '\[xmin\]' in brackets where a word should start"):
+        parse_program("[xmin]\nM30\n", context=MachineContext(dialect=DIALECTS[name]))
