@@ -326,8 +326,9 @@ def _staircase(g: _Cam) -> None:
 
 
 def _rotary_tangent_chain(g: _Cam) -> None:
-    """Tangent chains of long lines (2 - 30 mm) and small arcs (radii 0.02 - 0.5 mm, some 2 - 10 mm) of either
-    sense, arc/arc pairs often of opposite sense, with one or two of A-C/U-W moving on every block at a rate per
+    """Chains of long lines (2 - 30 mm) and small arcs (radii 0.02 - 0.5 mm, some 2 - 10 mm; some full circles) of
+    either sense, mostly tangent (a kink of 1 - 60 degrees before a fifth of them), arc/arc pairs often of opposite
+    sense, with one or two of A-C/U-W moving on every block at a rate per
     mm that steps from block to block: line/arc and arc/arc junctions tangent in X/Y with the axes moving on both
     sides, curvature steps beside them (the chains ``blend_corners`` and the one-sample junction rule handle)."""
     r = g.r
@@ -341,7 +342,9 @@ def _rotary_tangent_chain(g: _Cam) -> None:
         arc = r.random() < 0.55
         length = 10 ** r.uniform(math.log10(2), math.log10(30)) if not arc else 0.0
         rad = 10 ** r.uniform(math.log10(0.02), math.log10(0.5)) if r.random() < 0.8 else r.uniform(2, 10)
-        sweep = r.uniform(0.1, 2.5) if arc else 0.0
+        sweep = (2 * math.pi if r.random() < 0.1 else r.uniform(0.1, 2.5)) if arc else 0.0
+        if r.random() < 0.2:
+            heading += math.radians(r.uniform(1, 60)) * r.choice((1, -1))  # a kink beside the arcs
         travel = length or rad * sweep
         for a in axes:
             values[a] += travel * 10 ** r.uniform(-1.5, 1) * (1 if a in "ABC" else 0.1) * r.choice((1, 1, -1))
