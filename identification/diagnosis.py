@@ -853,7 +853,8 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
         nested = None
         if ok and c.effect.NAME == "resonance":
             # a mode is claimed only when the axis' own motion excites it: the residual's line
-            # must be coherent with the commanded acceleration (not an external line)
+            # must be coherent with a force of the commanded motion, its acceleration or its velocity's sign
+            # (not an external line)
             e_new = next(e for e in j.model.elements if e.NAME == "resonance")
             coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
             record["resonance_motion_coherence"] = coh
@@ -928,7 +929,7 @@ def _unneeded(final: Stage, without: _Judged, name: str, data: Data, plan: FoldP
               opt: DiagnosisOptions) -> str | None:
     """Why the final model no longer needs ``name`` (``without``: the final model refitted without it and judged),
     or None: it must still lower the pooled held-out RMS by min_gain and min_gain_um (:func:`_lowers`), and a mode
-    must still be coherent with the commanded acceleration in the residual it explains
+    must still be coherent with a force of the commanded motion in the residual it explains
     (:data:`_MIN_MODE_COHERENCE`)."""
     w, f = without.held_out_rms_um, final.validation_rms_um
     if not _lowers(w, f, opt):
@@ -939,7 +940,8 @@ def _unneeded(final: Stage, without: _Judged, name: str, data: Data, plan: FoldP
         coh = motion_coherence(data.x - data.predict(without.model), data.xr, data.T, plan.active,
                                [e.frequency, e.antiresonance])
         if coh < _MIN_MODE_COHERENCE:
-            return (f"the residual it explains is no longer coherent with the commanded acceleration "
+            return (f"the residual it explains is no longer coherent with the commanded motion (its acceleration "
+                    f"or its velocity's sign) "
                     f"({coh:.3g} < {_MIN_MODE_COHERENCE})")
     return None
 
@@ -1251,7 +1253,7 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
                    validation=validation, bounds=dict(model.bounds))
 
 
-#: smallest coherence of the residual with the commanded acceleration near a claimed mode [-]
+#: smallest coherence of the residual with the commanded acceleration or velocity sign near a claimed mode [-]
 #: (0.9 for a mode the motion excites, 0.09 for an external 55 Hz line: residual.motion_coherence)
 _MIN_MODE_COHERENCE = 0.5
 #: damping ratio below which a refitted two-mass mode is a resonance [-]: a second-order mode shows a resonant
