@@ -17,7 +17,8 @@ commanded and measured positions only and checks:
 - with effects added, those the diagnosis must name (``shown``, marked ``*``): each changes the noise-free
   measured position by more than 3 times the noise floor (+0.2 um), and together they leave the reduced model
   an error 1.5 times (+0.3 um) that of the same record identified without them (what the reduced model absorbs
-  of an effect, e.g. most of a one-sample delay, is no failure). Each shown effect is named (``missed``), first
+  of an effect, e.g. most of a one-sample delay, is no failure; nor is a mode at or above the record's Nyquist
+  frequency). Each shown effect is named (``missed``), first
   when it is twice the other's size (``not_first``), the held-out error falls (``no_gain``), and a parameter
   with a known truth is within its tolerance (``parameter``: periods 5 %, backlash width 30 %, drift rate 25 %).
 
@@ -228,13 +229,18 @@ def named_effects(model) -> list[str]:
 def shown_effects(case: dict, model, visible: dict, floor: float, clean_rms: float | None) -> dict:
     """The effects a diagnosis must name: each changes the noise-free measured position by more than 3 times
     the noise floor (+0.2 um), and together they leave the reduced model an error 1.5 times (+0.3 um) that of
-    the same record without them (what the reduced model absorbs of an effect, e.g. of a delay, is no effect)."""
+    the same record without them (what the reduced model absorbs of an effect, e.g. of a delay, is no effect).
+    A mode at or above the record's Nyquist frequency 1/(2T) is none: the record cannot show its frequency
+    (Shannon 1949; the diagnosis refuses such a mode, ``diagnosis._unphysical_mode``), e.g. seed 31 case 28, a 90 Hz
+    mode logged every 8 ms (62.5 Hz)."""
     if clean_rms is None:
         return {}
     reduced = model.validation.get("identification_rms_before_um", model.fit.get("rms_um"))
     if not reduced > 1.5 * clean_rms + 0.3:
         return {}
-    return {e: v for e, v in visible.items() if v > 3.0 * floor + 0.2}
+    mode = case["effects"].get("resonance")
+    aliased = mode is not None and mode["frequency_hz"] >= 0.5 / model.sample_time
+    return {e: v for e, v in visible.items() if v > 3.0 * floor + 0.2 and not (e == "resonance" and aliased)}
 
 
 def check(case: dict, model, shown: dict, floor: float) -> list[str]:
