@@ -418,3 +418,24 @@ def test_a_mode_above_the_records_nyquist_frequency_is_not_required():
 
     assert shown_effects(case, model(8e-3), visible, 0.10, 0.31) == {}
     assert shown_effects(case, model(1e-3), visible, 0.10, 0.31) == visible
+
+
+def test_a_period_the_travel_covers_once_gives_way_to_its_dominant_harmonic():
+    """ident_fuzz seed 31 case 39: ballscrew-ppc's x, a 10 mm screw-lead force and a saturation over +/-10 mm of travel
+    (19.6 mm), logged every 4 ms. The search's single sinusoid took 18.8 mm (it also fits the smooth trend the missed
+    saturation leaves along the travel), the refit kept 3 harmonics with the second the largest (57, 173, 10 mm/s^2),
+    and the diagnosis named a period of 18.8 mm, a wrong parameter. The refit now continues from that harmonic's
+    period (diagnosis._shorter_period_form): 9.94 mm with one harmonic, the same held-out error (0.798 um)."""
+    from benchmarks.ident_fuzz import build, draw_case
+
+    case = draw_case(31, 39)
+    assert (case["machine"], case["axis"]) == ("ballscrew-ppc", "x")
+    assert case["effects"]["position_periodic"] == {"period_mm": 10.0}
+    rec, _, _, _ = build(case)
+    model = identify(rec, axis="x")
+    assert [e.name for e in model.effects] == ["position_periodic"]
+    params = model.effects[0]["parameters"]
+    assert params["period_mm"] == pytest.approx(10.0, rel=0.01)
+    assert params["harmonics"] == 1
+    assert model.validation["rms_before_um"] == pytest.approx(1.31, abs=0.02)
+    assert model.validation["rms_after_um"] == pytest.approx(0.798, abs=0.01)
