@@ -329,7 +329,8 @@ def interpolate(
     v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
     if g.extra is not None:
         v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
-    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max), jerk_limited)
+    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max), jerk_limited,
+                                                     _resolve_limits(limits))
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
 
@@ -648,7 +649,8 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     corner_value = [b.extra_target for b in blk]
 
     def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
-        r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3))
+        r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3),
+                          near_end=True)
         r1, m1 = _on_line([blk[blocks[k + 1]] for k in corners], np.array([b.end for b in blends]).reshape(-1, 3))
         return np.array([b.length for b in blends], dtype=float), r0, r1, m0, m1
 
@@ -676,6 +678,9 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
                  for j, at in ((0, "end"), (1, "start"))]
         along = corner_positions(points, np.array([segments[k].end for k in corners], dtype=float).reshape(-1, 3),
                                  *sides)  # the axes at the programmed path's point nearest the blend's
+        for i, k in enumerate(corners):
+            if isinstance(segments[k], Arc) or isinstance(segments[k + 1], Arc):  # beside an arc: along the arc
+                along[i] = _arc_corner_positions(points[i], segments[k], segments[k + 1])
         ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
             cut = [(sg, b) for sg, b in zip(segs, blks) if isinstance(sg, Arc) and id(sg) not in original
@@ -694,6 +699,31 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     return segments, blocks, fit_of
 
 
+def _arc_corner_positions(points: np.ndarray, before: Line | Arc, after: Line | Arc) -> np.ndarray:
+    """:func:`interpolators.axis_blends.corner_positions` of the points ``points`` (c, 3) near the junction of
+    ``before`` and ``after``, one of them an arc (of at most one turn): the signed path distance from the junction
+    of the nearest point of either, on an arc by the angle about its centre (the tangent line there put a point
+    0.89 mm along a circle of radius 1 mm at 0.78 mm)."""
+    side = []
+    for seg, sign in ((before, -1.0), (after, 1.0)):
+        corner = np.asarray(seg.end if sign < 0 else seg.start, dtype=float)
+        rel = points - corner
+        if isinstance(seg, Arc):
+            p, q = seg.plane_axes
+            c = np.asarray(seg.center, dtype=float)
+            turn = np.arctan2(points[:, q] - c[q], points[:, p] - c[p]) - math.atan2(corner[q] - c[q], corner[p] - c[p])
+            turn = (turn + math.pi) % (2.0 * math.pi) - math.pi  # in (-pi, pi], positive along the arc's sense
+            t = turn * math.copysign(1.0, seg.sweep) * seg.length / abs(seg.sweep)
+        else:
+            t = rel @ ((np.asarray(seg.end, dtype=float) - np.asarray(seg.start, dtype=float)) / seg.length)
+        t = np.minimum(t, 0.0) if sign < 0 else np.maximum(t, 0.0)
+        t = np.maximum(t, -seg.length) if sign < 0 else np.minimum(t, seg.length)
+        nearest = seg.point_at(seg.length + t if sign < 0 else t)
+        side.append((t, np.linalg.norm(points - nearest, axis=1)))
+    (t_in, d_in), (t_out, d_out) = side
+    return np.where(d_in <= d_out, t_in, t_out)
+
+
 def _with_cut_arcs(args: tuple[np.ndarray, ...], cut: list, blk: Sequence) -> tuple[np.ndarray, ...]:
     """The arguments of :func:`interpolators.axis_blends.hermite_axes` for a chain's blends (``args``) followed by
     those of the pieces ``cut`` (arc, block) that kink blends left of the blocks' arcs: the axes along each piece
@@ -703,7 +733,7 @@ def _with_cut_arcs(args: tuple[np.ndarray, ...], cut: list, blk: Sequence) -> tu
         return args
     blocks = [blk[b] for _, b in cut]
     r0, m = _on_line(blocks, np.array([sg.start for sg, _ in cut], dtype=float).reshape(-1, 3))
-    r1, _ = _on_line(blocks, np.array([sg.end for sg, _ in cut], dtype=float).reshape(-1, 3))
+    r1, _ = _on_line(blocks, np.array([sg.end for sg, _ in cut], dtype=float).reshape(-1, 3), near_end=True)
     length = np.array([sg.length for sg, _ in cut], dtype=float)
     return tuple(np.concatenate([a, b]) for a, b in zip(args, (length, r0, r1, m, m)))
 
@@ -862,18 +892,26 @@ def _value_at_start(segment: Line | Arc, block) -> np.ndarray:
     return np.asarray(block.extra_start if block.extra_start is not None else np.zeros(len(EXTRA_NAMES)), dtype=float)
 
 
-def _on_line(blocks: Sequence, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _on_line(blocks: Sequence, points: np.ndarray, *, near_end: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The axes beyond X, Y, Z at ``points`` (n, 3) of the lines or arcs (of at most one turn) of ``blocks`` (feed
     moves moving them) and their rates per mm of them, shape (n, 6) each: they move in proportion to the path
-    (RS274/NGC 3, Sec. 2.1.2.5), on an arc by the length of its piece from the block's start to the point."""
+    (RS274/NGC 3, Sec. 2.1.2.5), on an arc by the length of its piece from the block's start to the point, or
+    (``near_end``: points in the arc's second half) its length less that of the piece from the point to its end (a
+    full circle's end is its start)."""
     n = len(blocks)
     start = np.array([b.extra_start for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
     delta = np.array([b.extra_delta for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
     origin = np.array([b.segment.start for b in blocks], dtype=float).reshape(n, 3)
     rate = delta / np.array([b.segment.length for b in blocks], dtype=float)[:, None]
     along = np.linalg.norm(points - origin, axis=1)
-    for i in (i for i, b in enumerate(blocks) if isinstance(b.segment, Arc) and along[i] > 0.0):
-        along[i] = piece_of(blocks[i].segment, origin[i], points[i]).length
+    for i, b in enumerate(blocks):
+        arc = b.segment
+        if isinstance(arc, Arc) and near_end:
+            to_end = np.asarray(arc.end, dtype=float)
+            along[i] = arc.length - (piece_of(arc, points[i], to_end).length
+                                     if np.any(points[i] != to_end) else 0.0)
+        elif isinstance(arc, Arc) and along[i] > 0.0:
+            along[i] = piece_of(arc, origin[i], points[i]).length
     return start + rate * along[:, None], rate
 
 
@@ -1176,13 +1214,14 @@ def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool,
 _CRUISE_JERK_SHARE = 0.6
 
 
-def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool
-                       ) -> tuple[np.ndarray, ...]:
+def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool,
+                       limits: Mapping[str, AxisLimits]) -> tuple[np.ndarray, ...]:
     """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` and the junction speeds
     (:func:`_junction_speeds`) they give; under the S-curve, in each chain where that is faster, the bounds of its
     curves at :data:`_CRUISE_JERK_SHARE` of the jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of
-    :data:`interpolators.kinematics.JERK_SPEED_SHARE` (not in a program moving the axes beyond X, Y, Z, whose
-    curve bounds, :func:`interpolators.kinematics.extra_curve_bounds`, keep it).
+    :data:`interpolators.kinematics.JERK_SPEED_SHARE`; in a program moving the axes beyond X, Y, Z both bound sets
+    capped by those axes' own (:func:`_extra_bounds`; before session 33 such programs kept the first, so a contour
+    after one move with A ran slower than alone: alternating tangent arcs 3.118 -> 3.721 s at F1200 P0.01).
 
     The share splits one budget: at constant speed the jerk of a curve is ``v^3 |(k^2, dk/ds)|`` alone, while a
     speed change on it needs the rest for ``3 k v a`` and the path jerk (:mod:`interpolators.kinematics`).
@@ -1193,10 +1232,12 @@ def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple
     acceleration what its speed needs, at most ``BLEND_ACC_RATIO_NORMAL`` (sqrt(3)/2) of the limit, and the
     tangential acceleration the rest; no manual found states a jerk split (our reading: choose the faster)."""
     plan = (*bounds, *_junction_speeds(g, c, *bounds, jerk_limited))
-    if not jerk_limited or g.extra is not None:
+    if not jerk_limited:
         return plan
     v_max, a_max, j_max, v0, v1 = plan
     alt = _path_bounds(g, c, lim, True, _CRUISE_JERK_SHARE)
+    if g.extra is not None:
+        alt = _extra_bounds(g, c, *alt, limits, True)
     differs = (alt[0] != v_max) | (alt[1] != a_max) | (alt[2] != j_max)
     chains = np.unique(c.of_segment[differs])
     if not len(chains):
