@@ -105,8 +105,10 @@ def rotary_cases(feed: float, tolerance: float) -> None:
     """The tangent and kinked cases with A moving (0.5 deg/mm on every block), and the alternating arcs after one
     move ``G1 Z-1 A5`` (A still on them), each against the same program without A (its ``G1 Z-1`` instead), under the
     S-curve at 1 and 0.25 ms. Before session 33 chains moving A left their line/arc kinks and curvature steps to the
-    one-sample rule (F1200 P0.01, 1 / 0.25 ms: tangent line/arc/line 1.040 / 1.139 times its time without A, the
-    alternating arcs after the A move 1.376 / 1.536); now blended as without A."""
+    one-sample rule and planned their curves at 0.3 of the jerk limits only; ratios to the time without A at 1 / 0.25
+    ms, before -> after: F1200 P0.01 line/arc/line 0.0 rad 1.066 / 1.096 -> 1.000 / 1.000, 0.1 rad 1.126 / 1.126 ->
+    1.000 / 1.000, alternating arcs after the A move 1.431 / 1.562 -> 1.024 / 1.024 (the A move's own 0.075 s:
+    3.118 + 0.075 = 3.193 s); F600 P0.05 1.007 / 1.019, 1.033 / 1.032, 1.096 / 1.141 -> 1.000, 1.000, 1.009."""
     from interpolators.context import INTERPOLATION_CONTEXT
 
     cases = [(f"line/arc/line {t} rad with A", with_a(line_arc_line(t, feed, tolerance), 0.5),
