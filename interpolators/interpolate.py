@@ -288,10 +288,9 @@ def interpolate(
       of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under G64 consecutive feed
       moves of X/Y/Z with these axes are passed at speed where every axis' velocity step fits in one sample
       (:func:`interpolators.kinematics.extra_junction_speed_limit`, see ``_extra_block``; dense runs merged with the
-      other axes, :func:`interpolators.dense.fit_axes`; line/line corners, and under the S-curve the kinks and
-      curvature steps between lines and arcs, blended with the other axes on a quintic,
-      :mod:`interpolators.axis_blends`); the chords of one rapid under tool centre point control likewise; other blocks
-      moving them start and end at rest. Setpoint columns ``a, b, c`` are in deg, ``u, v, w`` in mm.
+      other axes, :func:`interpolators.dense.fit_axes`; line/line corners, S-curve also line/arc kinks and curvature
+      steps, blended with every axis on a quintic, :mod:`interpolators.axis_blends`); the chords of one TCP rapid
+      likewise; other blocks moving them start and end at rest. Setpoint columns ``a, b, c`` in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
@@ -323,14 +322,12 @@ def interpolate(
     jerk_limited = profile == "scurve"
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
-    g = _geometry(chains, lim, jerk_limited, program, Ts, _resolve_limits(limits))
-    c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
+    every = _resolve_limits(limits)
+    g = _geometry(chains, lim, jerk_limited, program, Ts, every)
+    c = _corner_stops(g, chains, lim, Ts, jerk_limited, every)
     del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
-    v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
-    if g.extra is not None:
-        v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
-    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max), jerk_limited,
-                                                     _resolve_limits(limits))
+    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, _path_bounds(g, c, lim, jerk_limited), jerk_limited,
+                                                     every)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
 
@@ -1216,12 +1213,12 @@ _CRUISE_JERK_SHARE = 0.6
 
 def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool,
                        limits: Mapping[str, AxisLimits]) -> tuple[np.ndarray, ...]:
-    """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` and the junction speeds
-    (:func:`_junction_speeds`) they give; under the S-curve, in each chain where that is faster, the bounds of its
-    curves at :data:`_CRUISE_JERK_SHARE` of the jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of
-    :data:`interpolators.kinematics.JERK_SPEED_SHARE`; in a program moving the axes beyond X, Y, Z both bound sets
-    capped by those axes' own (:func:`_extra_bounds`; before session 33 such programs kept the first, so a contour
-    after one move with A ran slower than alone: alternating tangent arcs 3.118 -> 3.721 s at F1200 P0.01).
+    """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` (of :func:`_path_bounds`, capped by the
+    axes beyond X, Y, Z, :func:`_extra_bounds`) and the junction speeds (:func:`_junction_speeds`) they give; under
+    the S-curve, in each chain where that is faster, the bounds of its curves at :data:`_CRUISE_JERK_SHARE` of the
+    jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of :data:`interpolators.kinematics.JERK_SPEED_SHARE`, capped
+    likewise (before session 33 programs moving those axes kept the first, so a contour after one move with A ran
+    slower than alone: alternating tangent arcs 3.118 -> 3.721 s at F1200 P0.01).
 
     The share splits one budget: at constant speed the jerk of a curve is ``v^3 |(k^2, dk/ds)|`` alone, while a
     speed change on it needs the rest for ``3 k v a`` and the path jerk (:mod:`interpolators.kinematics`).
@@ -1231,6 +1228,8 @@ def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple
     need likewise: LinuxCNC's ``pmCircleActualMaxVel`` (``src/emc/tp/blendmath.c``) gives an arc's normal
     acceleration what its speed needs, at most ``BLEND_ACC_RATIO_NORMAL`` (sqrt(3)/2) of the limit, and the
     tangential acceleration the rest; no manual found states a jerk split (our reading: choose the faster)."""
+    if g.extra is not None:
+        bounds = _extra_bounds(g, c, *bounds, limits, jerk_limited)
     plan = (*bounds, *_junction_speeds(g, c, *bounds, jerk_limited))
     if not jerk_limited:
         return plan
