@@ -572,13 +572,17 @@ def _axis_failures(program, sp, tol: np.ndarray) -> list[str]:
     return []
 
 
-def _programmed_axes(block) -> tuple[cKDTree, np.ndarray, np.ndarray]:
-    """Points of a feed move's X/Y/Z path at most 0.5 um apart (2,000 at most), the axes beyond X/Y/Z programmed
-    there (in proportion to the path, RS274/NGC 3 Sec. 2.1.2.5) and each axis' rate per mm."""
+def _programmed_axes(block) -> tuple[list[tuple[cKDTree, np.ndarray]], np.ndarray, np.ndarray]:
+    """Points of a feed move's X/Y/Z path at most 0.5 um apart (2,000 at most) in two halves, each half's tree
+    and the indices of its points (a full circle passes its start point again at its end, with other values of
+    the axes: each half finds its own nearest point), the axes beyond X/Y/Z programmed at the points (in
+    proportion to the path, RS274/NGC 3 Sec. 2.1.2.5) and each axis' rate per mm."""
     n = int(min(2000, max(50, block.length / 5e-4)))
     s = np.linspace(0.0, block.length, n)
     rate = (block.extra_target - block.extra_start) / block.length
-    return cKDTree(np.atleast_2d(block.segment.point_at(s))), block.extra_start + np.outer(s, rate), rate
+    points = np.atleast_2d(block.segment.point_at(s))
+    halves = [np.arange(0, n // 2 + 1), np.arange(n // 2, n)]
+    return [(cKDTree(points[h]), h) for h in halves], block.extra_start + np.outer(s, rate), rate
 
 
 def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
@@ -607,12 +611,13 @@ def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
         for j in moving[max(n - 1, 0):n + 2]:  # the moves either side (a zero-length block between has no samples)
             if not feed[j]:
                 continue
-            tree, values, rate = cache.setdefault(j, _programmed_axes(blocks[j]))
-            dist, idx = tree.query(pts[rows])
+            trees, values, rate = cache.setdefault(j, _programmed_axes(blocks[j]))
             spacing = blocks[j].length / (len(values) - 1)
-            for c, (k, e) in enumerate(cols):
-                off = np.abs(sp.position[rows, k] - values[idx, e]) - abs(rate[e]) * (dist + spacing)
-                best[rows, c] = np.minimum(best[rows, c], off)
+            for tree, half in trees:
+                dist, idx = tree.query(pts[rows])
+                for c, (k, e) in enumerate(cols):
+                    off = np.abs(sp.position[rows, k] - values[half[idx], e]) - abs(rate[e]) * (dist + spacing)
+                    best[rows, c] = np.minimum(best[rows, c], off)
     out = best - allowed[:, None]
     if np.any(out > 0):
         r, c = np.unravel_index(int(np.argmax(out)), out.shape)

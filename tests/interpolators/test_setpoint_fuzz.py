@@ -46,19 +46,20 @@ def test_rotary_cam_programs_write_inches_inverse_time_and_alternating_arcs():
     assert any(w in text for w in (" A", " B", " C"))
     prog = parse_program(text, context=INTERPOLATION_CONTEXT)
     assert prog.blocks[-1].target[0] == pytest.approx(float(lines[-2].split("X")[1].split()[0]) * 25.4, abs=1e-9)
-    # seed 4 (G21): arcs turning alternately, one after the other, then a staircase's tangent arcs
+    # seed 4 (G21): arcs turning alternately, one after the other, then a staircase's and a chain's tangent arcs
     arcs = [line[:2] for line in rotary_cam_program(4).splitlines() if line[:3] in ("G2 ", "G3 ")]
-    assert (len(arcs), sum(a != b for a, b in zip(arcs, arcs[1:]))) == (24, 13)
+    assert (len(arcs), sum(a != b for a, b in zip(arcs, arcs[1:]))) == (27, 15)
 
 
 def test_rotary_cam_staircases_write_an_axis_on_some_blocks_and_on_arcs():
-    # seed 0: W indexed alone between lines and arcs, B on an arc; seed 5: axes moving on 12 arcs, A on one
+    # seed 0: W indexed alone between lines and arcs, B on an arc; seed 5: axes moving on 22 arcs (a staircase's
+    # 12, A on the first, and a tangent chain's)
     lines = rotary_cam_program(0).splitlines()
     assert "G1 W1.0542" in lines
     assert "G2 X0.048094 Y0.252169 B61.2066 I-0.032130 J-0.137175" in lines
     arcs = [line for line in rotary_cam_program(5).splitlines()
             if line[:3] in ("G2 ", "G3 ") and any(f" {a}" in line for a in "ABCUVW")]
-    assert len(arcs) == 12
+    assert len(arcs) == 22
     assert arcs[0] == "G3 X0.594458 Y0.648734 A-9.4203 I-0.031729 J0.005943"
 
 
@@ -94,6 +95,27 @@ def test_axis_path_check_measures_at_the_nearest_point_of_the_path():
     fails = [f for f in check_setpoints(prog, sp, limits, "trapezoid") if not f.startswith(("limits", "jump"))]
     assert len(fails) == 1 and fails[0].startswith(f"axis_path: a at sample {k} (block 1, line 3) 0.0")
     assert fails[0].endswith("tolerance 0.01")
+
+
+def test_axis_path_check_reads_a_full_circle_at_both_of_its_ends():
+    # setpoint fuzzer seed 43461 (rotary_cam), shrunk: B alone to 18.9 deg, then a full circle of radius 0.105 mm
+    # taking B to 18.8, then an arc. The circle's start and end are one point, B 18.9 at one and 18.8 at the other:
+    # the check read B at whichever of the two its nearest-point search found and named 0.0566 deg beyond P0.01
+    # where B ran as programmed (each half of the circle is now searched for its own nearest point)
+    text = ("G21 G17 G90 G94 G64\nG0 X-0.0936 Y1.489 Z5 B0\nG1 B18.9 F12000\n"
+            "G2 X-0.0936 Y1.489 B18.8 I-0.0734 J0.0759\nG3 X2.116206 Y-6.87574 B105.6 I3.445609 J-3.564\nM2\n")
+    prog = parse_program(text, context=INTERPOLATION_CONTEXT)
+    limits = {"x": AxisLimits(velocity=6500.0, acceleration=1000.0, jerk=2.3e6),
+              "y": AxisLimits(velocity=7700.0, acceleration=5e4, jerk=1.6e7),
+              "z": AxisLimits(velocity=2900.0, acceleration=1e4, jerk=1e5),
+              "b": AxisLimits(velocity=100.0, acceleration=800.0, jerk=4.5e5)}
+    assert [b.kind for b in prog.blocks] == ["rapid", "line", "arc", "arc"]
+    for profile in ("trapezoid", "scurve"):
+        sp = interpolate(prog, limits=limits, sample_time=0.000629, profile=profile)
+        on_circle = sp.position[sp.block == 2, sp.axes.index("b")]
+        assert on_circle[0] == pytest.approx(18.9, abs=1e-9)
+        assert on_circle[-1] == pytest.approx(18.8, abs=1e-4)
+        assert check_setpoints(prog, sp, limits, profile) == []
 
 
 def test_spline_points_by_arc_length_have_unit_speed_and_the_curvature_as_second_derivative():
