@@ -57,11 +57,12 @@ def run(args: argparse.Namespace) -> int:
 def check_outputs(args: argparse.Namespace) -> None:
     """:class:`vcnc.InputError` before any work when an output cannot be written where it is asked
     (:func:`vcnc.core.io.check_output`: a long program would otherwise run to its end and fail on the rename)."""
-    from vcnc.core.io import check_output
+    from vcnc.core.io import check_distinct_outputs, check_output
 
     inputs = (args.program, args.machine)
     check_output(args.output, option="-o", what="the capture file (CSV)", inputs=inputs)
     check_output(args.json, option="--json", what="the summary file", inputs=inputs)
+    check_distinct_outputs((("-o", args.output), ("--json", args.json)))
     check_output(args.report, option="--report", what="the report", folder=True)
 
 
