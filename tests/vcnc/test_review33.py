@@ -51,3 +51,17 @@ def test_compare_refuses_its_model_file_as_the_summary(work, capsys):
                  "--json", "m.json"]) == 2
     assert "it is the input m.json itself" in capsys.readouterr().err
     assert Path("m.json").read_text() == before
+
+
+@pytest.mark.parametrize("argv", [
+    ["interpolate", "part.nc", "--tool-table", "tools.tbl", "-o", "tools.tbl"],
+    ["simulate", "part.nc", "--machine", "fadal-pid", "--tool-table", "tools.tbl", "-o", "run.csv",
+     "--json", "tools.tbl"],
+])
+def test_the_tool_table_is_an_input_no_output_may_replace(work, capsys, argv):
+    """``--tool-table tools.tbl -o tools.tbl`` replaced the tool table by the setpoints."""
+    table = "T1 P1 D6 Z+10 ;6 mm end mill\n"
+    Path("tools.tbl").write_text(table)
+    assert main(argv) == 2
+    assert "it is the input tools.tbl itself" in capsys.readouterr().err
+    assert Path("tools.tbl").read_text() == table

@@ -131,7 +131,8 @@ def run(args: argparse.Namespace) -> int:
 
     models = parse_models(args.model)
     model_files = (models,) if isinstance(models, str) else tuple(models.values())
-    check_output(args.json, option="--json", what="the summary file", inputs=(args.truth, args.toolpath, *model_files))
+    inputs = (args.truth, args.toolpath, args.tool_table, *model_files)
+    check_output(args.json, option="--json", what="the summary file", inputs=inputs)
     check_output(args.report, option="--report", what="the report", folder=True)
     truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
     with sample_guard(command="compare", max_samples=MAX_SAMPLES):
