@@ -106,3 +106,21 @@ def test_diadem_ascii_channel_is_refused_naming_its_type(tmp_path):
     with pytest.raises(CaptureError) as err:
         read_capture(tmp_path / "a.dat")
     assert "DIAdem channel 'Sollposition' has data type 'ASCII'; read are REAL64, REAL32" in str(err.value)
+
+
+def test_kuka_positionsschleppfehler_is_a_following_error(tmp_path):
+    """KUKA.Trace's German compound for the following error is read as one (names.py's ``_LAG_PARTS``)."""
+    n = len(_SOLL)
+    lag = [s - i for s, i in zip(_SOLL, _IST)]
+    lines = _GLOBAL + _implicit("Zeit", "s", 0.001, n)
+    lines += _explicit("Sollposition", "Grad", "d.r64", n, 1)
+    lines += _explicit("Positionsschleppfehler", "Grad", "d.r64", n, 2)
+    (tmp_path / "d.dat").write_text("\r\n".join(lines) + "\r\n", encoding="latin-1")
+    np.column_stack([_SOLL, lag]).astype("<f8").tofile(tmp_path / "d.r64")
+    with pytest.raises(CaptureError) as err:  # the pair is found by the names; the joint's degrees ask for an axis
+        read_capture(tmp_path / "d.dat")
+    assert "unit 'deg' is for rotary axes" in str(err.value)
+    cap = read_capture(tmp_path / "d.dat", columns={"t": "Zeit", "a_ref": "Sollposition",
+                                                     "a_lag": "Positionsschleppfehler"})
+    np.testing.assert_allclose(cap.measured[:, 0], _IST, atol=1e-12)
+    assert cap.meta["following_error"].startswith("a:Positionsschleppfehler [deg]")
