@@ -124,3 +124,12 @@ def test_kuka_positionsschleppfehler_is_a_following_error(tmp_path):
                                                      "a_lag": "Positionsschleppfehler"})
     np.testing.assert_allclose(cap.measured[:, 0], _IST, atol=1e-12)
     assert cap.meta["following_error"].startswith("a:Positionsschleppfehler [deg]")
+
+
+def test_signal_amplitude_in_db_is_no_position(tmp_path):
+    """A logger of a signal's amplitude (an antenna aligner's ``amp_dB``) holds no position: said so, not asked."""
+    f = tmp_path / "trace.csv"
+    f.write_text("time_s,amp_dB\n0.268,-7.1256\n1.329,-7.0089\n2.393,-7.0085\n", encoding="utf-8")
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    assert "no position in the file: its columns ['time_s', 'amp_dB'] are time" in str(err.value)

@@ -96,14 +96,15 @@ _LAG_ERROR = frozenset({"following", "tracking", "position", "pos", "servo", "f"
 _ERROR = frozenset({"error", "err", "fehler"})
 #: German compounds naming a following error: KUKA.Trace's "Positionsschleppfehler" (:mod:`vcnc.traces.diadem`).
 _LAG_PARTS = ("schleppfehler", "schleppabstand")
-#: Words of quantities that are not positions.
+#: Words of quantities that are not positions (an amplitude, in dB: a signal logger's, tracewild9).
 _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "current", "curr", "iq", "id", "torque",
                     "trq", "moment", "force", "acc", "accel", "acceleration", "jerk", "voltage", "volt", "temp",
                     "temperature", "power", "load", "strom", "drehzahl", "geschwindigkeit", "beschleunigung",
                     "kraft", "spannung", "leistung", "vitesse", "courant", "couple", "velocidad", "corriente",
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
-                    "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain"})
+                    "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain", "amp", "amps",
+                    "amplitude", "db", "dbm"})
 #: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``; CoDeSys V2.3's
 #: ``Cycle``, module docstring).
 _SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num", "cycle",
