@@ -133,3 +133,21 @@ def test_signal_amplitude_in_db_is_no_position(tmp_path):
     with pytest.raises(CaptureError) as err:
         read_capture(f)
     assert "no position in the file: its columns ['time_s', 'amp_dB'] are time" in str(err.value)
+
+
+def test_kuka_trace_data_file_given_names_its_header(tmp_path):
+    """The .r64 given instead of its .dat: the header beside it that names it as its channels' data is named."""
+    _kuka_drive(tmp_path)
+    with pytest.raises(CaptureError) as err:
+        read_capture(tmp_path / "T1_NextGenDrive#1.r64")
+    msg = str(err.value)
+    assert "the binary data of the DIAdem header 'T1_NextGenDrive#1.dat' beside it" in msg
+    assert "expected the header: vcnc convert 'T1_NextGenDrive#1.dat'" in msg
+
+
+def test_binary_file_without_a_diadem_header_stays_a_binary_file(tmp_path):
+    np.array([1.0, 2.0, 3.0, 4.0], dtype="<f8").tofile(tmp_path / "alone.r64")
+    (tmp_path / "other.dat").write_text("t,x\n0,1\n", encoding="utf-8")  # a .dat beside it, not a DIAdem header
+    with pytest.raises(CaptureError) as err:
+        read_capture(tmp_path / "alone.r64")
+    assert "binary file (NUL bytes and no UTF-16 byte-order mark)" in str(err.value)

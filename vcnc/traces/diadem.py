@@ -36,7 +36,7 @@ import numpy as np
 
 from vcnc.core.errors import CaptureError
 
-__all__ = ["DiademChannels", "looks_like_diadem", "read_diadem_channels"]
+__all__ = ["DiademChannels", "header_naming", "looks_like_diadem", "read_diadem_channels"]
 
 _BEGIN = "#BEGINCHANNELHEADER"
 _END = "#ENDCHANNELHEADER"
@@ -64,6 +64,26 @@ def looks_like_diadem(text: str) -> bool:
     """True for a DIAdem DAT header: a ``#BEGINCHANNELHEADER`` line with a ``200,`` name line after it."""
     i = text.find(_BEGIN)
     return i >= 0 and re.search(r"^\s*200\s*,", text[i:i + 2000], flags=re.M) is not None
+
+
+def header_naming(data_file: Path) -> Path | None:
+    """The DIAdem header beside ``data_file`` that names it as a channel's data file (key 211), else None: the header
+    of the same name first (KUKA.Trace's ``T1_NextGenDrive#1.dat`` beside its ``.r64``), then any ``.dat``."""
+    try:
+        siblings = sorted((p for p in data_file.parent.iterdir() if p.suffix.lower() == ".dat" and p.is_file()),
+                          key=lambda p: p.stem != data_file.stem)
+    except OSError:
+        return None
+    named = re.compile(r"^\s*211\s*,\s*" + re.escape(data_file.name) + r"\s*$", flags=re.M | re.I)
+    for header in siblings:
+        try:
+            with header.open("rb") as f:
+                text = f.read(200000).decode("latin-1")
+        except OSError:
+            continue
+        if looks_like_diadem(text) and named.search(text):
+            return header
+    return None
 
 
 def _channel_headers(text: str) -> list[tuple[int, dict[str, str]]]:
