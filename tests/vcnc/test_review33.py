@@ -28,6 +28,15 @@ def work(tmp_path, monkeypatch):
     (["simulate", "part.nc", "--machine", "fadal-pid", "-o", "run.csv", "--json", "run.csv"],
      "error: --json run.csv: the same file as -o run.csv, which it would replace; expected another file name for "
      "--json"),
+    (["simulate", "part.nc", "--machine", "fadal-pid", "-o", "run", "--report", "run"],
+     "error: --report run: the same file as -o run, which it would replace; expected another file name for "
+     "--report"),
+    (["identify", "c.csv", "--json", "m", "--report", "m"],
+     "error: --report m: the same file as --json m, which it would replace; expected another file name for "
+     "--report"),
+    (["compare", "--truth", "fadal-pid", "--model", "m.json", "--json", "out", "--report", "out"],
+     "error: --report out: the same file as --json out, which it would replace; expected another file name for "
+     "--report"),
 ])
 def test_two_outputs_naming_one_file_are_refused_before_any_work(work, capsys, argv, message):
     """``-o run.csv --json run.csv`` wrote the capture, then the summary over it, and ended with exit 0."""

@@ -401,10 +401,11 @@ def _bounds(args: argparse.Namespace, capture) -> dict | None:
 
 def run(args: argparse.Namespace) -> int:
     from identification import identify
-    from vcnc.core.io import check_output
+    from vcnc.core.io import check_distinct_outputs, check_output
 
     check_output(args.json, option="--json", what="the model file", inputs=(args.capture,))
     check_output(args.report, option="--report", what="the report", folder=True)
+    check_distinct_outputs((("--json", args.json), ("--report", args.report)))
     capture = read_trace_argument(args.capture, args)  # a unit given or stated: meta[UNIT_GIVEN] (vcnc.traces)
     axis = args.axis or ("x" if "x" in capture.axes or len(capture.axes) != 1 else capture.axes[0])
     model = identify(

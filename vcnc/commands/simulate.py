@@ -62,8 +62,8 @@ def check_outputs(args: argparse.Namespace) -> None:
     inputs = (args.program, args.machine, args.tool_table)
     check_output(args.output, option="-o", what="the capture file (CSV)", inputs=inputs)
     check_output(args.json, option="--json", what="the summary file", inputs=inputs)
-    check_distinct_outputs((("-o", args.output), ("--json", args.json)))
     check_output(args.report, option="--report", what="the report", folder=True)
+    check_distinct_outputs((("-o", args.output), ("--json", args.json), ("--report", args.report)))
 
 
 def sampling_note(summary: dict, machine) -> str | None:
