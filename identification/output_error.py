@@ -136,8 +136,12 @@ def refine_output_error(
 def _descend(fun, x0: np.ndarray, start_cost: float, lo: np.ndarray, hi: np.ndarray, typ: np.ndarray,
              max_nfev: int) -> tuple[np.ndarray, float, int, str]:
     """``(x, cost, residual evaluations, message)``: the trust-region descent from ``x0`` with the
-    fine finite-difference step :data:`FINE_STEP`, then again from its end with the coarse step
-    :data:`COARSE_STEP`, the lower cost kept (``x0`` when neither lowers it).
+    fine finite-difference step :data:`FINE_STEP`, then, when it stopped on its tolerances within the
+    ``max_nfev`` residual evaluations, again from its end with the coarse step :data:`COARSE_STEP` on
+    what is left of them; the lower cost kept (``x0`` when neither lowers it). A fine descent that
+    spends the budget is still descending, and is left as before (a hydraulic axis' record, eha 1_1:
+    continued coarsely it ended 0.9 % lower in another basin, which the slow pole's widening then no
+    longer left by 1 %, and predicted its held-out folds 8 % worse).
 
     The residual is not smooth at the fine step: the model's friction switches on the sign of its
     predicted velocity, and a step of 1e-7 moves switching instants by a sample here and there,
@@ -150,9 +154,11 @@ def _descend(fun, x0: np.ndarray, start_cost: float, lo: np.ndarray, hi: np.ndar
     """
     best, cost, nfev, message = x0, start_cost, 0, ""
     for step in (FINE_STEP, COARSE_STEP):
+        if nfev >= max_nfev:
+            break
         res = scipy.optimize.least_squares(
-            fun, best, bounds=(lo, hi), method="trf", x_scale=typ, diff_step=step, max_nfev=max_nfev, xtol=1e-12,
-            ftol=1e-12,
+            fun, best, bounds=(lo, hi), method="trf", x_scale=typ, diff_step=step, max_nfev=max_nfev - nfev,
+            xtol=1e-12, ftol=1e-12,
         )
         nfev += int(res.nfev)
         message = message or str(res.message)
