@@ -21,10 +21,10 @@ CORPUS = corpus_dir()
 def test_fadal_ppi_on_a_cam_program_is_refined_off_the_nyquist_bound(tmp_path, capsys):
     """fadal-ppi (P-PI, no feedforward: p 4.68 Hz, a pair at 36.3 Hz / 0.75) running corpus program 0136:
     the equation error put p on 500 Hz (its Nyquist bound) and a pair at 9.6 Hz / 1.26, and the descent
-    with the fine step alone stopped there at 3.55 um RMS. Now p is recovered within 2 %, every pole lies
-    well below Nyquist with the pair complex, and the model predicts the record within 0.5 um (the
-    truth's poles, refined, 0.42 um; the refinement stops at a pair near 68 Hz, which the text does not
-    claim as pinned)."""
+    with the fine step alone stopped there at 3.55 um RMS; the coarse one goes on to 0.517 um with a pole
+    at 496 Hz, and the restart with the pair complex to 0.462 um: p 4.62 Hz (within 2 %), the pair
+    68.4 Hz / 0.98 (the truth's poles, refined, 0.42 um at 38.9 Hz / 0.75: the refinement stops short of
+    them, and the text claims the prediction, not the poles)."""
     csv, js = tmp_path / "c.csv", tmp_path / "m.json"
     assert main(["simulate", str(CORPUS / "0136_1003.nc"), "--machine", "fadal-ppi+z", "-o", str(csv)]) == 0
     capsys.readouterr()
@@ -35,7 +35,7 @@ def test_fadal_ppi_on_a_cam_program_is_refined_off_the_nyquist_bound(tmp_path, c
     assert m.poles["zeta"] <= 1.0 and 30.0 < m.poles["omega_n_hz"] < 100.0
     assert m.fit["rms_um"] < 0.5
     rec = m.fit["output_error"]["pair_restart"]
-    assert rec["kept"] and rec["rms_before_um"] > 1.1 * rec["rms_after_um"]
+    assert rec["kept"] and rec["rms_before_um"] > 1.05 * rec["rms_after_um"]
     assert "started again with the poles' pair complex" in out and "upper bound" not in out
 
 
