@@ -82,6 +82,48 @@ def alternating_arcs(feed: float, tolerance: float, n: int = 20, radius: float =
             f"G1 X{2 * radius * n:.4f} Y{5.0 if n % 2 == 0 else -5.0}\nM30\n")
 
 
+def with_a(text: str, rate: float | None, *, before: str | None = None) -> str:
+    """``text`` with A turning ``rate`` deg per mm of path on every feed move (None: A still), and the feed move
+    ``before`` (e.g. ``G1 Z-1 A5``) ahead of its first feed move: a 4-axis chain (the axes beyond X, Y, Z take part
+    in the look-ahead, :mod:`interpolators.axis_blends`)."""
+    from interpolators.context import INTERPOLATION_CONTEXT
+
+    prog = parse_program(text, context=INTERPOLATION_CONTEXT)
+    feed_lines = {b.line: b.segment.length for b in prog.blocks if b.kind in ("line", "arc")}
+    out, a = [], 0.0
+    for number, line in enumerate(text.splitlines(), start=1):
+        if before is not None and number == min(feed_lines):
+            out.append(before)
+        if number in feed_lines and rate is not None:
+            a += rate * feed_lines[number]
+            line += f" A{a:.4f}"
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+def rotary_cases(feed: float, tolerance: float) -> None:
+    """The tangent and kinked cases with A moving (0.5 deg/mm on every block), and the alternating arcs after one
+    move ``G1 Z-1 A5`` (A still on them), each against the same program without A (its ``G1 Z-1`` instead), under the
+    S-curve at 1 and 0.25 ms. Before session 33 chains moving A left their line/arc kinks and curvature steps to the
+    one-sample rule and planned their curves at 0.3 of the jerk limits only; ratios to the time without A at 1 / 0.25
+    ms, before -> after: F1200 P0.01 line/arc/line 0.0 rad 1.066 / 1.096 -> 1.000 / 1.000, 0.1 rad 1.126 / 1.126 ->
+    1.000 / 1.000, alternating arcs after the A move 1.431 / 1.562 -> 1.024 / 1.024 (the A move's own 0.075 s:
+    3.118 + 0.075 = 3.193 s); F600 P0.05 1.007 / 1.019, 1.033 / 1.032, 1.096 / 1.141 -> 1.000, 1.000, 1.009."""
+    from interpolators.context import INTERPOLATION_CONTEXT
+
+    cases = [(f"line/arc/line {t} rad with A", with_a(line_arc_line(t, feed, tolerance), 0.5),
+              with_a(line_arc_line(t, feed, tolerance), None)) for t in (0.0, 0.1)]
+    arcs = alternating_arcs(feed, tolerance)
+    cases.append(("alternating arcs after G1 Z-1 A5", with_a(arcs, None, before="G1 Z-1 A5"),
+                  with_a(arcs, None, before="G1 Z-1")))
+    for name, text, reference in cases:
+        prog, ref = (parse_program(t, context=INTERPOLATION_CONTEXT) for t in (text, reference))
+        for Ts in (1e-3, 2.5e-4):
+            sp, sp0 = (interpolate(p, profile="scurve", sample_time=Ts) for p in (prog, ref))
+            print(f"{name:34s} F{feed:.0f} P{tolerance} Ts {Ts * 1e3:g} ms: S-curve {sp.duration:.3f} s, without A "
+                  f"{sp0.duration:.3f} s, ratio {sp.duration / sp0.duration:.3f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--feed", type=float, help="feed [mm/min]")
@@ -103,6 +145,7 @@ def main() -> None:
             print(f"{name:30s} F{feed:.0f} P{tolerance}: trapezoid {trap.duration:.3f} s, S-curve "
                   f"{scurve.duration:.3f} s, S-curve / trapezoid {scurve.duration / trap.duration:.3f}; "
                   f"S-curve speed at the kink {v:.2f} mm/s")
+        rotary_cases(feed, tolerance)
 
 
 if __name__ == "__main__":

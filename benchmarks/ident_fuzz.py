@@ -17,7 +17,8 @@ commanded and measured positions only and checks:
 - with effects added, those the diagnosis must name (``shown``, marked ``*``): each changes the noise-free
   measured position by more than 3 times the noise floor (+0.2 um), and together they leave the reduced model
   an error 1.5 times (+0.3 um) that of the same record identified without them (what the reduced model absorbs
-  of an effect, e.g. most of a one-sample delay, is no failure). Each shown effect is named (``missed``), first
+  of an effect, e.g. most of a one-sample delay, is no failure; nor is a mode at or above the record's Nyquist
+  frequency). Each shown effect is named (``missed``), first
   when it is twice the other's size (``not_first``), the held-out error falls (``no_gain``), and a parameter
   with a known truth is within its tolerance (``parameter``: periods 5 %, backlash width 30 %, drift rate 25 %).
 
@@ -125,25 +126,54 @@ def _record(case: dict, cap) -> vcnc.Capture:
     return vcnc.Capture(t=t[:n], axes=(case["axis"],), reference=ref[:n, None], measured=meas[:n, None])
 
 
+class _TwoMassDrive:
+    """``drive`` with the case's structural mode in its plant, as the loop closed on the motor sees it.
+
+    The rigid plant x/u times the motor side's share of the two-mass model of :class:`drives.StructuralMode`
+    (motor mass (1 - r) m, table mass r m, spring and damper set by the free-free frequency w and damping z):
+    x_motor / x_rigid = (s^2 / (1 - r) + 2 z w s + w^2) / (s^2 + 2 z w s + w^2) (our reading of its notes; the
+    plant's viscous term stays on the whole mass)."""
+
+    def __init__(self, drive, mode) -> None:
+        self._drive, self._mode = drive, mode
+
+    def __getattr__(self, name):
+        return getattr(self._drive, name)
+
+    def transfer_function(self):
+        w, z, r = self._mode.omega, self._mode.damping, self._mode.load_fraction
+        share = control.tf([1.0 / (1.0 - r), 2 * z * w, w * w], [1.0, 2 * z * w, w * w])
+        return self._drive.transfer_function() * share
+
+
 def unstable_delay(case: dict) -> str | None:
     """Why the case's ``delay`` makes the truth's sampled linear loop unstable, else None.
 
     Two samples take fadal-ppi and fadal-smc (|z| = 1.008 and 1.004 at 65 Hz) and chevalier-pdf (1.017 at
     160 Hz) past the unit circle: the truth then limit-cycles at that frequency, held only by its current
     limit (seed 12 case 70: 31 um at 65.6 Hz, 3 % of the samples saturated, none without the delay). That is
-    an unstable machine, not a loop delay a linear model with a delay element can reproduce.
+    an unstable machine, not a loop delay a linear model with a delay element can reproduce. A case's
+    ``resonance`` is in the loop checked (:class:`_TwoMassDrive`): seed 31 case 42 (ballscrew-zpetc, 2 samples
+    and an 84.7 Hz mode) limit-cycled at 1.6 mm peak to peak where the rigid loop with the delay alone is stable
+    (|z| = 0.962).
     """
     if "delay" not in case["effects"]:
         return None
     m = vcnc.machine(case["machine"]).with_effect(case["axis"], "delay", case["effects"]["delay"])
     a = m.axis(case["axis"])
-    g, _ = discrete_closed_loop(a.controller, a.drive, m.sample_time, delay=a.delay.samples)
+    drive = a.drive
+    if "resonance" in case["effects"] and a.feedback == "motor":
+        mode = vcnc.machine(case["machine"]).with_effect(case["axis"], "resonance", case["effects"]["resonance"])
+        drive = _TwoMassDrive(drive, mode.axis(case["axis"]).resonance)
+    g, _ = discrete_closed_loop(a.controller, drive, m.sample_time, delay=a.delay.samples)
     z = control.poles(g)
     k = int(np.argmax(np.abs(z)))
     if abs(z[k]) < 1.0:
         return None
-    return (f"the sampled loop with a {a.delay.samples}-sample delay is unstable (pole |z| = {abs(z[k]):.4f} at "
-            f"{abs(np.angle(z[k])) / (2 * np.pi * m.sample_time):.0f} Hz): a limit cycle its current limit holds")
+    mode_note = " and its structural mode" if drive is not a.drive else ""
+    return (f"the sampled loop with a {a.delay.samples}-sample delay{mode_note} is unstable (pole |z| = "
+            f"{abs(z[k]):.4f} at {abs(np.angle(z[k])) / (2 * np.pi * m.sample_time):.0f} Hz): a limit cycle its "
+            "current limit holds")
 
 
 def build(case: dict):
@@ -199,13 +229,18 @@ def named_effects(model) -> list[str]:
 def shown_effects(case: dict, model, visible: dict, floor: float, clean_rms: float | None) -> dict:
     """The effects a diagnosis must name: each changes the noise-free measured position by more than 3 times
     the noise floor (+0.2 um), and together they leave the reduced model an error 1.5 times (+0.3 um) that of
-    the same record without them (what the reduced model absorbs of an effect, e.g. of a delay, is no effect)."""
+    the same record without them (what the reduced model absorbs of an effect, e.g. of a delay, is no effect).
+    A mode at or above the record's Nyquist frequency 1/(2T) is none: the record cannot show its frequency
+    (Shannon 1949; the diagnosis refuses such a mode, ``diagnosis._unphysical_mode``), e.g. seed 31 case 28, a 90 Hz
+    mode logged every 8 ms (62.5 Hz)."""
     if clean_rms is None:
         return {}
     reduced = model.validation.get("identification_rms_before_um", model.fit.get("rms_um"))
     if not reduced > 1.5 * clean_rms + 0.3:
         return {}
-    return {e: v for e, v in visible.items() if v > 3.0 * floor + 0.2}
+    mode = case["effects"].get("resonance")
+    aliased = mode is not None and mode["frequency_hz"] >= 0.5 / model.sample_time
+    return {e: v for e, v in visible.items() if v > 3.0 * floor + 0.2 and not (e == "resonance" and aliased)}
 
 
 def check(case: dict, model, shown: dict, floor: float) -> list[str]:

@@ -82,7 +82,7 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Cannot do g1 with zero feed rate": "G1 alone", "Bad character '\\357'": "byte-order mark",
          "Bad character '+' used": "outside [ ]", "Bad character '-' used": "outside [ ]",
          "Bad character '*' used": "outside [ ]", "Bad character '/' used": "outside [ ]",
-         "Dwell time missing with g4": "G04 X", "Command too long": "bare CR",
+         "Dwell time missing with g4": "G04 X", "Command too long": "Command too long",
          "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
          "Unknown word where unary operation could be": "macro B",
          "Cannot restore context from invalid stack frame": "M72 with no modal state saved",

@@ -21,15 +21,26 @@ INCH: float = 25.4
 
 @dataclasses.dataclass(frozen=True)
 class Where:
-    """Source position for error messages."""
+    """Source position for error messages.
+
+    ``pieces``: a block continued over several lines (a Heidenhain cycle definition's ``~`` lines) read as one
+    text; each ``(start, line, column)`` says that the text from index ``start`` on comes from ``line`` at
+    ``column`` (1-based), so that an error names the line and column where the word is written.
+    """
 
     file: str | None
     line: int
     text: str
+    pieces: tuple[tuple[int, int, int], ...] = ()
 
     def fail(self, message: str, *, column: int | None = None, text: str | None = None, expected: str | None = None):
-        """Raise a GCodeError at this line (``column`` 1-based)."""
-        raise GCodeError(message, file=self.file, line=self.line, column=column, text=text, expected=expected)
+        """Raise a GCodeError at this line (``column`` 1-based, of the block's text read as one)."""
+        line = self.line
+        for start, piece_line, piece_column in reversed(self.pieces if column is not None else ()):
+            if column >= start:  # from the blank that joins the piece to the one before
+                line, column = piece_line, piece_column + max(column - 1 - start, 0)
+                break
+        raise GCodeError(message, file=self.file, line=line, column=column, text=text, expected=expected)
 
 
 def lines_of(text: str) -> list[str]:

@@ -1146,8 +1146,6 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
     if number >= 200:
         q = q_assignments(rest, where, m.params, column0=col, auto_feed=m.auto_feed)
         if number in PATTERN_CYCLES:
-            if q.get(365, 0.0):
-                m.note("cycle 220 Q365=1: moves between positions straight, not along the pitch circle")
             m.refresh_cycle(where, blk.column)
             pattern_cycle_run(pattern_cycle(number, q, scale=m.scale, where=where, column=blk.column), m, where,
                                blk)

@@ -25,8 +25,9 @@ from interpolators.heidenhain_cycles import (
 from interpolators.heidenhain_paths import helical_arc
 from interpolators.heidenhain_surfaces import RuledSurface, SurfaceCycle, ruled_surface_moves, surface_moves
 from interpolators.heidenhain_targets import program_target
+from interpolators.heidenhain_transforms import TransformError
 from interpolators.heidenhain_words import SourceBlock
-from toolpaths.geometry import PLANE_AXES, Line
+from toolpaths.geometry import PLANE_AXES, Arc, Line
 
 if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
@@ -41,8 +42,10 @@ def run_surface(m: Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: S
     axis = m.plane
     p, q = PLANE_AXES[axis]
     if c.number in (232, 233) and not m.tool_radius > 0:
-        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius)",
-                   column=blk.column, text=blk.code, expected="TOOL CALL of a tool with a radius > 0 before the call")
+        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius); tool "
+                   f"{m.tool_number or 'called by name'} has none", column=blk.column, text=blk.code,
+                   expected="TOOL CALL of a tool with a radius > 0 before the call: a TOOL DEF n L.. R.. or the "
+                            "machine context's tool table ([program.tools.N] radius)")
     try:
         moves = ruled_surface_moves(c, radius=m.tool_radius) if isinstance(c, RuledSurface) else \
             surface_moves(c, radius=m.tool_radius, position=tuple(float(m.to_program(m.pos)[i]) for i in (p, q, axis)))
@@ -628,7 +631,10 @@ def pattern_cycle_run(pat: PatternCycle, m: Machine, where: Where, blk: SourceBl
     cycle 220 "Cycle run": at rapid to the 2nd set-up clearance, to the first position in the
     plane, the machining cycle from the set-up clearance; to the next positions at the set-up
     clearance, or at the 2nd with Q301 = 1; the pattern's Q200, Q203, Q204 replace the
-    machining cycle's). After the last position the tool is at the 2nd set-up clearance."""
+    machining cycle's). After the last position the tool is at the 2nd set-up clearance. Cycle 220 with
+    Q365 = 1 moves from one position to the next on the pitch circle (TNC 640 cycle programming manual
+    34059x-01, cycle 220 "Cycle run" 3: "on a straight line or circular arc"), at rapid traverse as the
+    straight moves (our reading: the manual names the rapid for the first position only)."""
     if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
                                                RuledSurface)) or m.cycle.surface is None:
         # which of the other cycles a pattern runs, and from where, no manual page found says (the
@@ -647,10 +653,28 @@ def pattern_cycle_run(pat: PatternCycle, m: Machine, where: Where, blk: SourceBl
     for k, (u, v) in enumerate(pat.points):
         target, _ = program_target(m, {"XYZ"[p]: u, "XYZ"[q]: v}, m.pos)
         target[axis] = m.pos[axis]
-        if not np.array_equal(target, m.pos):
+        if k and pat.centre is not None:
+            _pitch_circle_move(m, pat, target, where, blk)
+        elif not np.array_equal(target, m.pos):
             m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
         last = k == len(pat.points) - 1
         run_hole(m, scaled if pat.high or last else dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
+
+
+def _pitch_circle_move(m: Machine, pat: PatternCycle, target: np.ndarray, where: Where, blk: SourceBlock) -> None:
+    """Cycle 220 Q365 = 1: from the tool's position along the pitch circle by ``pat.step`` to ``target``
+    (the next position, at the tool's height), at rapid traverse (see :func:`pattern_cycle_run`)."""
+    axis, p, q = m.plane, *PLANE_AXES[m.plane]
+    try:
+        m.transform.length(axis)
+    except TransformError as e:
+        where.fail(f"cycle 220 Q365=1 (arcs on the pitch circle) under {e.message}", column=blk.column,
+                   text=blk.code, expected=e.expected)
+    centre, _ = program_target(m, {"XYZ"[p]: pat.centre[0], "XYZ"[q]: pat.centre[1]}, m.pos)
+    centre[axis] = m.pos[axis]
+    if not np.array_equal(target, m.pos):
+        seg = Arc(m.pos, target, centre, ccw=m.transform.sweep(pat.step, axis) > 0, plane=axis)
+        m.emit("arc", target, seg, math.inf, where, blk.number)
 
 
 def active_cycle(m: Machine) -> DrillCycle:

@@ -64,7 +64,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "BORING_DISENGAGE",
            "LEGACY_CYCLES", "tapping_cycle",
            "pocket_item", "old_pocket", "q_assignments", "legacy_value", "required_q", "PatternCycle",
-           "pattern_cycle",
+           "pattern_cycle", "MAX_PATTERN_POSITIONS",
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
            "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle", "REFUSED_CYCLES", "takes_point_angle",
@@ -113,6 +113,12 @@ REFUSED_CYCLES: dict[int, str] = {
 }
 #: Most infeeds of one hole (a guard against a mistyped plunging depth such as ``Q202=0.0000001``).
 MAX_INFEEDS: int = 100_000
+#: Most machining positions of one pattern: cycle 220's Q241 "Number of repetitions ... Input range 1 to 99999"
+#: (TNC 320 user's manual for cycle programming 9/2016, "POLAR PATTERN (Cycle 220)", p. 178; TNC 640 34059x-01
+#: p. 162); our reading applies the same bound to cycle 221's Q242 x Q243 and to a PATTERN DEF's NUM and its
+#: whole list (the PATTERN DEF dialog's input ranges are on pages not in the search index): a mistyped
+#: ``NUM100000000`` is an error, not hours of moves filling the memory.
+MAX_PATTERN_POSITIONS: int = 99_999
 #: Retraction of cycle 202 from the wall at the bottom, in the direction Q214 [mm] (a fixed value).
 BORING_DISENGAGE = 0.2
 
@@ -1185,6 +1191,11 @@ class PatternCycle:
     high : bool
         Q301 = 1: between the positions the tool moves at the 2nd set-up clearance (0: at the set-up
         clearance).
+    centre : tuple of (float, float) or None
+        Cycle 220 with Q365 = 1: the pitch circle's centre (Q216, Q217) [mm, program], about which the tool
+        moves from one position to the next; None: straight moves (Q365 = 0, cycle 221).
+    step : float
+        The signed angle from one position to the next about ``centre`` [deg] (0 without one).
     """
 
     number: int
@@ -1193,6 +1204,8 @@ class PatternCycle:
     surface: float
     second_setup: float
     high: bool
+    centre: tuple[float, float] | None = None
+    step: float = 0.0
 
 
 def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Where, column: int) -> PatternCycle:
@@ -1206,14 +1219,19 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
       starting point (Q225, Q226), turned by Q224 about it; the TNC machines the first line in
       the positive direction of the reference axis, the next one back (meander).
 
-    ``Q365`` = 1 of cycle 220 (moving between positions along the pitch circle) is read as
-    straight moves (noted by the reader). A definition lacking a parameter is an error naming it.
+    ``Q365`` of cycle 220 is the "Type of traverse? Line=0/arc=1" between the positions: 0 a straight
+    line, 1 an arc on the pitch circle (TNC 640 user's manual for cycle programming 34059x-01, cycle 220
+    "Cycle run" 3: "moves the tool on a straight line or circular arc to the starting point of the next
+    machining operation"); :attr:`PatternCycle.centre` and ``step`` carry the arc. More positions than
+    :data:`MAX_PATTERN_POSITIONS` (Q241, or Q242 x Q243) are an error, as is a definition lacking a
+    parameter.
     """
     required_q(number, q, where, column)
     if number == 220:
         n = int(q[241])
-        if n < 1:
-            where.fail("cycle 220: Q241 must be >= 1", column=column, text=where.text, expected="Q241 >= 1")
+        if not 1 <= n <= MAX_PATTERN_POSITIONS:
+            where.fail(f"cycle 220: Q241={q[241]:g} positions", column=column, text=where.text,
+                       expected=f"Q241 from 1 to {MAX_PATTERN_POSITIONS} (the manual's input range)")
         span = q[246] - q[245]
         step = q[247] or (span / n if abs(abs(span) - 360.0) <= 1e-9 else (span / (n - 1) if n > 1 else 0.0))
         r = q[244] / 2.0
@@ -1224,14 +1242,19 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
         if cols < 1 or rows < 1:
             where.fail("cycle 221: Q242 and Q243 must be >= 1", column=column, text=where.text,
                        expected="Q242 >= 1 and Q243 >= 1")
+        if cols * rows > MAX_PATTERN_POSITIONS:
+            where.fail(f"cycle 221: Q242 x Q243 = {cols} x {rows} positions", column=column, text=where.text,
+                       expected=f"at most {MAX_PATTERN_POSITIONS} positions (cycle 220's Q241 input range)")
         a = math.radians(q.get(224, 0.0))
         pts = []
         for j in range(rows):
             for i in (range(cols) if j % 2 == 0 else reversed(range(cols))):
                 u, v = i * q[237], j * q[238]
                 pts.append((q[225] + u * math.cos(a) - v * math.sin(a), q[226] + u * math.sin(a) + v * math.cos(a)))
+    arc = number == 220 and q.get(365, 0.0) != 0.0 and n > 1
     return PatternCycle(number=number, points=tuple((x * scale, y * scale) for x, y in pts), setup=abs(q[200]) * scale,
-                        surface=q[203] * scale, second_setup=q[204] * scale, high=q.get(301, 0.0) != 0.0)
+                        surface=q[203] * scale, second_setup=q[204] * scale, high=q.get(301, 0.0) != 0.0,
+                        centre=(q[216] * scale, q[217] * scale) if arc else None, step=step if arc else 0.0)
 
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
@@ -1265,9 +1288,9 @@ def _form_words(kind: str, text: str, start: int, where: Where, params: QParamet
     if missing:
         where.fail(f"PATTERN DEF {kind} without {', '.join(missing)}", column=column0 + start, text=inside,
                    expected=f"{kind}n ({' '.join(sorted(needed))} ...)")
-    if words["NUM"] < 1 or words["NUM"] != int(words["NUM"]):
+    if not 1 <= words["NUM"] <= MAX_PATTERN_POSITIONS or words["NUM"] != int(words["NUM"]):
         where.fail(f"PATTERN DEF {kind} with NUM{words['NUM']:g}", column=column0 + start, text=inside,
-                   expected="NUM a whole number >= 1")
+                   expected=f"NUM a whole number from 1 to {MAX_PATTERN_POSITIONS}")
     if {"STEP", "END"} <= words.keys():
         where.fail("PATTERN DEF PITCHCIRC with both STEP and END", column=column0 + start, text=inside,
                    expected="STEP (the stepping angle) or END (the end angle)")
@@ -1309,7 +1332,8 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
     machined in the order the forms are written, each from its first position on.
 
     Returns one dict per position with the words as written (``"X"``, ``"IY"``, ``"Z"`` ...) in
-    program units. The forms PAT and FRAME (rows of rows, their machining order not found) are errors.
+    program units. The forms PAT and FRAME (rows of rows, their machining order not found) are errors, and so
+    are a NUM or a list of more than :data:`MAX_PATTERN_POSITIONS` positions.
     """
     out: list[dict[str, float]] = []
     pos, listed = 0, 0
@@ -1322,11 +1346,14 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
                 open_form = _OPEN_FORM_RE.match(rest, pos)
                 what = (f"PATTERN DEF {open_form.group(1).upper()}{open_form.group(2)} without its closing ')'"
                         if open_form else f"pattern {tok!r} is not supported")
-                where.fail(what, column=column0 + pos, text=tok,
+                where.fail(what, column=column0 + pos + len(rest[pos:]) - len(rest[pos:].lstrip()), text=tok,
                            expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...) or "
                                     "PITCHCIRC1 (...)")
             kind = f.group(1).upper()
             out += _form_points(kind, _form_words(kind, rest[: f.end(3)], f.start(3), where, params, column0))
+            if len(out) > MAX_PATTERN_POSITIONS:
+                where.fail(f"PATTERN DEF with {len(out)} positions", column=column0 + f.start(),
+                           text=f.group(0).strip(), expected=f"at most {MAX_PATTERN_POSITIONS} positions in all")
             pos = f.end()
             continue
         words = read_words(rest[: m.end(2)], m.start(2), where, params, column0=column0)

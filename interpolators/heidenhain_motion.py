@@ -209,6 +209,12 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         return False
     if w.value == 129:
         m.tcpm = False
+    if w.value == 114:  # iTNC 530 user's manual, "Automatic compensation of machine geometry when working with
+        # tilted axes: M114": the programmed X, Y, Z become the tool's after a 3-D length compensation at each block's
+        # end, by the machine's geometry; ignored, every later point would be silently off by that compensation
+        where.fail("M114 (automatic compensation of the machine geometry when working with tilted axes) is not "
+                   "modelled", column=w.column, text=w.text,
+                   expected="M128 or FUNCTION TCPM (lines of the tool tip on the turned part), or no M114")
     if w.value in _M_END:
         return True
     if w.value in _M_STOP:

@@ -268,8 +268,10 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         op, test = FN_CONDITIONS[n]
         cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
         if cm is None:
+            other = [f"{word} is FN {k}" for k, (word, _) in FN_CONDITIONS.items()
+                     if k != n and re.search(rf"\s{word}\s", rest, re.I)]
             where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
-                       expected=f"FN {n}: IF a {op} b GOTO LBL n")
+                       expected=f"FN {n}: IF a {op} b GOTO LBL n" + (f" ({', '.join(other)})" if other else ""))
         a = params.evaluate(cm.group(1), where, column=col + cm.start(1))
         b = params.evaluate(cm.group(2), where, column=col + cm.start(2))
         lm = LABEL_RE.match(cm.group(3))
@@ -376,7 +378,9 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
     technical manual's table of system data, group 50 "Data from the tool table", as a shop's tool-copy macro
     comments NR3 - NR5: Stugo/Heidenhain Tool-copy.h), 0 with a note: vcnc's tool table
     (:class:`interpolators.context.Tool`) has no such columns.
-    The machine status of :data:`MACHINE_STATUS` (ID10 NR1, ID20 NR2 .. NR4) is what ``system`` gives.
+    The machine status of :data:`MACHINE_STATUS` (ID10 NR1, ID20 NR2 .. NR4) is what ``system`` gives. ID230, the
+    traverse range (a generator's ``FN 18: SYSREAD Q30 = ID230 NR3 IDX3`` then ``L ZQ30 R0 FMAX M91``: up to the
+    positive software limit switch), is an error saying that the machine context holds no travel.
     The index may be a Q parameter (``IDXQ11``).
 
     A position read after a program stop with no move since (``stopped_at``): a measuring program stops
@@ -393,6 +397,10 @@ def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position
         idx = params.get(idx) if idx[0] in "qQ" else float(idx[:9])
     known = {(240, 1), (270, 1), (20, 1), (50, 1), (50, 2), *((50, nr) for nr in _ID50_COLUMNS),
              *(MACHINE_STATUS if system is not None else ())}
+    if sm is not None and ident == 230:  # the table of system data's group 230, "Traverse range"
+        where.fail(f"FN 18 SYSREAD ID230 NR{nr} reads the machine's traverse range (its software limit switches), "
+                   "which the machine context does not hold", column=col, text=rest.strip(),
+                   expected="the limit written in the program (L Z-5 R0 FMAX M91), or " + _SYSREAD_EXPECTED)
     if sm is None or (ident, nr) not in known or (idx is None) != (ident in (10, 20)) \
             or (ident in (240, 270) and idx not in (1.0, 2.0, 3.0)):
         where.fail(f"FN 18 SYSREAD {rest.strip()!r} is not supported", column=col, text=rest.strip(),

@@ -49,6 +49,9 @@ class SourceBlock:
     skip : bool
         The block is marked ``/`` (before or after its number): hidden when the operator switches
         block skip on (TNC 640 user's manual, "Hiding blocks"); it runs here, the switch off.
+    pieces : tuple of (int, int, int)
+        A block continued over lines: where each line's text starts in the joined line (index, its 1-based
+        line and column; see :class:`interpolators._words.Where`); empty for a block of one line.
     """
 
     line: int
@@ -57,10 +60,11 @@ class SourceBlock:
     column: int
     text: str
     skip: bool = False
+    pieces: tuple[tuple[int, int, int], ...] = ()
 
     def where(self, source: str | None) -> Where:
         """Source position of this block for error messages."""
-        return Where(source, self.line, self.text)
+        return Where(source, self.line, self.text, self.pieces)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -175,7 +179,7 @@ def source_blocks(text: str) -> list[SourceBlock]:
             out.append(SourceBlock(i + 1, int(number[:9]) if number else None, raw[pos:], pos + 1, raw.lstrip()))
             i += 1
             continue
-        parts: list[str] = []
+        parts: list[tuple[str, int, int]] = []  # each line's text, its 1-based line and the column it starts at
         comment = False
         while True:
             raw = lines[i].rstrip()
@@ -185,14 +189,21 @@ def source_blocks(text: str) -> list[SourceBlock]:
             if not (comment and _wrapped_comment(body)):
                 comment = ";" in body
                 part = _strip_comment(body)
-                parts.append(part.strip() if parts else part.rstrip())
+                parts.append((part.strip(), i + 1, 1 + len(part) - len(part.lstrip())) if parts
+                             else (part.rstrip(), i + 1, 1))
             i += 1
             if not more:
                 break
-        while i < len(lines) and _continues(parts[0], lines[i]):
-            parts.append(_strip_comment(lines[i]).strip().rstrip("~").strip())
+        while i < len(lines) and _continues(parts[0][0], lines[i]):
+            part = _strip_comment(lines[i])
+            parts.append((part.strip().rstrip("~").strip(), i + 1, 1 + len(part) - len(part.lstrip())))
             i += 1
-        code = decimal_points(" ".join(p for p in parts if p))
+        code = decimal_points(" ".join(p for p, _, _ in parts if p))
+        pieces, start = [], 0
+        for p, line, column in parts:
+            if p:
+                pieces.append((start, line, column))
+                start += len(p) + 1
         if code.endswith("*"):
             code = code[:-1].rstrip()
         m = _HEAD_RE.match(code)
@@ -202,7 +213,8 @@ def source_blocks(text: str) -> list[SourceBlock]:
         if not rest.strip() or rest.startswith("*"):
             continue
         out.append(SourceBlock(first + 1, number, rest, pos + 1, lines[first].strip(),
-                               skip=bool(m.group("pre") or m.group("post"))))
+                               skip=bool(m.group("pre") or m.group("post")),
+                               pieces=tuple(pieces) if len(pieces) > 1 else ()))
     return out
 
 

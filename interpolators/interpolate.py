@@ -288,9 +288,9 @@ def interpolate(
       of these axes keeps its limits (:func:`interpolators.kinematics.extra_path_bounds`). Under G64 consecutive feed
       moves of X/Y/Z with these axes are passed at speed where every axis' velocity step fits in one sample
       (:func:`interpolators.kinematics.extra_junction_speed_limit`, see ``_extra_block``; dense runs merged with the
-      other axes, :func:`interpolators.dense.fit_axes`; line/line corners blended with the other axes on a quintic,
-      :mod:`interpolators.axis_blends`); the chords of one rapid under tool centre point control likewise; other blocks
-      moving them start and end at rest. Setpoint columns ``a, b, c`` are in deg, ``u, v, w`` in mm.
+      other axes, :func:`interpolators.dense.fit_axes`; line/line corners, S-curve also line/arc kinks and curvature
+      steps, blended with every axis on a quintic, :mod:`interpolators.axis_blends`); the chords of one TCP rapid
+      likewise; other blocks moving them start and end at rest. Setpoint columns ``a, b, c`` in deg, ``u, v, w`` in mm.
     * G64: line/line corners are blended within the tolerance ``P`` when passing the blend is
       faster than stopping (a model of both, see ``_blend_worth``; sharp corners stay stops).
       Chains whose junctions are all continuous (blends, rounding-level steps; see
@@ -322,13 +322,12 @@ def interpolate(
     jerk_limited = profile == "scurve"
     chains = _chains(program)
     lim = _axis_limits(chains, limits, jerk_limited)
-    g = _geometry(chains, lim, jerk_limited, program, Ts, _resolve_limits(limits))
-    c = _corner_stops(g, chains, lim, Ts, jerk_limited, _resolve_limits(limits))
+    every = _resolve_limits(limits)
+    g = _geometry(chains, lim, jerk_limited, program, Ts, every)
+    c = _corner_stops(g, chains, lim, Ts, jerk_limited, every)
     del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
-    v_max, a_max, j_max = _path_bounds(g, c, lim, jerk_limited)
-    if g.extra is not None:
-        v_max, a_max, j_max = _extra_bounds(g, c, v_max, a_max, j_max, _resolve_limits(limits), jerk_limited)
-    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, (v_max, a_max, j_max), jerk_limited)
+    v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, _path_bounds(g, c, lim, jerk_limited), jerk_limited,
+                                                     every)
     ph, total_N = _phases(g, c, v0, v1, v_max, a_max, j_max, Ts, jerk_limited, program, max_samples)
     return _sample(program, g, ph, total_N, Ts, profile)
 
@@ -623,11 +622,15 @@ def _merged_between_starts(ch: _Chain, jerk_limited: bool, program: Program) -> 
 def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mapping[str, AxisLimits],
                    jerk_limited: bool, Ts: float, program: Program) -> tuple[list, list[int], dict]:
     """The segments and blocks of a chain moving the axes beyond X, Y, Z (``ch``, its runs merged, ``fit_of`` their
-    axis splines, :func:`_merged_extra`) with its line/line corners blended as in a chain of X, Y, Z
-    (:func:`interpolators.lookahead.blend_corners`, no kink blends), and ``fit_of`` with the axes' splines along
-    each blend (:mod:`interpolators.axis_blends`, one spline for all, each blend's arc length from its offset; a
-    shortened line's are
-    :func:`_extra_geometry`'s, by :func:`_on_line`). A blend whose
+    axis splines, :func:`_merged_extra`) with its corners blended as in a chain of X, Y, Z
+    (:func:`interpolators.lookahead.blend_corners`: line/line corners, and under the S-curve the kinks and tangent
+    curvature steps between lines and arcs, not those beside a merged curve), and ``fit_of`` with the axes' splines
+    along each blend and each arc piece a kink blend leaves (:mod:`interpolators.axis_blends`, one spline for all,
+    each blend's arc length from its offset; :func:`_with_cut_arcs`; a shortened line's are
+    :func:`_extra_geometry`'s, by :func:`_on_line`). Before session 33 the kinks were left to the one-sample rule
+    here: a contour after one move with A ran slower than alone, and at 0.25 ms every tangent line/arc junction of a
+    chain moving A was a stop (our reading of G64 P for these axes as for line/line corners,
+    :mod:`interpolators.axis_blends`). A blend whose
     axes leave the tolerance is made again within the tolerance scaled down by the excess, then dropped; corners
     beside a rapid or a chord under tool centre point control are not blended (its tip would leave ``P``, as
     :func:`_merged_extra`). Without a blend, the chain's own segments and ``fit_of``."""
@@ -636,12 +639,15 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     tol = allowed.copy()  # the XYZ tolerance each corner is blended within
     kept = np.array([program.blocks[b].tcp for b in blocks], dtype=bool) | np.array(ch.rapid, dtype=bool)
     tol[:-1][kept[:-1] | kept[1:]] = 0.0
-    corner_of = {b: k for k, (sg, b) in enumerate(zip(segments, blocks)) if isinstance(sg, Line)}
+    plain = [isinstance(sg, Line) or (isinstance(sg, Arc) and abs(sg.sweep) <= 2.0 * math.pi) for sg in segments]
+    kinks = [plain[k] and plain[k + 1] for k in range(len(segments) - 1)]  # not beside a merged curve
+    corner_of = {b: k for k, (sg, b) in enumerate(zip(segments, blocks)) if plain[k]}
     blk = program.blocks
     corner_value = [b.extra_target for b in blk]
 
     def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
-        r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3))
+        r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3),
+                          near_end=True)
         r1, m1 = _on_line([blk[blocks[k + 1]] for k in corners], np.array([b.end for b in blends]).reshape(-1, 3))
         return np.array([b.length for b in blends], dtype=float), r0, r1, m0, m1
 
@@ -655,11 +661,13 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     for attempt in range(3):
         segs, blks = blend_corners(segments, blocks, tol.tolist(), worth=worth, curvature_continuous=jerk_limited,
                                    kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))),
-                                   kinks=False)
-        if len(segs) == len(segments):
+                                   kinks=kinks)
+        if len(segs) == len(segments) and all(a is b for a, b in zip(segs, segments)):
             return segments, blocks, fit_of
         original = {id(sg) for sg in segments}
-        made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
+        # the blends (a block's arc cut by a kink blend is a piece of it, a line/line blend belongs to a line)
+        made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)
+                and not (isinstance(sg, Arc) and isinstance(blk[b].segment, Arc))]
         corners = [k for _, k in made]
         args = ends([sg for sg, _ in made], corners)
         points = _points_at_shares([sg for sg, _ in made])
@@ -667,26 +675,82 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
                  for j, at in ((0, "end"), (1, "start"))]
         along = corner_positions(points, np.array([segments[k].end for k in corners], dtype=float).reshape(-1, 3),
                                  *sides)  # the axes at the programmed path's point nearest the blend's
+        for i, k in enumerate(corners):
+            if isinstance(segments[k], Arc) or isinstance(segments[k + 1], Arc):  # beside an arc: along the arc
+                along[i] = _arc_corner_positions(points[i], segments[k], segments[k + 1])
         ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
-            spl, offsets = hermite_axes(*args)  # one spline for the chain's blends
-            return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for (sg, _), o in zip(made, offsets)}}
-        for i in np.flatnonzero(ratio > 1.0).tolist():  # the XYZ deviation its size gives, scaled down
+            cut = [(sg, b) for sg, b in zip(segs, blks) if isinstance(sg, Arc) and id(sg) not in original
+                   and isinstance(blk[b].segment, Arc)]
+            spl, offsets = hermite_axes(*_with_cut_arcs(args, cut, blk))  # one spline for the chain's blends
+            pieces = [sg for sg, _ in made] + [sg for sg, _ in cut]
+            return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for sg, o in zip(pieces, offsets)}}
+        # the XYZ deviation its size gives, scaled down: the axes' excess grows as the blend's length, so does the
+        # deviation of a corner blend (its middle's distance from the corner), that of a tangent junction's curvature
+        # ramp (within the tolerance it was made in) as its square
+        ramp = np.linalg.norm(sides[1] - sides[0], axis=1) <= _TANGENT_STEP
+        for i in np.flatnonzero(ratio > 1.0).tolist():
             sg, k = made[i]
             reach = float(np.linalg.norm(sg.point_at(0.5 * sg.length) - segments[k].end))
-            tol[k] = 0.0 if attempt == 1 else 0.95 * reach / ratio[i]
+            tol[k] = 0.0 if attempt == 1 else (0.95 * tol[k] / ratio[i] ** 2 if ramp[i] else 0.95 * reach / ratio[i])
     return segments, blocks, fit_of
 
 
+def _arc_corner_positions(points: np.ndarray, before: Line | Arc, after: Line | Arc) -> np.ndarray:
+    """:func:`interpolators.axis_blends.corner_positions` of the points ``points`` (c, 3) near the junction of
+    ``before`` and ``after``, one of them an arc (of at most one turn): the signed path distance from the junction
+    of the nearest point of either, on an arc by the angle about its centre (the tangent line there put a point
+    0.89 mm along a circle of radius 1 mm at 0.78 mm)."""
+    side = []
+    for seg, sign in ((before, -1.0), (after, 1.0)):
+        corner = np.asarray(seg.end if sign < 0 else seg.start, dtype=float)
+        rel = points - corner
+        if isinstance(seg, Arc):
+            p, q = seg.plane_axes
+            c = np.asarray(seg.center, dtype=float)
+            turn = np.arctan2(points[:, q] - c[q], points[:, p] - c[p]) - math.atan2(corner[q] - c[q], corner[p] - c[p])
+            turn = (turn + math.pi) % (2.0 * math.pi) - math.pi  # in (-pi, pi], positive along the arc's sense
+            t = turn * math.copysign(1.0, seg.sweep) * seg.length / abs(seg.sweep)
+        else:
+            t = rel @ ((np.asarray(seg.end, dtype=float) - np.asarray(seg.start, dtype=float)) / seg.length)
+        t = np.minimum(t, 0.0) if sign < 0 else np.maximum(t, 0.0)
+        t = np.maximum(t, -seg.length) if sign < 0 else np.minimum(t, seg.length)
+        nearest = seg.point_at(seg.length + t if sign < 0 else t)
+        side.append((t, np.linalg.norm(points - nearest, axis=1)))
+    (t_in, d_in), (t_out, d_out) = side
+    return np.where(d_in <= d_out, t_in, t_out)
+
+
+def _with_cut_arcs(args: tuple[np.ndarray, ...], cut: list, blk: Sequence) -> tuple[np.ndarray, ...]:
+    """The arguments of :func:`interpolators.axis_blends.hermite_axes` for a chain's blends (``args``) followed by
+    those of the pieces ``cut`` (arc, block) that kink blends left of the blocks' arcs: the axes along each piece
+    from their programmed values at its ends, at the arc's rate (equal end rates: the straight line, the axes
+    proportional to the path as programmed)."""
+    if not cut:
+        return args
+    blocks = [blk[b] for _, b in cut]
+    r0, m = _on_line(blocks, np.array([sg.start for sg, _ in cut], dtype=float).reshape(-1, 3))
+    r1, _ = _on_line(blocks, np.array([sg.end for sg, _ in cut], dtype=float).reshape(-1, 3), near_end=True)
+    length = np.array([sg.length for sg, _ in cut], dtype=float)
+    return tuple(np.concatenate([a, b]) for a, b in zip(args, (length, r0, r1, m, m)))
+
+
 def _points_at_shares(blends: list) -> np.ndarray:
-    """The points of corner blends (arcs, clothoid pairs) at ``CHECK_SHARES`` of their lengths, shape (m, c, 3):
-    all at once (:meth:`toolpaths.packed.PackedSegments.evaluate`)."""
-    packed = PackedSegments.from_segments(blends)
+    """The points of corner blends (arcs, clothoid pairs: all at once,
+    :meth:`toolpaths.packed.PackedSegments.evaluate`; kink blends, :class:`toolpaths.geometry.SplineCurve`, each
+    by its own) at ``CHECK_SHARES`` of their lengths, shape (m, c, 3)."""
     c = len(CHECK_SHARES)
-    seg = np.repeat(np.arange(len(blends), dtype=np.int64), c)
-    s = (CHECK_SHARES[None, :] * np.asarray(packed.length, dtype=float)[:, None]).ravel()
-    pos = packed.evaluate(seg, s, np.ones(len(s)), np.zeros(len(s)))[0]
-    return pos.reshape(len(blends), c, 3)
+    out = np.empty((len(blends), c, 3))
+    curves = [i for i, b in enumerate(blends) if isinstance(b, SplineCurve)]
+    for i in curves:
+        out[i] = blends[i].point_at(CHECK_SHARES * blends[i].length)
+    rest = [i for i, b in enumerate(blends) if not isinstance(b, SplineCurve)]
+    if rest:
+        packed = PackedSegments.from_segments([blends[i] for i in rest])
+        seg = np.repeat(np.arange(len(rest), dtype=np.int64), c)
+        s = (CHECK_SHARES[None, :] * np.asarray(packed.length, dtype=float)[:, None]).ravel()
+        out[rest] = packed.evaluate(seg, s, np.ones(len(s)), np.zeros(len(s)))[0].reshape(len(rest), c, 3)
+    return out
 
 
 #: Share of a line or arc a rate-step ramp may take at each of its ends (:func:`_ramped_extra`): the rest at least
@@ -819,21 +883,33 @@ def _tolerance(block) -> float:
 
 def _value_at_start(segment: Line | Arc, block) -> np.ndarray:
     """The axes beyond X, Y, Z at the start of a line or arc of ``block`` (a line may start past the block's start,
-    shortened by a corner blend; an arc in such a chain is never cut)."""
+    shortened by a corner blend; an arc cut by a kink blend carries a fit and is not ramped)."""
     if isinstance(segment, Line) and block.extra_start is not None and segment is not block.segment:
         return _on_line([block], np.asarray(segment.start, dtype=float)[None])[0][0]
     return np.asarray(block.extra_start if block.extra_start is not None else np.zeros(len(EXTRA_NAMES)), dtype=float)
 
 
-def _on_line(blocks: Sequence, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The axes beyond X, Y, Z at ``points`` (n, 3) of the lines of ``blocks`` (feed lines moving them) and their
-    rates per mm of them, shape (n, 6) each: they move in proportion to the path (RS274/NGC 3, Sec. 2.1.2.5)."""
+def _on_line(blocks: Sequence, points: np.ndarray, *, near_end: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """The axes beyond X, Y, Z at ``points`` (n, 3) of the lines or arcs (of at most one turn) of ``blocks`` (feed
+    moves moving them) and their rates per mm of them, shape (n, 6) each: they move in proportion to the path
+    (RS274/NGC 3, Sec. 2.1.2.5), on an arc by the length of its piece from the block's start to the point, or
+    (``near_end``: points in the arc's second half) its length less that of the piece from the point to its end (a
+    full circle's end is its start)."""
     n = len(blocks)
     start = np.array([b.extra_start for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
     delta = np.array([b.extra_delta for b in blocks], dtype=float).reshape(n, len(EXTRA_NAMES))
     origin = np.array([b.segment.start for b in blocks], dtype=float).reshape(n, 3)
     rate = delta / np.array([b.segment.length for b in blocks], dtype=float)[:, None]
-    return start + rate * np.linalg.norm(points - origin, axis=1)[:, None], rate
+    along = np.linalg.norm(points - origin, axis=1)
+    for i, b in enumerate(blocks):
+        arc = b.segment
+        if isinstance(arc, Arc) and near_end:
+            to_end = np.asarray(arc.end, dtype=float)
+            along[i] = arc.length - (piece_of(arc, points[i], to_end).length
+                                     if np.any(points[i] != to_end) else 0.0)
+        elif isinstance(arc, Arc) and along[i] > 0.0:
+            along[i] = piece_of(arc, origin[i], points[i]).length
+    return start + rate * along[:, None], rate
 
 
 def _restore_runs(ch: _Chain, merged: _Chain, run_of: dict[int, MergedRun], failed: set[int]
@@ -1135,13 +1211,14 @@ def _path_bounds(g: _Geom, c: _Chains, lim: AxisLimitArrays, jerk_limited: bool,
 _CRUISE_JERK_SHARE = 0.6
 
 
-def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool
-                       ) -> tuple[np.ndarray, ...]:
-    """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` and the junction speeds
-    (:func:`_junction_speeds`) they give; under the S-curve, in each chain where that is faster, the bounds of its
-    curves at :data:`_CRUISE_JERK_SHARE` of the jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of
-    :data:`interpolators.kinematics.JERK_SPEED_SHARE` (not in a program moving the axes beyond X, Y, Z, whose
-    curve bounds, :func:`interpolators.kinematics.extra_curve_bounds`, keep it).
+def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple[np.ndarray, ...], jerk_limited: bool,
+                       limits: Mapping[str, AxisLimits]) -> tuple[np.ndarray, ...]:
+    """3b-4. The plan ``(v_max, a_max, j_max, v0, v1)``: the path ``bounds`` (of :func:`_path_bounds`, capped by the
+    axes beyond X, Y, Z, :func:`_extra_bounds`) and the junction speeds (:func:`_junction_speeds`) they give; under
+    the S-curve, in each chain where that is faster, the bounds of its curves at :data:`_CRUISE_JERK_SHARE` of the
+    jerk limits for ``v^3 |(k^2, dk/ds)|`` instead of :data:`interpolators.kinematics.JERK_SPEED_SHARE`, capped
+    likewise (before session 33 programs moving those axes kept the first, so a contour after one move with A ran
+    slower than alone: alternating tangent arcs 3.118 -> 3.721 s at F1200 P0.01).
 
     The share splits one budget: at constant speed the jerk of a curve is ``v^3 |(k^2, dk/ds)|`` alone, while a
     speed change on it needs the rest for ``3 k v a`` and the path jerk (:mod:`interpolators.kinematics`).
@@ -1151,11 +1228,15 @@ def _faster_jerk_share(g: _Geom, c: _Chains, lim: AxisLimitArrays, bounds: tuple
     need likewise: LinuxCNC's ``pmCircleActualMaxVel`` (``src/emc/tp/blendmath.c``) gives an arc's normal
     acceleration what its speed needs, at most ``BLEND_ACC_RATIO_NORMAL`` (sqrt(3)/2) of the limit, and the
     tangential acceleration the rest; no manual found states a jerk split (our reading: choose the faster)."""
+    if g.extra is not None:
+        bounds = _extra_bounds(g, c, *bounds, limits, jerk_limited)
     plan = (*bounds, *_junction_speeds(g, c, *bounds, jerk_limited))
-    if not jerk_limited or g.extra is not None:
+    if not jerk_limited:
         return plan
     v_max, a_max, j_max, v0, v1 = plan
     alt = _path_bounds(g, c, lim, True, _CRUISE_JERK_SHARE)
+    if g.extra is not None:
+        alt = _extra_bounds(g, c, *alt, limits, True)
     differs = (alt[0] != v_max) | (alt[1] != a_max) | (alt[2] != j_max)
     chains = np.unique(c.of_segment[differs])
     if not len(chains):

@@ -68,6 +68,14 @@ class Word:
     text: str
 
 
+
+#: A bracket at the start of a block holding words of prose (two letters in a row and a blank; no '#' nor the
+#: operators of a CNCjs expression, '?', '<', '>', '=', '!', '&', '|'): WinCNC's comment syntax, which Vectric's
+#: CAMaster posts write ("[TOOL LIST]", "[ GET TOOL NUMBER 2 ]"), or a template's placeholder ("[put the
+#: coordinates here]"); our reading from those programs' own headers ("MACHINES WITH WINCNC CONTROL ONLY"), no
+#: WinCNC manual at hand.
+_BRACKET_PROSE = re.compile(r"\[(?=[^\]#?<>=!&|]*[A-Za-z]{2})(?=[^\]#?<>=!&|]*\s)[^\]#?<>=!&|]*\]")
+
 def _slash_comment_line(line: str, where: Where, *, second: int | None = None) -> None:
     """Refuse a line that opens with '//' (after its leading blanks; or, with ``second``, the line whose
     block-delete '/' was taken and whose words start with another '/' there): a line comment in Syntec/DDCS
@@ -204,6 +212,12 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
         if ch == "[":
             close = code.find("]", i)
             tok = code[i:close + 1] if close > i else token_at(code, i)
+            if not words and _BRACKET_PROSE.fullmatch(tok):
+                where.fail(f"'{tok}': text in square brackets at the start of a block, a comment as WinCNC "
+                           "(CAMaster routers) writes them (Vectric's WinCNC posts head their programs so) or a "
+                           "template's placeholder left in, not a word; vcnc's dialects take comments in ( ) or after "
+                           "a semicolon", column=i + 1, text=tok,
+                           expected="a comment in ( ) or after ; (or a control that reads [ ] comments)")
             where.fail(f"'{tok}' in brackets where a word should start (a template's placeholder, or an "
                        "expression the CNCjs sender evaluates, as a CNCjs macro writes 'G0 X[xmin]'?)",
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")

@@ -347,8 +347,11 @@ def junction_speed_limit(
     """Largest speed at junctions with a tangent and curvature discontinuity.
 
     The discontinuity is passed within one sample; it may use ``share`` of the axis acceleration
-    limit (velocity step ``v |dt_i| <= share A_i Ts``) and, for the S-curve, of the jerk limit
-    (``v |dt_i| <= share J_i Ts^2`` and acceleration step ``v^2 |dk_i| <= share J_i Ts``).
+    limit (velocity step ``v |dt_i| <= share A_i Ts``) and, for the S-curve, of the jerk limit: the
+    velocity step and the acceleration step ``v^2 |dk_i|`` fall in the same samples, so their finite-difference
+    jerks add, ``v |dt_i| / Ts^2 + v^2 |dk_i| / Ts <= share J_i`` (:func:`_jerk_step_speed_limit`; each checked
+    alone against ``share J_i`` before session 33, a nearly tangent arc/line junction took twice the share
+    and its Y jerk reached 1.009 of the limit beside a path jerk at 0.9 of it: setpoint fuzzer seed 42782).
 
     Parameters
     ----------
@@ -361,10 +364,29 @@ def junction_speed_limit(
         [mm/s]
     """
     v = _step_speed_limit(limits.acceleration, limits.jerk, np.abs(tangent_jump), sample_time=sample_time,
-                          share=share, jerk_limited=jerk_limited)
+                          share=share, jerk_limited=False)
     if jerk_limited:
-        v = np.minimum(v, np.sqrt(_min_ratio(share * limits.jerk * sample_time, np.abs(curvature_jump))))
+        v = np.minimum(v, _jerk_step_speed_limit(limits.jerk, np.abs(tangent_jump), np.abs(curvature_jump),
+                                                 sample_time=sample_time, share=share))
     return v
+
+
+def _jerk_step_speed_limit(jerk: np.ndarray, velocity_step: np.ndarray, acceleration_step: np.ndarray, *,
+                           sample_time: float, share: float) -> np.ndarray:
+    """Largest path speed ``v`` at which a velocity step ``v |dt_i|`` and an acceleration step ``v^2 |dk_i|``
+    passed within the same sample keep ``v |dt_i| / Ts^2 + v^2 |dk_i| / Ts <= share J_i`` on every axis
+    (shapes ``(k,)``, ``(n, k)``, ``(n, k)``): the third finite difference of a velocity step is at most the step
+    over ``Ts^2``, that of an acceleration step at most 0.75 of it over ``Ts`` (:func:`curvature_step_speed_limit`),
+    and one sample may hold both. The positive root of ``a v^2 + b v - c``, as ``2 c / (b + sqrt(b^2 + 4 a c))``
+    (``c / b`` without an acceleration step, ``sqrt(c / a)`` without a velocity step); steps up to 1e-15 count
+    as none, an axis without steps or jerk limit adds no bound."""
+    c = (share * jerk * sample_time**2)[None, :]
+    b = np.where(velocity_step > 1e-15, velocity_step, 0.0)
+    a = np.where(acceleration_step > 1e-15, acceleration_step, 0.0) * sample_time
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = 2.0 * c / (b + np.sqrt(b * b + 4.0 * a * c))
+    v = np.where(((a > 0) | (b > 0)) & np.isfinite(c), v, np.inf)
+    return v.min(axis=1)
 
 
 def curvature_step_speed_limit(
@@ -489,8 +511,8 @@ def extra_junction_speed_limit(
     second_jump : ndarray, shape (m, 6), optional
         Change of ``d^2 r_i / ds^2`` across each junction (beside the axis curve of a merged run,
         :func:`extra_curve_bounds`): for the S-curve its acceleration step ``v^2 |d2r_i|``, passed
-        within one sample, uses at most ``share`` of the jerk limit (``v^2 |d2r_i| <= share J_i Ts``,
-        the curvature-step term of :func:`junction_speed_limit`).
+        within the same sample as the velocity step, shares ``share`` of the jerk limit with it
+        (``v |dr_i| / Ts^2 + v^2 |d2r_i| / Ts <= share J_i``, the rule of :func:`junction_speed_limit`).
 
     Returns
     -------
@@ -499,10 +521,11 @@ def extra_junction_speed_limit(
     """
     acc = np.array([limits[a].acceleration if a in limits else np.inf for a in EXTRA_NAMES])
     jerk = np.array([limits[a].jerk if a in limits else np.inf for a in EXTRA_NAMES])
-    v = _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share,
-                          jerk_limited=jerk_limited)
-    if jerk_limited and second_jump is not None:
-        v = np.minimum(v, np.sqrt(_min_ratio(share * jerk * sample_time, np.abs(second_jump))))
+    v = _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share, jerk_limited=False)
+    if jerk_limited:
+        second = np.zeros_like(rate_jump) if second_jump is None else np.abs(second_jump)
+        v = np.minimum(v, _jerk_step_speed_limit(jerk, np.abs(rate_jump), second, sample_time=sample_time,
+                                                 share=share))
     return v
 
 

@@ -424,7 +424,7 @@ def blend_corners(
     worth: Callable[[CornerBlends], np.ndarray] | None = None,
     curvature_continuous: bool = False,
     kink_limits: tuple[float, float] = (1.0, 25.0),
-    kinks: bool = True,
+    kinks: bool | list[bool] = True,
     offsets: list[float] | None = None,
 ) -> tuple[list[Line | Arc | ClothoidPair | SplineCurve], list[int]]:
     """Blend the corners of a continuous chain (line/line; with ``curvature_continuous`` every kink).
@@ -450,9 +450,10 @@ def blend_corners(
     kink_limits : tuple of float
         Path acceleration and jerk limits ``(A, J)`` [mm/s^2, mm/s^3] the kink blends' shapes are chosen
         for (only their ratio matters).
-    kinks : bool
-        False: only the line/line corners, also under ``curvature_continuous`` (a chain moving the axes beyond
-        X, Y, Z, whose motion across a blend :mod:`interpolators.axis_blends` gives for line/line corners only).
+    kinks : bool or list of bool
+        False: only the line/line corners, also under ``curvature_continuous``; a list: per junction ``k``, whether
+        its kink may be blended (a chain moving the axes beyond X, Y, Z blends the kinks between lines and arcs,
+        whose motion along a blend :mod:`interpolators.axis_blends` gives, not those beside its merged curves).
     offsets : list of float, optional
         Per segment, its largest distance [mm] from the programmed path: a merged curve's fit deviation
         (:attr:`interpolators.dense.MergedRun.deviation`), 0 for a line or arc; a kink blend keeps within the
@@ -483,18 +484,20 @@ def blend_corners(
                 worth(CornerBlends.of(np.array(corners), blends)), dtype=bool).tolist()
             blend_at = {k: b for k, b, ok in zip(corners, blends, accepted) if ok}
     legs: dict[int, float] = {}
-    if curvature_continuous and kinks:
+    allowed = np.broadcast_to(np.asarray(kinks, dtype=bool), (max(len(segments) - 1, 0),))
+    if curvature_continuous and allowed.any():
         kinkable = np.array([_kinkable(sg) for sg in segments], dtype=bool)
-        cand = [k for k in np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])).tolist()
+        cand = [k for k in np.flatnonzero(kinkable[:-1] & kinkable[1:] & ~(is_line[:-1] & is_line[1:])
+                                          & allowed).tolist()
                 if not _within_spline(segments[k], segments[k + 1])]
         if offsets is None:  # NaN: a curve piece whose fit may take FIT_SHARE of the tolerance
             offsets = [math.nan if isinstance(sg, SplineCurve) else 0.0 for sg in segments]
-        corners, kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits,
-                                           np.asarray(offsets, dtype=float))
-        if kinks:
-            accepted = [True] * len(kinks) if worth is None else np.asarray(
-                worth(CornerBlends.of(np.array(corners), kinks)), dtype=bool).tolist()
-            for k, b, d, ok in zip(corners, kinks, leg, accepted):
+        corners, made_kinks, leg = _kink_blends(segments, cand, np.asarray(tolerances, dtype=float), kink_limits,
+                                                np.asarray(offsets, dtype=float))
+        if made_kinks:
+            accepted = [True] * len(made_kinks) if worth is None else np.asarray(
+                worth(CornerBlends.of(np.array(corners), made_kinks)), dtype=bool).tolist()
+            for k, b, d, ok in zip(corners, made_kinks, leg, accepted):
                 if ok:
                     blend_at[k], legs[k] = b, d
     return _assemble(segments, blocks, blend_at, legs)

@@ -48,6 +48,7 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
     if not isinstance(text, str):
         raise GCodeError(f"program text must be a str, got {type(text).__name__}", file=source)
     bare_cr = "\r" in text and "\n" not in text
+    raw = text
     text = one_line_end(text)  # CR, LF and CR LF alike, for both readers
     if detect_dialect(text) == "heidenhain":
         return parse_heidenhain(text, source=source, context=context)
@@ -62,6 +63,9 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
                          expected=exc.expected) from None
     if bare_cr and context.dialect.name == "linuxcnc":
         prog = dataclasses.replace(prog, notes=(*prog.notes, _BARE_CR_NOTE))
+    long_line = _too_long_line(raw) if prog.dialect == "iso" and context.dialect.name == "linuxcnc" else None
+    if long_line is not None and not bare_cr:
+        prog = dataclasses.replace(prog, notes=(*prog.notes, _LONG_LINE_NOTE.format(*long_line)))
     return prog
 
 
@@ -93,6 +97,25 @@ def load_program(path: str | os.PathLike[str], *, context: MachineContext = DEFA
 #: ``linuxcnc`` dialect, says so.
 _BARE_CR_NOTE = ("lines ended by a bare CR (a file without LF) read as lines (LinuxCNC refuses it: it reads the "
                  "file as one line, \"Command too long\")")
+
+#: LinuxCNC reads a line into a buffer of LINELEN (255, linuxcnc.h) with ``fgets`` and refuses a line that fills
+#: it, 254 bytes or more with its line end (interp_read.cc ``read_text``: ``strlen(raw_line) == LINELEN - 1``,
+#: "Command too long"). vcnc reads any length and, under the ``linuxcnc`` dialect, says so.
+_LINELEN = 255
+_LONG_LINE_NOTE = ("line {0} is {1} bytes long with its line end (LinuxCNC refuses it: \"Command too long\", it "
+                   "takes at most 253 bytes, line end included)")
+
+
+def _too_long_line(text: str) -> tuple[int, int] | None:
+    """The first line (1-based) of ``text`` that LinuxCNC's ``read_text`` refuses as too long, and its length in
+    bytes (UTF-8) with its line end (CR LF or LF; none at the end of the file); None if every line fits."""
+    lines = text.split("\n")
+    for number, line in enumerate(lines, start=1):
+        size = len(line.encode("utf-8")) + (1 if number < len(lines) else 0)
+        if size >= _LINELEN - 1:
+            return number, size
+    return None
+
 
 #: rs274 2.9.0~pre1 refuses a file that begins with a UTF-8 byte-order mark: the bytes EF BB BF are no G-code
 #: characters (interp_read.cc ``read_one_item``: "Bad character '\357' used", line 1). vcnc reads the text

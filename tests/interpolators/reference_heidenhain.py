@@ -2277,7 +2277,11 @@ def _position_call(t: _Tnc, line: int, w: dict) -> None:
 def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
     """Cycle 220 (positions on a pitch circle) or 221 (a grid, meandering, turned by Q224 about its
     start): at each, the last machining cycle with the pattern's Q200/Q203/Q204, first reached over
-    the 2nd set-up clearance, the next ones at the set-up clearance (Q301 = 1: the 2nd)."""
+    the 2nd set-up clearance, the next ones at the set-up clearance (Q301 = 1: the 2nd); 220 with Q365 = 1 from
+    one position to the next on the pitch circle (TNC 640 cycle manual 34059x-01, cycle 220 "Cycle run")."""
+    arc = number == 220 and p.get("Q365", 0.0) != 0.0
+    if (t.factors[0] != t.factors[1]) and arc:
+        raise ReferenceError("cycle 220 Q365=1 under axis-specific scaling")
     if number == 220:
         n = int(p["Q241"])
         span = p["Q246"] - p["Q245"]
@@ -2298,7 +2302,13 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
     for k, (x, y) in enumerate(points):
         here = t.prog()
         here[0], here[1] = x * t.scale, y * t.scale
-        t.emit(line, "rapid", t.machine(here), rows="optional" if np.allclose(t.machine(here), t.pos) else "one")
+        if k and arc and not np.allclose(t.machine(here), t.pos):
+            centre = t.prog()
+            centre[0], centre[1] = p["Q216"] * t.scale, p["Q217"] * t.scale
+            ccw = (step > 0) != t.turns_over()
+            t.emit(line, "arc_ccw" if ccw else "arc_cw", t.machine(here), centre=t.machine(centre))
+        else:
+            t.emit(line, "rapid", t.machine(here), rows="optional" if np.allclose(t.machine(here), t.pos) else "one")
         last = k == len(points) - 1
         second = p["Q204"] if last or p.get("Q301", 0) else 0.0
         t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})

@@ -1272,7 +1272,7 @@ def _g10(m: _Machine, words: dict) -> None:
     # interp_convert.cc convert_setup with interp_find.cc find_current_in_system, which takes the G92
     # offset off when it is on)
     here = m.to_program(m.pos)
-    base = m.offsets[m.wcs] if kind == 20 else None
+    base = m.offsets[m.wcs].copy() if kind == 20 else None
     for i, a in enumerate("xyz"):
         if a in words:
             v = words[a][-1] * m.scale
@@ -1280,6 +1280,14 @@ def _g10(m: _Machine, words: dict) -> None:
                 m.offsets[code][i] = v
             else:
                 m.offsets[code][i] = base[i] + here[i] - v
+    if kind == 20 and m.rotation[code] and ("x" in words or "y" in words):
+        # under a G10 R rotation the current and the wanted X Y are in the rotated system: both turn into the
+        # unrotated one before the offset is their difference (interp_convert.cc convert_setup, "old position in
+        # rotated system"; tests/interp/g10/g10-l20-while-active)
+        want = np.array([words[a][-1] * m.scale if a in words else here[i] for i, a in enumerate("xy")])
+        t = math.radians(m.rotation[code])
+        turn = np.array([[math.cos(t), -math.sin(t)], [math.sin(t), math.cos(t)]])
+        m.offsets[code][:2] = base[:2] + turn @ (here[:2] - want)
     for i, v in m.extra_words(words).items():
         m.extra_offsets[code][i] = v if kind == 2 else m.extra[i] - m.g92_extra[i] - v
     if "r" in words:

@@ -14,8 +14,14 @@ import numpy as np
 import pytest
 
 from interpolators import interpolate, parse_program
-from interpolators.kinematics import AxisLimitArrays, curvature_step_speed_limit, curved_speed_bound
-from interpolators.limits import DEFAULT_LIMITS
+from interpolators.context import INTERPOLATION_CONTEXT
+from interpolators.kinematics import (
+    AxisLimitArrays,
+    curvature_step_speed_limit,
+    curved_speed_bound,
+    junction_speed_limit,
+)
+from interpolators.limits import DEFAULT_LIMITS, AxisLimits
 from interpolators.lookahead import JUNCTION_SHARE, blend_corners
 from tests.interpolators.setpoint_checks import check_limits, distance_to_path
 from tests.interpolators.test_interpolate import LIMITS
@@ -312,3 +318,42 @@ def test_no_kink_blend_inside_one_merged_curve():
     pieces = list(SplineCurve.pieces(spline, np.array([0.0, 0.3, 0.7, 1.0])))
     segs, blocks = blend_corners(pieces, [4, 5, 6], [0.01, 0.01], curvature_continuous=True)
     assert segs == pieces and blocks == [4, 5, 6]
+
+
+def test_one_sample_rule_adds_the_velocity_and_acceleration_steps():
+    """At a nearly tangent junction with a curvature step both steps fall in the same samples, their
+    finite-difference jerks add: ``v |dt_y| / Ts^2 + v^2 |dk_y| / Ts = share J_y`` on the binding axis (each
+    alone at ``share J_y`` gave twice the share: setpoint fuzzer seed 42782)."""
+    lim = AxisLimitArrays(LIMITS, {0, 1})
+    Ts, Jy = 2.7e-4, LIMITS["y"].jerk
+    dt, dk = np.array([[0.0, 5.4e-4, 0.0]]), np.array([[0.0, 2.15, 0.0]])
+    v = junction_speed_limit(dt, dk, lim, sample_time=Ts, share=JUNCTION_SHARE, jerk_limited=True)[0]
+    assert v * 5.4e-4 / Ts**2 + v * v * 2.15 / Ts == pytest.approx(JUNCTION_SHARE * Jy, rel=1e-12)
+    alone = junction_speed_limit(np.zeros((1, 3)), dk, lim, sample_time=Ts, share=JUNCTION_SHARE, jerk_limited=True)
+    assert alone[0] == pytest.approx(math.sqrt(JUNCTION_SHARE * Jy * Ts / 2.15), rel=1e-12)
+    assert v < alone[0]
+    # the trapezoid's rule is the acceleration's alone
+    v_t = junction_speed_limit(dt, dk, lim, sample_time=Ts, share=JUNCTION_SHARE, jerk_limited=False)[0]
+    assert v_t == pytest.approx(JUNCTION_SHARE * LIMITS["y"].acceleration * Ts / 5.4e-4, rel=1e-12)
+
+
+def test_arc_to_line_step_in_a_chain_with_u_keeps_the_y_jerk():
+    """The setpoint fuzzer's seed 42782 (``rotary_cam``, its limits and Ts = 0.27 ms), in short: a U move joins a
+    G64 chain whose R0.083 G3 ends nearly tangent (0.003 rad, the rounding of the words) into a line along Y. The
+    Y jerk by finite differences reached 1.009 of its limit there (the junction's tangent and curvature steps each
+    at 0.1 J_y beside the line's path jerk at 0.9 J_y); now within it, at the same end point."""
+    limits = {"x": AxisLimits(velocity=345.4, acceleration=3520.6, jerk=2052196.1),
+              "y": AxisLimits(velocity=21.7, acceleration=234.8, jerk=76104.7),
+              "z": AxisLimits(velocity=342.4, acceleration=79517.4, jerk=6006222.1),
+              "u": AxisLimits(velocity=711.7, acceleration=281.9, jerk=52950.5)}
+    prog = parse_program("G21 G17 G90 G40 G94\nG1 X12.005131 Y-5.1447 Z5 U1.7667 F100\n"
+                         "G1 X-10.549 Y16.642 Z5.378 F1500\nG1 X-11.7615 Y18.2856\n"
+                         "G3 X-11.740724 Y18.356792 I-0.0609 J0.0564\nG1 X-11.8348 Y18.8675\nM2\n",
+                         context=INTERPOLATION_CONTEXT)
+    Ts = 2.7008e-4
+    sp = interpolate(prog, limits=limits, profile="scurve", sample_time=Ts)
+    check_limits(sp, prog, limits, jerk=True)
+    y = sp.position[:, sp.axes.index("y")]
+    assert np.abs(np.diff(y, 3)).max() / Ts**3 <= limits["y"].jerk
+    assert np.allclose(sp.position[-1, :3], [-11.8348, 18.8675, 5.378], rtol=0, atol=1e-12)
+    assert distance_to_path(sp) <= 0.01

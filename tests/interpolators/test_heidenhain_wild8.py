@@ -90,7 +90,8 @@ def test_a_cycle_parameter_without_equals_is_named(tilde):
     lines = ["Q200=2", "Q201=-10", "Q206 FAUTO", "Q202=5", "Q210=0", "Q203=+0", "Q204=50"]
     body = "\n".join(("  " + q + (tilde if i < len(lines) - 1 else "")) for i, q in enumerate(lines))
     text = f"0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000 F100\n2 CYCL DEF 200 DRILLING{tilde}\n{body}\n3 END PGM T MM\n"
-    with pytest.raises(GCodeError, match=r"t.h:3:\d+: cycle parameter Q206 without '=' \(got 'Q206 FAUTO'\); "
+    # the line and column where Q206 is written, the block's sixth line (tncwild14: a continued block's pieces)
+    with pytest.raises(GCodeError, match=r"t.h:6:3: cycle parameter Q206 without '=' \(got 'Q206 FAUTO'\); "
                                          r"expected Q206=value"):
         parse_heidenhain(text, source="t.h", context=ZERO)
 
