@@ -123,9 +123,10 @@ def weak_poles_line(model) -> str:
 
     The ranges are those of the first stage, the equation-error problem, around its own solution; the
     output-error refinement may then have moved the poles outside them (a fadal-pid copy at 0.5 ms on
-    CAM program 0126: omega_n 136-581 Hz around the equation error's 186 Hz, p 0.2 Hz; refined, a pair at
-    92.6 Hz / 0.96 and p 1.99 Hz predicting 1.147 um RMS, where the truth's 33.0 Hz / 0.45 and 1.17 Hz
-    predict 1.119 um: the record pins the prediction, not the poles). The line says whose ranges they
+    CAM program 0126: omega_n 136-581 Hz around the equation error's 186 Hz, p 0.2 Hz; refined, the pair
+    at 33.0 Hz / 0.59 and p 1.76 Hz, truth 33.0 Hz / 0.45 and 1.17 Hz; continued with the coarse step,
+    the refinement reached 92.6 Hz / 0.96 and p 1.99 Hz at 1.147 um RMS, where the truth's poles predict
+    1.119 um: the record pins the prediction, not the poles). The line says whose ranges they
     are, and whether the poles above lie in them, so that it does not read as the tool contradicting
     itself, and what to trust: the prediction. A flat valley comes from a loop whose tracking barely
     depends on its poles, as when feedforward cancels the closed loop (thesis Tables 3.5 and 4.2), or
