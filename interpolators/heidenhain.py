@@ -294,6 +294,7 @@ class Machine:
         self.tool_length = 0.0
         self.tool_radius = 0.0
         self.tool_number = 0  # the active tool (FN 18 SYSREAD ID20 NR1); 0: none, or one called by name
+        self.tool_called: str | None = None  # the active tool as its TOOL CALL names it (None: no TOOL CALL yet)
         self.prepared_tool = 0  # the tool a TOOL DEF n pre-selected (FN 18 SYSREAD ID20 NR2); 0: none
         self.tool_delta = 0.0  # DR of the last TOOL CALL [mm]: LN's 3-D compensation
         self.point_angle = 0.0  # the called tool's T-ANGLE [deg] (context Tool.point_angle); 0: none
@@ -446,6 +447,11 @@ class Machine:
         position read back and programmed again (``L X+Q1``) stays where it is, as G92 under G43.4 takes the tip."""
         point = part_point(self.context.kinematics, self.extra, self.pos, self.tool_length) if self.tcpm else self.pos
         return self.to_program(point)
+
+    def no_radius(self) -> str:
+        """For a message on a cycle that needs a tool radius: ``tool 20 has none``, ``tool "MILL_D10" (called by
+        name, not in the tool table) has none`` or, before any TOOL CALL, ``no tool was called before it``."""
+        return f"{self.tool_called} has none" if self.tool_called else "no tool was called before it"
 
     def tool_data(self, number: int) -> tuple[float, float] | None:
         """Length and radius [mm] of tool ``number`` as ``TOOL CALL`` takes them (the program's ``TOOL DEF``,
@@ -1084,10 +1090,11 @@ def _tool_call(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) ->
         m.tool_radius = radius + dr
         m.tool_delta = dr
         m.at_rest = m.at_rest or number != m.tool_number
-        m.tool_number = number
+        m.tool_number, m.tool_called = number, f"tool {number}"
     elif named:
         m.tool_length, m.tool_radius, m.tool_delta = dl, dr, dr
         m.tool_number, m.point_angle = 0, 0.0
+        m.tool_called = f'tool "{name}" (called by name, not in the tool table)'
         m.at_rest = True  # a tool called by name that the table does not hold: a change all the same
     _tool_parameters(m, where)
 

@@ -42,8 +42,8 @@ def run_surface(m: Machine, c: SurfaceCycle | RuledSurface, where: Where, blk: S
     axis = m.plane
     p, q = PLANE_AXES[axis]
     if c.number in (232, 233) and not m.tool_radius > 0:
-        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius); tool "
-                   f"{m.tool_number or 'called by name'} has none", column=blk.column, text=blk.code,
+        where.fail(f"cycle {c.number} FACE MILLING without a tool radius (the stepover is Q370 x the radius); "
+                   f"{m.no_radius()}", column=blk.column, text=blk.code,
                    expected="TOOL CALL of a tool with a radius > 0 before the call: a TOOL DEF n L.. R.. or the "
                             "machine context's tool table ([program.tools.N] radius)")
     try:

@@ -265,19 +265,7 @@ def run_function(code: str, params: QParameters, where: Where, *, column: int, p
         params.set(am.group(1), value, where, column=col)
         return None
     if n in FN_CONDITIONS:
-        op, test = FN_CONDITIONS[n]
-        cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
-        if cm is None:
-            other = [f"{word} is FN {k}" for k, (word, _) in FN_CONDITIONS.items()
-                     if k != n and re.search(rf"\s{word}\s", rest, re.I)]
-            where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
-                       expected=f"FN {n}: IF a {op} b GOTO LBL n" + (f" ({', '.join(other)})" if other else ""))
-        a = params.evaluate(cm.group(1), where, column=col + cm.start(1))
-        b = params.evaluate(cm.group(2), where, column=col + cm.start(2))
-        lm = LABEL_RE.match(cm.group(3))
-        if lm is None:
-            where.fail("malformed jump label", column=col + cm.start(3), text=cm.group(3), expected="LBL n")
-        return label_key(lm) if test(a, b) else None
+        return _condition(n, rest, params, where, col)
     if n in (15, 16):
         note(f"FN {n}: PRINT output ignored")
         return None
@@ -363,6 +351,24 @@ _ID50_COLUMNS = {3: "R2", 4: "DL", 5: "DR", 6: "DR2", 7: "TL, tool locked", 8: "
                  9: "TIME1", 10: "TIME2", 11: "CUR. TIME", 12: "PLC status", 13: "LCUTS", 14: "ANGLE",
                  15: "CUT, TT: teeth", 16: "LTOL", 17: "RTOL", 18: "DIRECT", 19: "R-OFFS", 20: "L-OFFS",
                  21: "LBREAK", 22: "RBREAK", 23: "PLC value"}
+
+
+def _condition(n: int, rest: str, params: QParameters, where: Where, col: int) -> str | None:
+    """FN 9-12 ``IF a OP b GOTO LBL n`` (``rest`` at column ``col``): the label key to jump to when the test holds,
+    else None; a malformed condition written with another FN's comparison names that FN."""
+    op, test = FN_CONDITIONS[n]
+    cm = re.match(rf"\s*IF\s*(.*?)\s+{op}\s+(.*?)\s*GOTO\s*(LBL\s*.*)$", rest, re.I)
+    if cm is None:
+        other = [f"{word} is FN {k}" for k, (word, _) in FN_CONDITIONS.items()
+                 if k != n and re.search(rf"\s{word}\s", rest, re.I)]
+        where.fail(f"malformed FN {n} condition", column=col, text=rest.strip(),
+                   expected=f"FN {n}: IF a {op} b GOTO LBL n" + (f" ({', '.join(other)})" if other else ""))
+    a = params.evaluate(cm.group(1), where, column=col + cm.start(1))
+    b = params.evaluate(cm.group(2), where, column=col + cm.start(2))
+    lm = LABEL_RE.match(cm.group(3))
+    if lm is None:
+        where.fail("malformed jump label", column=col + cm.start(3), text=cm.group(3), expected="LBL n")
+    return label_key(lm) if test(a, b) else None
 
 
 def _sysread(rest: str, params: QParameters, where: Where, col: int, *, position: np.ndarray, active: np.ndarray,

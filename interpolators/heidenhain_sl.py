@@ -132,8 +132,7 @@ def rough_out(m: Machine, c: RoughOut, where: Where, blk: SourceBlock) -> None:
     floor_finishing_cycle`; the manual's tangential vertical approach arc is a straight plunge at Q11 here)."""
     _sl_checks(m, c.number, where, blk)
     if m.tool_radius <= 0:
-        tool = m.tool_number or "called by name"
-        where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart); tool {tool} has none",
+        where.fail(f"cycle {c.number} needs a tool radius > 0 (the rings are Q2 x R apart); {m.no_radius()}",
                    column=blk.column, text=blk.code,
                    expected="a TOOL CALL of a tool with a radius: a TOOL DEF n L.. R.. or the machine context's tool "
                             "table ([program.tools.N] radius)")

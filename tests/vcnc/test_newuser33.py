@@ -221,3 +221,23 @@ def test_a_machine_file_is_checked_for_its_servo_period_on_every_run(work, capsy
     # fadal-pid's X loop at 4 ms: |z| = 1.015, just outside the unit circle; Y (heavier) stays inside
     assert ("at the machine's sample_time 0.004 s the closed loop of axis x is unstable (largest pole x |z| = 1.01)"
             in out)
+
+
+def test_the_servo_period_warning_comes_before_a_run_that_fails(work, capsys, monkeypatch):
+    """A machine file's unstable sampled loop is said before the simulation: a run at a unit slip such as
+    ``sample_time = 1`` can fail later (its contour step: 1 s samples skip whole blocks of the path), and the
+    user must see the cause first."""
+    from vcnc.core.errors import InputError
+    from vcnc.engine.machine import Machine, builtin_machine_text
+
+    Path("slip.toml").write_text(builtin_machine_text("fadal-pid").replace("sample_time = 0.001", "sample_time = 1"))
+
+    def fails(self, setpoints, seed=None):
+        raise InputError("the run failed")
+
+    monkeypatch.setattr(Machine, "simulate", fails)
+    code = main(["simulate", "part.nc", "--machine", "slip.toml", "-o", "c.csv"])
+    captured = capsys.readouterr()
+    assert code == 2 and "the run failed" in captured.err
+    assert "part.nc: warning: at the machine's sample_time 1 s the closed loop of axis x, y is unstable" in captured.out
+    assert not Path("c.csv").exists()

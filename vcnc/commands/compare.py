@@ -127,11 +127,14 @@ def _machine_and_program(truth, toolpath: str, args: argparse.Namespace) -> tupl
 
 def run(args: argparse.Namespace) -> int:
     from vcnc.contour_compare import compare
-    from vcnc.core.io import check_output
+    from vcnc.core.io import check_distinct_outputs, check_output
 
-    check_output(args.json, option="--json", what="the summary file", inputs=(args.truth, args.toolpath))
-    check_output(args.report, option="--report", what="the report", folder=True)
     models = parse_models(args.model)
+    model_files = (models,) if isinstance(models, str) else tuple(models.values())
+    inputs = (args.truth, args.toolpath, args.tool_table, *model_files)
+    check_output(args.json, option="--json", what="the summary file", inputs=inputs)
+    check_output(args.report, option="--report", what="the report", folder=True)
+    check_distinct_outputs((("--json", args.json), ("--report", args.report)))
     truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
     with sample_guard(command="compare", max_samples=MAX_SAMPLES):
         result = compare(truth, models, toolpath, feed=args.feed, acceleration=args.acceleration,

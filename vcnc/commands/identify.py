@@ -121,24 +121,46 @@ def _unused_shift(rec: dict) -> str:
 def weak_poles_line(model) -> str:
     """What to say when the equation error barely depends on the poles (``fit['solver']['identifiability']``).
 
-    The range is that of the equation-error problem around its own solution; the output-error refinement
-    may then have moved the poles outside it (a fadal-pid record: the range 95-112 Hz around the
-    equation error's solution, the refined omega_n 36 Hz), so the line names both. A flat valley comes
-    from a loop whose tracking barely depends on its poles, as when feedforward cancels the closed loop
-    (thesis Tables 3.5 and 4.2), or from a record that excites them too little."""
+    The ranges are those of the first stage, the equation-error problem, around its own solution; the
+    output-error refinement may then have moved the poles outside them (a fadal-pid copy at 0.5 ms on
+    CAM program 0126: omega_n 136-581 Hz around the equation error's 186 Hz, p 0.2 Hz; refined, the pair
+    at 33.0 Hz / 0.59 and p 1.76 Hz, truth 33.0 Hz / 0.45 and 1.17 Hz; continued with the coarse step,
+    the refinement reached 92.6 Hz / 0.96 and p 1.99 Hz at 1.147 um RMS, where the truth's poles predict
+    1.119 um: the record pins the prediction, not the poles). The line says whose ranges they
+    are, and whether the poles above lie in them, so that it does not read as the tool contradicting
+    itself, and what to trust: the prediction. A flat valley comes from a loop whose tracking barely
+    depends on its poles, as when feedforward cancels the closed loop (thesis Tables 3.5 and 4.2), or
+    from a record that excites them too little."""
     fit = model.fit
     valley = fit["solver"]["identifiability"]
     ee = fit["solver"].get("poles", {})
-    line = (f"poles weakly identifiable: the equation error stays within {valley['tolerance']:.0%} of its minimum "
-            f"for omega_n {valley['omega_n_hz'][0]:.3g}-{valley['omega_n_hz'][1]:.3g} Hz, zeta "
-            f"{valley['zeta'][0]:.2f}-{valley['zeta'][1]:.2f}, p {valley['p_hz'][0]:.3g}-{valley['p_hz'][1]:.3g} Hz")
+    line = (f"poles weakly identifiable: in the first stage, the equation error, the poles are pinned only to "
+            f"omega_n {valley['omega_n_hz'][0]:.3g}-{valley['omega_n_hz'][1]:.3g} Hz, zeta "
+            f"{valley['zeta'][0]:.2f}-{valley['zeta'][1]:.2f}, p {valley['p_hz'][0]:.3g}-{valley['p_hz'][1]:.3g} Hz "
+            f"(its error within {valley['tolerance']:.0%} of its minimum")
+    line += (f" at omega_n {ee['omega_n_hz']:.3g} Hz, zeta {ee['zeta']:.2f}, p {ee['p_hz']:.3g} Hz)" if ee else ")")
     outside = [k for k in ("omega_n_hz", "zeta", "p_hz")
                if not valley[k][0] * (1 - 1e-9) <= model.poles[k] <= valley[k][1] * (1 + 1e-9)]
-    if ee and outside:
-        line += (f" around its solution (omega_n {ee['omega_n_hz']:.3g} Hz, zeta {ee['zeta']:.2f}, "
-                 f"p {ee['p_hz']:.3g} Hz); the output-error refinement moved the poles above outside that range")
-    return line + ("; the record hardly shows them (feedforward cancelling the closed loop, as in thesis Tables 3.5 "
-                   "and 4.2, or too little excitation); the model still predicts the capture as reported above")
+    if outside:
+        line += ("; the output-error refinement, which fits the simulated position, ended outside those ranges, "
+                 "at the poles above")
+    return line + ("; the record hardly shows the poles (feedforward cancelling the closed loop, as in thesis "
+                   "Tables 3.5 and 4.2, or too little excitation): trust the model's prediction above, within "
+                   "the record's operating range, not its poles")
+
+
+def pair_restart_line(model) -> str | None:
+    """What to say when the refinement was started again with a complex pair and that start was kept
+    (``fit['output_error']['pair_restart']``, :func:`identification.identify.fit_reduced_model`): the first
+    result had its fastest pole near the record's Nyquist frequency. None otherwise."""
+    rec = model.fit.get("output_error", {}).get("pair_restart")
+    if not rec or not rec["kept"]:
+        return None
+    u = axis_unit(model.axis, small=True)
+    return (f"note: the refinement from the equation error's solution ended with its fastest pole near the record's "
+            f"Nyquist frequency ({rec['rms_before_um']:.4g} {u} RMS); started again with the poles' pair complex it "
+            f"predicts {rec['rms_after_um']:.4g} {u}, kept; the two fits' poles differ far more than their "
+            "predictions do: the record pins the prediction better than the poles")
 
 
 def closed_loop_poles_line(model) -> str:
@@ -327,9 +349,9 @@ def _report(capture, model, axis: str, baseline: list[str]):
              ["zeta [-]", f"{valley['zeta'][0]:.3g} - {valley['zeta'][1]:.3g}"],
              ["p [Hz]", f"{valley['p_hz'][0]:.4g} - {valley['p_hz'][1]:.4g}"]],
             caption="identifiable" if valley["identifiable"] else
-            "weakly identifiable poles, ranges of the equation error around its own solution (before the "
-            "output-error refinement): feedforward cancelling the closed loop (cf. thesis Tables 3.5, 4.2) or too "
-            "little excitation",
+            "weakly identifiable poles, ranges of the equation error around its own solution (the first stage, "
+            "before the output-error refinement, which may leave them): feedforward cancelling the closed loop "
+            "(cf. thesis Tables 3.5, 4.2) or too little excitation; trust the prediction, not the poles",
         )
     rep.table(
         ["", "frequency [Hz]", "damping [-]"],
@@ -401,10 +423,11 @@ def _bounds(args: argparse.Namespace, capture) -> dict | None:
 
 def run(args: argparse.Namespace) -> int:
     from identification import identify
-    from vcnc.core.io import check_output
+    from vcnc.core.io import check_distinct_outputs, check_output
 
     check_output(args.json, option="--json", what="the model file", inputs=(args.capture,))
     check_output(args.report, option="--report", what="the report", folder=True)
+    check_distinct_outputs((("--json", args.json), ("--report", args.report)))
     capture = read_trace_argument(args.capture, args)  # a unit given or stated: meta[UNIT_GIVEN] (vcnc.traces)
     axis = args.axis or ("x" if "x" in capture.axes or len(capture.axes) != 1 else capture.axes[0])
     model = identify(
@@ -446,6 +469,8 @@ def run(args: argparse.Namespace) -> int:
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:
         out.write(weak_poles_line(model) + "\n")
+    if pair_restart_line(model):
+        out.write(pair_restart_line(model) + "\n")
     if "excitation" in fit:
         out.write(excitation_line(model) + "\n")
     if model.validation:

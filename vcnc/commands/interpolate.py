@@ -312,12 +312,13 @@ def plot_setpoints(setpoints, *, title: str | None = None):
 
 
 def run(args: argparse.Namespace) -> int:
-    from vcnc.core.io import atomic_path, check_output
+    from vcnc.core.io import atomic_path, check_distinct_outputs, check_output
 
-    inputs = (args.program, args.machine)
+    inputs = (args.program, args.machine, args.tool_table)
     check_output(args.output, option="-o", what="the setpoints (CSV)", inputs=inputs)
     check_output(args.blocks, option="--blocks", what="the block table (CSV)", inputs=inputs)
     check_output(args.plot, option="--plot", what="the plot (PNG)", inputs=inputs)
+    check_distinct_outputs((("-o", args.output), ("--blocks", args.blocks), ("--plot", args.plot)))
     ts = 1e-3
     machine = None
     if args.machine:

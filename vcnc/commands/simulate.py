@@ -57,12 +57,13 @@ def run(args: argparse.Namespace) -> int:
 def check_outputs(args: argparse.Namespace) -> None:
     """:class:`vcnc.InputError` before any work when an output cannot be written where it is asked
     (:func:`vcnc.core.io.check_output`: a long program would otherwise run to its end and fail on the rename)."""
-    from vcnc.core.io import check_output
+    from vcnc.core.io import check_distinct_outputs, check_output
 
-    inputs = (args.program, args.machine)
+    inputs = (args.program, args.machine, args.tool_table)
     check_output(args.output, option="-o", what="the capture file (CSV)", inputs=inputs)
     check_output(args.json, option="--json", what="the summary file", inputs=inputs)
     check_output(args.report, option="--report", what="the report", folder=True)
+    check_distinct_outputs((("-o", args.output), ("--json", args.json), ("--report", args.report)))
 
 
 def sampling_note(summary: dict, machine) -> str | None:
@@ -70,9 +71,10 @@ def sampling_note(summary: dict, machine) -> str | None:
     (:meth:`vcnc.engine.machine.Machine.unstable_axes`): a servo period too coarse for the gains (a unit slip
     such as 0.01 s for 1 ms, or fadal-pid's gains at 4 ms, |z| = 1.015, whose run of corpus 0077 ends with
     plausible errors of 130 um). Checked for a machine from a file, where a user sets
-    the period, and after a saturated run (``summary["saturated"]``), whose own note points at the acceleration
-    limits instead; the built-in machines are stable at theirs (the check imports python-control, 2 s). A
-    computation delay counts (fadal-ppi with a 2-sample delay: |z| = 1.008, the limit cycle that
+    the period (before the run, which such a slip can make fail: ``sample_time = 1`` leaves the contour step 1 s
+    samples that skip whole blocks), and after a saturated run (``summary["saturated"]``), whose own note points at
+    the acceleration limits instead; the built-in machines are stable at theirs (the check imports python-control,
+    2 s). A computation delay counts (fadal-ppi with a 2-sample delay: |z| = 1.008, the limit cycle that
     ``benchmarks/ident_fuzz.unstable_delay`` skips)."""
     from_file = bool(machine.source) and not machine.source.startswith("<")
     if not (from_file or summary.get("saturated")):
@@ -140,6 +142,10 @@ def _run(args: argparse.Namespace) -> int:
         raise GCodeError("the program neither moves an axis nor dwells: nothing to simulate", file=args.program,
                          expected="a program with a move or a dwell")
     meta = program_meta(setpoints, Path(args.program).name, profile=args.profile)
+    # a machine from a file is checked before the run, whose contour step an unstable loop can fail
+    stability = sampling_note({}, machine)
+    if stability:
+        print(f"{args.program}: {stability}")
     capture = machine.simulate(setpoints, seed=args.seed)
     capture.meta.update(meta)
     with contextlib.ExitStack() as stack:
@@ -151,7 +157,8 @@ def _run(args: argparse.Namespace) -> int:
         # the temporary names are renamed or removed)
         writing = stack.enter_context(ThreadPoolExecutor(max_workers=1)).submit(capture.to_csv, cap_tmp)
         summary = summarize(capture, program)
-        for line in (saturation_note(summary), sampling_note(summary, machine), feed_contour_line(summary)):
+        later = None if stability else sampling_note(summary, machine)
+        for line in (saturation_note(summary), later, feed_contour_line(summary)):
             if line:
                 print(f"{args.program}: {line}")
         report = build_report(capture, summary) if args.report else None

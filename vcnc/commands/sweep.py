@@ -41,11 +41,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from vcnc.core.errors import InputError
-    from vcnc.core.io import check_output
+    from vcnc.core.io import check_distinct_outputs, check_output
     from vcnc.sweeps import load_spec, sweep, write_plot
 
     check_output(args.output, option="-o", what="the results", inputs=(args.spec,))
     check_output(args.plot, option="--plot", what="the plot", inputs=(args.spec,))
+    check_distinct_outputs((("-o", args.output), ("--plot", args.plot)))
     if args.plot and not args.plot.lower().endswith((".png", ".svg", ".pdf")):
         raise InputError("--plot must name a .png, .svg or .pdf file", file=args.plot)
     spec = load_spec(args.spec)

@@ -14,7 +14,7 @@ import numpy as np
 
 from vcnc.core.errors import InputError
 
-__all__ = ["atomic_path", "atomic_dir", "check_output", "write_rows"]
+__all__ = ["atomic_path", "atomic_dir", "check_output", "check_distinct_outputs", "write_rows"]
 
 #: Rows formatted per call of :func:`write_rows`: large enough that the per-call cost vanishes, small enough
 #: that the text of one chunk stays a few MB.
@@ -113,6 +113,22 @@ def check_output(name: str | os.PathLike[str] | None, *, option: str, what: str,
         if source and not folder and path.is_file() and Path(source).is_file() and path.samefile(source):
             raise InputError(f"{option} {name}: it is the input {source} itself, which {what} would replace; "
                              "expected another file name")
+
+
+def check_distinct_outputs(outputs: Sequence[tuple[str, str | os.PathLike[str] | None]]) -> None:
+    """:class:`InputError` before any work when two outputs of one command, ``(option, name)`` each, name the same
+    file (``-o run.csv --json run.csv``): the one written last would replace the other, the run end with exit 0
+    and one result lost."""
+    seen: dict[str, tuple[str, str | os.PathLike[str]]] = {}
+    for option, name in outputs:
+        if not name:
+            continue
+        key = os.path.realpath(name)
+        if key in seen:
+            first, first_name = seen[key]
+            raise InputError(f"{option} {name}: the same file as {first} {first_name}, which it would replace",
+                             expected=f"another file name for {option}")
+        seen[key] = (option, name)
 
 
 def _umask() -> int:

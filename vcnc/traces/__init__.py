@@ -8,7 +8,9 @@
 - EPICS camonitor logs (:mod:`vcnc.traces.camonitor`);
 - LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text (LinuxCNC
   halsampler output among it), with a column mapping (:mod:`vcnc.traces.delimited`);
-- the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`).
+- the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`);
+- DIAdem DAT headers, read with the binary files beside them (KUKA.Trace of a KR C4 among their writers,
+  :mod:`vcnc.traces.diadem`), as delimited text under the channels' names.
 
 MTConnect data (an agent's streams XML, an adapter's SHDR lines) is recognised and refused, naming the positions it
 holds (:mod:`vcnc.traces.mtconnect`).

@@ -27,6 +27,7 @@ from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, check_sampling
 from vcnc.core.errors import CaptureError
 from vcnc.core.text import BinaryDataError, decode_text
+from vcnc.traces.diadem import header_naming
 from vcnc.traces.lag import subtract_following_error
 
 __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_columns", "check_units",
@@ -80,12 +81,21 @@ LAG_SUFFIX = "_lag"
 
 
 def read_text(path: str | Path, src: str) -> str:
-    """The text of a trace file (module docstring); CaptureError for a binary file."""
+    """The text of a trace file (module docstring); CaptureError for a binary file, naming the DIAdem header beside
+    it when one names the file as its channels' data (:func:`vcnc.traces.diadem.header_naming`)."""
     try:
         raw = Path(path).read_bytes()
     except OSError as exc:
         raise CaptureError(f"cannot read the file ({exc.strerror})", file=src) from None
-    return decode(raw, src)
+    try:
+        return decode(raw, src)
+    except CaptureError:
+        header = header_naming(Path(path)) if not raw.startswith(b"PK\x03\x04") else None
+        if header is None:
+            raise
+        raise CaptureError(f"the binary data of the DIAdem header {header.name!r} beside it, which names its channels "
+                           "(KUKA.Trace writes a .dat beside each .r64)", file=src,
+                           expected=f"the header: vcnc convert {header.name!r}") from None
 
 
 def decode(raw: bytes, src: str) -> str:

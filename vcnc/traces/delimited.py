@@ -110,6 +110,7 @@ from vcnc.traces.columns import (
     within_reach,
 )
 from vcnc.traces.companion import servo_period_hint
+from vcnc.traces.diadem import looks_like_diadem, read_diadem_channels
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.names import (
@@ -187,8 +188,31 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if gcs is not None:
         return _gcs_array(text.lstrip("\ufeff"), src, gcs, columns=columns, time_unit=time_unit, unit=unit,
                           resample=resample, sample_time=sample_time)
+    if looks_like_diadem(text[:40000]):
+        return _diadem(text, Path(path), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
+                       sample_time=sample_time)
     return _generic(_matrix_literal(text.lstrip("\ufeff")), src, columns=columns, time_unit=time_unit, unit=unit,
                     resample=resample, sample_time=sample_time)
+
+
+def _diadem(text: str, path: Path, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
+            unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    """A DIAdem DAT header (:mod:`vcnc.traces.diadem`): its channels, read from the files beside it, as a table under
+    their names and units (``Zeit [s]``, ``Sollposition [deg]``), mapped as any table's; a mapping may name a channel
+    without its unit (``t=Zeit``), as the recorder shows it."""
+    channels = read_diadem_channels(text, path, src)
+    if columns:  # a channel named as DIAdem and KUKA.Trace show it, without its unit
+        full = dict(zip(channels.plain, channels.names))
+        columns = {k: v if v in channels.names else full.get(v, v) for k, v in columns.items()}
+    table = ["\t".join(channels.names)]
+    table += ["\t".join(repr(float(v)) for v in row) for row in channels.values.tolist()]
+    try:
+        capture = _generic("\n".join(table), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
+                           sample_time=sample_time)
+    except CaptureError as exc:  # the table's lines are not the file's: name the channel headers' line instead
+        raise CaptureError(exc.message, file=src, line=channels.header_line, expected=exc.expected) from None
+    capture.meta["format"] = f"DIAdem DAT header with {', '.join(channels.files) or 'implicit channels'}"
+    return capture
 
 
 def _gcs_array(text: str, src: str, gcs: GcsArrayHeader, *, columns: Mapping[str, str] | None,

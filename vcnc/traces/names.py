@@ -94,14 +94,17 @@ _LAG = frozenset({"lag", "ferror", "ferr", "following", "schleppfehler", "schlep
 #: Words that make "error" a following error: "following error", "position error", "f-error".
 _LAG_ERROR = frozenset({"following", "tracking", "position", "pos", "servo", "f", "lag", "contouring"})
 _ERROR = frozenset({"error", "err", "fehler"})
-#: Words of quantities that are not positions.
+#: German compounds naming a following error: KUKA.Trace's "Positionsschleppfehler" (:mod:`vcnc.traces.diadem`).
+_LAG_PARTS = ("schleppfehler", "schleppabstand")
+#: Words of quantities that are not positions (an amplitude, in dB: a signal logger's, tracewild9).
 _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "current", "curr", "iq", "id", "torque",
                     "trq", "moment", "force", "acc", "accel", "acceleration", "jerk", "voltage", "volt", "temp",
                     "temperature", "power", "load", "strom", "drehzahl", "geschwindigkeit", "beschleunigung",
                     "kraft", "spannung", "leistung", "vitesse", "courant", "couple", "velocidad", "corriente",
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
-                    "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain"})
+                    "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain", "amp", "amps",
+                    "amplitude", "db", "dbm"})
 #: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``; CoDeSys V2.3's
 #: ``Cycle``, module docstring).
 _SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num", "cycle",
@@ -170,7 +173,7 @@ def _role(words: list[str]) -> str | None:
             roles.add("ref")
         elif w in _ACT or any(p in w for p in ("istwert", "istpos", "istlage")):
             roles.add("act")
-        elif w in _LAG or (w in _ERROR and _LAG_ERROR.intersection(words)):
+        elif w in _LAG or (w in _ERROR and _LAG_ERROR.intersection(words)) or any(p in w for p in _LAG_PARTS):
             roles.add("lag")
         roles.update(r for r, parts in _CJK_PARTS.items() if any(p in w for p in parts))
     return roles.pop() if len(roles) == 1 else None
