@@ -363,8 +363,7 @@ def junction_speed_limit(
     ndarray, shape (m,)
         [mm/s]
     """
-    v = _step_speed_limit(limits.acceleration, limits.jerk, np.abs(tangent_jump), sample_time=sample_time,
-                          share=share, jerk_limited=False)
+    v = _step_speed_limit(limits.acceleration, np.abs(tangent_jump), sample_time=sample_time, share=share)
     if jerk_limited:
         v = np.minimum(v, _jerk_step_speed_limit(limits.jerk, np.abs(tangent_jump), np.abs(curvature_jump),
                                                  sample_time=sample_time, share=share))
@@ -474,14 +473,10 @@ def curvature_step_speed_limit(
     return lo
 
 
-def _step_speed_limit(acceleration: np.ndarray, jerk: np.ndarray, step: np.ndarray, *, sample_time: float,
-                      share: float, jerk_limited: bool) -> np.ndarray:
+def _step_speed_limit(acceleration: np.ndarray, step: np.ndarray, *, sample_time: float, share: float) -> np.ndarray:
     """Largest path speed ``v`` whose axis velocity steps ``v |step_i|``, passed within one sample, use
-    at most ``share`` of each axis' acceleration (and, jerk limited, jerk) limit."""
-    v = _min_ratio(share * acceleration * sample_time, step)
-    if jerk_limited:
-        v = np.minimum(v, _min_ratio(share * jerk * sample_time**2, step))
-    return v
+    at most ``share`` of each axis' acceleration limit (the jerk's: :func:`_jerk_step_speed_limit`)."""
+    return _min_ratio(share * acceleration * sample_time, step)
 
 
 def extra_junction_speed_limit(
@@ -498,7 +493,8 @@ def extra_junction_speed_limit(
     The criterion of :func:`junction_speed_limit` for the tangent, applied to each of the axes
     a, b, c, u, v, w: their velocity steps ``v |dr_i|`` are passed within one sample using at most
     ``share`` of the axis' acceleration limit (``v |dr_i| <= share A_i Ts``) and, for the S-curve,
-    of its jerk limit (``v |dr_i| <= share J_i Ts^2``). These axes move linearly along each segment
+    of its jerk limit together with any acceleration step (``second_jump``; :func:`_jerk_step_speed_limit`,
+    ``v |dr_i| / Ts^2 <= share J_i`` without one). These axes move linearly along each segment
     (no curvature term); the profile's zero path acceleration at junctions (S-curve) leaves them no
     acceleration step.
 
@@ -521,7 +517,7 @@ def extra_junction_speed_limit(
     """
     acc = np.array([limits[a].acceleration if a in limits else np.inf for a in EXTRA_NAMES])
     jerk = np.array([limits[a].jerk if a in limits else np.inf for a in EXTRA_NAMES])
-    v = _step_speed_limit(acc, jerk, np.abs(rate_jump), sample_time=sample_time, share=share, jerk_limited=False)
+    v = _step_speed_limit(acc, np.abs(rate_jump), sample_time=sample_time, share=share)
     if jerk_limited:
         second = np.zeros_like(rate_jump) if second_jump is None else np.abs(second_jump)
         v = np.minimum(v, _jerk_step_speed_limit(jerk, np.abs(rate_jump), second, sample_time=sample_time,
