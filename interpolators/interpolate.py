@@ -665,9 +665,10 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         if len(segs) == len(segments) and all(a is b for a, b in zip(segs, segments)):
             return segments, blocks, fit_of
         original = {id(sg) for sg in segments}
-        # the blends (a block's arc cut by a kink blend is a piece of it, a line/line blend belongs to a line)
-        made = [(sg, corner_of[b]) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)
-                and not (isinstance(sg, Arc) and isinstance(blk[b].segment, Arc))]
+        new = [(sg, b) for sg, b in zip(segs, blks) if id(sg) not in original and not isinstance(sg, Line)]
+        # the blends, and the pieces kink blends cut of a block's arc (a line/line blend belongs to a line)
+        cut = [(sg, b) for sg, b in new if isinstance(sg, Arc) and isinstance(blk[b].segment, Arc)]
+        made = [(sg, corner_of[b]) for sg, b in new if not (isinstance(sg, Arc) and isinstance(blk[b].segment, Arc))]
         corners = [k for _, k in made]
         args = ends([sg for sg, _ in made], corners)
         points = _points_at_shares([sg for sg, _ in made])
@@ -680,8 +681,6 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
                 along[i] = _arc_corner_positions(points[i], segments[k], segments[k + 1])
         ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
-            cut = [(sg, b) for sg, b in zip(segs, blks) if isinstance(sg, Arc) and id(sg) not in original
-                   and isinstance(blk[b].segment, Arc)]
             spl, offsets = hermite_axes(*_with_cut_arcs(args, cut, blk))  # one spline for the chain's blends
             pieces = [sg for sg, _ in made] + [sg for sg, _ in cut]
             return segs, blks, {**fit_of, **{id(sg): (spl, float(o)) for sg, o in zip(pieces, offsets)}}
