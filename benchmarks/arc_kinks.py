@@ -57,6 +57,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import numpy as np  # noqa: E402
 
 from interpolators import interpolate, parse_program  # noqa: E402
+from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
 
 
 def line_arc_line(turn: float, feed: float, tolerance: float) -> str:
@@ -86,8 +87,6 @@ def with_a(text: str, rate: float | None, *, before: str | None = None) -> str:
     """``text`` with A turning ``rate`` deg per mm of path on every feed move (None: A still), and the feed move
     ``before`` (e.g. ``G1 Z-1 A5``) ahead of its first feed move: a 4-axis chain (the axes beyond X, Y, Z take part
     in the look-ahead, :mod:`interpolators.axis_blends`)."""
-    from interpolators.context import INTERPOLATION_CONTEXT
-
     prog = parse_program(text, context=INTERPOLATION_CONTEXT)
     feed_lines = {b.line: b.segment.length for b in prog.blocks if b.kind in ("line", "arc")}
     out, a = [], 0.0
@@ -109,8 +108,6 @@ def rotary_cases(feed: float, tolerance: float) -> None:
     ms, before -> after: F1200 P0.01 line/arc/line 0.0 rad 1.066 / 1.096 -> 1.000 / 1.000, 0.1 rad 1.126 / 1.126 ->
     1.000 / 1.000, alternating arcs after the A move 1.431 / 1.562 -> 1.024 / 1.024 (the A move's own 0.075 s:
     3.118 + 0.075 = 3.193 s); F600 P0.05 1.007 / 1.019, 1.033 / 1.032, 1.096 / 1.141 -> 1.000, 1.000, 1.009."""
-    from interpolators.context import INTERPOLATION_CONTEXT
-
     cases = [(f"line/arc/line {t} rad with A", with_a(line_arc_line(t, feed, tolerance), 0.5),
               with_a(line_arc_line(t, feed, tolerance), None)) for t in (0.0, 0.1)]
     arcs = alternating_arcs(feed, tolerance)
