@@ -469,8 +469,8 @@ def run(args: argparse.Namespace) -> int:
     valley = fit.get("solver", {}).get("identifiability")
     if valley and not valley["identifiable"]:
         out.write(weak_poles_line(model) + "\n")
-    if pair_restart_line(model):
-        out.write(pair_restart_line(model) + "\n")
+    if restart := pair_restart_line(model):
+        out.write(restart + "\n")
     if "excitation" in fit:
         out.write(excitation_line(model) + "\n")
     if model.validation:

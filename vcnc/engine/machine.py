@@ -297,7 +297,8 @@ class Machine:
                 _, g_dist = discrete_closed_loop(ax.controller, ax.drive, self.sample_time, delay=delay)
             except (MachineError, ValueError, ArithmeticError):
                 continue
-            radius = float(np.max(np.abs(g_dist.poles()))) if len(g_dist.poles()) else 0.0
+            poles = g_dist.poles()
+            radius = float(np.max(np.abs(poles))) if len(poles) else 0.0
             if radius >= 1.0:
                 out[a] = radius
         return out

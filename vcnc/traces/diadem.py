@@ -132,7 +132,9 @@ def _explicit(keys: dict[str, str], count: int, folder: Path, src: str, line: in
         raise CaptureError(f"DIAdem channel {name!r}: its values are in {file or '(no file named, key 211)'!r}, which "
                            f"is not beside the header; copy the .dat with its data files (KUKA.Trace: the .r64 of "
                            f"the same name)", file=src, line=line)
-    raw = cache.setdefault((file, dtype), np.fromfile(path, dtype=dtype))
+    raw = cache.get((file, dtype))
+    if raw is None:  # not setdefault: its argument, the file's whole read, would run for every channel
+        raw = cache[(file, dtype)] = np.fromfile(path, dtype=dtype)
     place = int(_number(keys, "221", 1, src, line)) - 1
     if keys.get("213", "BLOCK").upper() == "CHANNEL":
         values = raw[max(place, 0):max(place, 0) + count]
