@@ -598,7 +598,9 @@ def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
         for j in moving[max(n - 1, 0):n + 2]:  # the moves either side (a zero-length block between has no samples)
             if not feed[j]:
                 continue
-            trees, values, rate = cache.setdefault(j, _programmed_axes(blocks[j]))
+            if j not in cache:  # each move's trees once (setdefault would build them for every use)
+                cache[j] = _programmed_axes(blocks[j])
+            trees, values, rate = cache[j]
             spacing = blocks[j].length / (len(values) - 1)
             for tree, half in trees:
                 dist, idx = tree.query(pts[rows])
