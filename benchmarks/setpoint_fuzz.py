@@ -118,6 +118,15 @@ class _Cam:
             self.lines.append(f"{'G3' if ccw else 'G2'} X{ex} Y{ey}{zw}{extra} I{i:.6f} J{j:.6f}")
         self.pos = np.array([float(ex), float(ey), float(ez)]) * self.unit
 
+    def tangent_arc(self, heading: float, rad: float, sweep: float, ccw: bool, *, extra: str = "") -> float:
+        """An arc of radius ``rad`` leaving the current point along ``heading`` [rad], to the left (``ccw``) or the
+        right, turning by ``sweep`` [rad, signed: > 0 to the left], with ``extra`` words (:meth:`arc`); returns the
+        heading at its end."""
+        c = self.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * (1 if ccw else -1)
+        a0 = math.atan2(self.pos[1] - c[1], self.pos[0] - c[0])
+        self.arc(c, c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)]), ccw, extra=extra)
+        return heading + sweep
+
     def mode(self) -> None:
         """A path mode: G61, G64, G64 P (TNC: cycle 32 with or without T, or none)."""
         tol = self.r.choice((0.001, 0.005, 0.01, 0.02, 0.05, 0.1))
@@ -170,14 +179,7 @@ def _arc_chain(g: _Cam, *, tiny: bool = False) -> None:
     for _ in range(r.randint(2, 12)):
         rad = 10 ** r.uniform(-3, math.log10(0.05)) if tiny else 10 ** r.uniform(-1.3, 1.3)
         ccw = r.random() < 0.5
-        side = 1 if ccw else -1
-        normal = np.array([-math.sin(heading), math.cos(heading)]) * side
-        c = g.pos[:2] + rad * normal
-        sweep = r.uniform(0.05, 3.0) * side
-        a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
-        end = c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)])
-        g.arc(c, end, ccw)
-        heading += sweep
+        heading = g.tangent_arc(heading, rad, r.uniform(0.05, 3.0) * (1 if ccw else -1), ccw)
         if r.random() < 0.3:
             length = 10 ** r.uniform(-2, 0.7)
             g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0])
@@ -276,12 +278,7 @@ def _alternating_arcs(g: _Cam) -> None:
     ccw = r.random() < 0.5
     for _ in range(r.randint(3, 16)):
         rad = 10 ** r.uniform(math.log10(0.005), math.log10(2.0))
-        side = 1 if ccw else -1
-        c = g.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * side
-        sweep = r.uniform(0.1, 2.5) * side
-        a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
-        g.arc(c, c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)]), ccw)
-        heading += sweep
+        heading = g.tangent_arc(heading, rad, r.uniform(0.1, 2.5) * (1 if ccw else -1), ccw)
         if r.random() < 0.3:
             length = 10 ** r.uniform(-2.5, 0)
             g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0])
@@ -313,12 +310,7 @@ def _staircase(g: _Cam) -> None:
         if r.random() < 0.4:
             rad = 10 ** r.uniform(math.log10(0.05), 1)
             ccw = r.random() < 0.5
-            side = 1 if ccw else -1
-            c = g.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * side
-            sweep = min(length / rad, 2.5) * side
-            a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
-            g.arc(c, c + rad * np.array([math.cos(a0 + sweep), math.sin(a0 + sweep)]), ccw, extra=word)
-            heading += sweep
+            heading = g.tangent_arc(heading, rad, min(length / rad, 2.5) * (1 if ccw else -1), ccw, extra=word)
         else:
             if r.random() < 0.3:
                 heading += math.radians(r.uniform(1, 90)) * r.choice((1, -1))
@@ -349,12 +341,7 @@ def _rotary_tangent_chain(g: _Cam) -> None:
         for a in axes:
             values[a] += travel * 10 ** r.uniform(-1.5, 1) * (1 if a in "ABC" else 0.1) * r.choice((1, 1, -1))
         if arc:
-            side = 1 if ccw else -1
-            c = g.pos[:2] + rad * np.array([-math.sin(heading), math.cos(heading)]) * side
-            a0 = math.atan2(g.pos[1] - c[1], g.pos[0] - c[0])
-            g.arc(c, c + rad * np.array([math.cos(a0 + sweep * side), math.sin(a0 + sweep * side)]), ccw,
-                  extra=_rotary_words(values))
-            heading += sweep * side
+            heading = g.tangent_arc(heading, rad, sweep * (1 if ccw else -1), ccw, extra=_rotary_words(values))
             ccw = not ccw if r.random() < 0.6 else ccw
         else:
             g.move(g.pos + [length * math.cos(heading), length * math.sin(heading), 0], extra=_rotary_words(values))
@@ -611,7 +598,9 @@ def _axis_path_failures(program, sp, allowed: np.ndarray) -> list[str]:
         for j in moving[max(n - 1, 0):n + 2]:  # the moves either side (a zero-length block between has no samples)
             if not feed[j]:
                 continue
-            trees, values, rate = cache.setdefault(j, _programmed_axes(blocks[j]))
+            if j not in cache:  # each move's trees once (setdefault would build them for every use)
+                cache[j] = _programmed_axes(blocks[j])
+            trees, values, rate = cache[j]
             spacing = blocks[j].length / (len(values) - 1)
             for tree, half in trees:
                 dist, idx = tree.query(pts[rows])

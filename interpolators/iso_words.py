@@ -68,13 +68,13 @@ class Word:
     text: str
 
 
-
 #: A bracket at the start of a block holding words of prose (two letters in a row and a blank; no '#' nor the
 #: operators of a CNCjs expression, '?', '<', '>', '=', '!', '&', '|'): WinCNC's comment syntax, which Vectric's
 #: CAMaster posts write ("[TOOL LIST]", "[ GET TOOL NUMBER 2 ]"), or a template's placeholder ("[put the
 #: coordinates here]"); our reading from those programs' own headers ("MACHINES WITH WINCNC CONTROL ONLY"), no
 #: WinCNC manual at hand.
 _BRACKET_PROSE = re.compile(r"\[(?=[^\]#?<>=!&|]*[A-Za-z]{2})(?=[^\]#?<>=!&|]*\s)[^\]#?<>=!&|]*\]")
+
 
 def _slash_comment_line(line: str, where: Where, *, second: int | None = None) -> None:
     """Refuse a line that opens with '//' (after its leading blanks; or, with ``second``, the line whose

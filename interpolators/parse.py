@@ -61,11 +61,11 @@ def parse_program(text: str, *, source: str | None = None, context: MachineConte
         raise GCodeError(f"{exc.message} (this looks like a Siemens SINUMERIK program, whose own language vcnc does "
                          f"not read: {siemens})", file=exc.file, line=exc.line, column=exc.column, text=exc.text,
                          expected=exc.expected) from None
-    if bare_cr and context.dialect.name == "linuxcnc":
-        prog = dataclasses.replace(prog, notes=(*prog.notes, _BARE_CR_NOTE))
-    long_line = _too_long_line(raw) if prog.dialect == "iso" and context.dialect.name == "linuxcnc" else None
-    if long_line is not None and not bare_cr:
-        prog = dataclasses.replace(prog, notes=(*prog.notes, _LONG_LINE_NOTE.format(*long_line)))
+    if context.dialect.name == "linuxcnc":
+        if bare_cr:
+            prog = dataclasses.replace(prog, notes=(*prog.notes, _BARE_CR_NOTE))
+        elif (long_line := _too_long_line(raw)) is not None:
+            prog = dataclasses.replace(prog, notes=(*prog.notes, _LONG_LINE_NOTE.format(*long_line)))
     return prog
 
 

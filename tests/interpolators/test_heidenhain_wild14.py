@@ -11,9 +11,7 @@ import pytest
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.heidenhain_cycles import MAX_PATTERN_POSITIONS
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks, reader_rows
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=0.0, radius=2.0)})
@@ -32,12 +30,7 @@ def polar(q247: str = "+0", q241: str = "4", q365: str = "1", before: str = "") 
 
 
 def run(body: str, context: MachineContext = CTX):
-    text = "0 BEGIN PGM T MM\n" + body + "6 END PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=context)
-    match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
-    assert match.mismatch is None, match.mismatch
-    assert match.exact == len(prog.blocks)
-    return prog
+    return checked_program("0 BEGIN PGM T MM\n" + body + "6 END PGM T MM\n", context)
 
 
 def between(prog):
