@@ -50,6 +50,26 @@ def test_bad_csv_names_line(tmp_path, body, line, fragment):
     assert isinstance(info.value, ValueError)
 
 
+def test_blank_and_comment_rows_read_by_the_compiled_reader(tmp_path, monkeypatch):
+    """A blank and a ``#`` line among the rows (a capture edited by hand) are skipped as the row-by-row
+    reader skips them, by numpy's reader in one call: the row-by-row reader is not reached, and a
+    non-uniform step after them is named at its file line (tracewild10)."""
+    def row_by_row(*args):
+        raise AssertionError("the row-by-row reader ran")
+
+    monkeypatch.setattr("vcnc.core.capture._data_rows_checked", row_by_row)
+    p = tmp_path / "c.csv"
+    p.write_text("# machine: m\nt,x_ref,x\n0,0,0\n\n0.001,1,0.5\n# pause\n  \n0.002,2,1.5\n")
+    c = read_capture(p)
+    np.testing.assert_array_equal(c.t, [0, 0.001, 0.002])
+    np.testing.assert_array_equal(c.reference[:, 0], [0, 1, 2])
+    np.testing.assert_array_equal(c.measured[:, 0], [0, 0.5, 1.5])
+    p.write_text("t,x_ref,x\n0,0,0\n\n0.001,1,0.5\n# pause\n0.002,2,1.5\n0.004,3,2\n")
+    with pytest.raises(CaptureError, match="not uniform") as info:
+        read_capture(p)
+    assert info.value.line == 7
+
+
 def test_missing_file(tmp_path):
     with pytest.raises(CaptureError, match="no such capture file"):
         read_capture(tmp_path / "nope.csv")

@@ -269,17 +269,20 @@ def _data_rows(lines: list[str], header_idx: int, names: list[str], src: str) ->
     """The numeric rows after the header, and the file line of each (finite numbers, as many as
     the header's columns, at least two rows).
 
-    A file as vcnc writes it (a number in every field, no blank or comment line among the rows) is read by
-    numpy's compiled reader in one call (a 1.24-million-row capture of three axes: 39 s and 1.8 GB before);
-    anything else, or any doubt, goes through the row-by-row reading, which names the line and column at fault."""
-    body = lines[header_idx + 1:]
-    if len(body) >= 2:
+    A file as vcnc writes it (a number in every field) is read by numpy's compiled reader in one call (a
+    1.24-million-row capture of three axes: 39 s and 1.8 GB before); blank and ``#`` comment lines among the
+    rows are set aside first, as the row-by-row reading skips them (a capture edited by hand, or two
+    captures joined, went through it: tracewild10). Anything else, or any doubt, goes through the row-by-row
+    reading, which names the line and column at fault."""
+    kept = [i for i in range(header_idx + 1, len(lines)) if (s := lines[i].lstrip()) and not s.startswith("#")]
+    if len(kept) >= 2:
+        body = lines[header_idx + 1:] if len(kept) == len(lines) - header_idx - 1 else [lines[i] for i in kept]
         try:
             data = np.loadtxt(body, delimiter=",", comments=None, dtype=float, ndmin=2)
         except ValueError:
             data = None
         if (data is not None and data.shape == (len(body), len(names)) and np.isfinite(data).all()):
-            return data, list(range(header_idx + 2, header_idx + 2 + len(body)))
+            return data, [i + 1 for i in kept]
     return _data_rows_checked(lines, header_idx, names, src)
 
 
