@@ -28,6 +28,7 @@ from vcnc.core.capture import Capture
 from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
     LAG_SUFFIX,
+    assumed_unit,
     axis_of,
     mapped_axes,
     mapping_meta,
@@ -134,8 +135,9 @@ def read_camonitor(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
                                           np.column_stack([held(a if a in mapping else a + LAG_SUFFIX)
                                                            for a in axes])], src, resample=resample)
     meas, lag = with_following_errors(axes, mapping, ref, second, float(t[1] - t[0]), src, expected=LAG_CONVENTION)
-    meta = {"format": "EPICS camonitor log", "time_unit": "time stamps (sample and hold per PV)", "unit": unit or "mm",
-            **mapping_meta(axes, mapping), **lag, **how}
+    meta = {"format": "EPICS camonitor log", "time_unit": "time stamps (sample and hold per PV)",
+            "unit": unit or ",".join(sorted({assumed_unit(a) for a in axes})), **mapping_meta(axes, mapping), **lag,
+            **how}
     if not columns:
         meta["columns"] = mapping_note("PV", mapping)
     return Capture(t=t, axes=tuple(axes), reference=ref, measured=meas, meta=meta, source=src)

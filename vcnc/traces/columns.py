@@ -301,6 +301,12 @@ def mapped_axes(columns: Mapping[str, str], src: str) -> list[str]:
     return axes
 
 
+def assumed_unit(key: str) -> str:
+    """The unit a position column ``key`` (``x_ref``, ``a``, ...) is read in when neither the file nor the
+    options state one: deg on a rotary axis, else mm (:func:`position_scale`'s scale 1)."""
+    return "deg" if axis_of(key) in ROTARY_AXES else "mm"
+
+
 def position_scale(axes: Sequence[str], unit: str | None, src: str) -> float:
     """Millimetres (degrees) per unit of the positions of ``axes`` (a unit of :func:`length_unit`);
     the units of :data:`ANGLE_UNITS` only for rotary axes. A linear axis logged in turns, radians or degrees of its

@@ -90,6 +90,7 @@ from vcnc.traces.columns import (
     LAG_SUFFIX,
     LENGTH_UNITS,
     TIME_UNITS,
+    assumed_unit,
     axis_of,
     check_timing,
     check_units,
@@ -730,8 +731,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     def scaled(k: str) -> np.ndarray:
         with np.errstate(over="ignore"):
             values = d[:, idx[k]] * position_scale([axis_of(k)], units[k], src)
-        within_reach(values, f"{columns[k]!r} ({units[k] or 'mm'})", "deg" if axis_of(k) in ROTARY_AXES else "mm", src,
-                     lines_kept)
+        within_reach(values, f"{columns[k]!r} ({units[k] or assumed_unit(k)})", assumed_unit(k), src, lines_kept)
         return values
 
     t, (ref, second), how = on_uniform_grid(t, [np.column_stack([scaled(f"{a}_ref") for a in axes]),
@@ -739,7 +739,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                                                                 for a in axes])], src, lines_kept, resample=resample)
     meas, lag = with_following_errors(axes, columns, ref, second, float(t[1] - t[0]), src, line=hline,
                                       expected="commanded - actual (vcnc's contract for a <axis>_lag column)")
-    shown = sorted({units[k] or "mm" for k in idx if k != "t"})
+    shown = sorted({units[k] or assumed_unit(k) for k in idx if k != "t"})
     time_meta = ("time stamps" if stamped else units["t"] if sample_time is None else
                  f"sample numbers x {sample_time:.9g} s" if "t" in idx else f"rows every {sample_time:.9g} s")
     meta = {"format": f"delimited text ({_NAMES[delimiter]})", "time_unit": time_meta,
@@ -955,7 +955,7 @@ def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], t
     """The capture's ``meta["columns"]`` of a mapping read from the header names: the mapping, and the units
     assumed because the file does not state them (s, mm; deg on a rotary axis)."""
     assumed = ([f"t in {units['t']}"] if not time_known else []) + [
-        f"{k} in {'deg' if axis_of(k) in ROTARY_AXES else 'mm'}" for k in columns if k != "t" and units[k] is None]
+        f"{k} in {assumed_unit(k)}" for k in columns if k != "t" and units[k] is None]
     return (mapping_note("header", columns)
             + (f"; not stated in the file, assumed {', '.join(assumed)}" if assumed else "")
             + " (--columns, --time-unit, --unit set them)")

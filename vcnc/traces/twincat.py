@@ -59,6 +59,7 @@ from vcnc.core.errors import CaptureError
 from vcnc.traces.columns import (
     LAG_SUFFIX,
     TIME_UNITS,
+    assumed_unit,
     axis_of,
     check_units,
     mapped_axes,
@@ -192,8 +193,8 @@ def read_twincat(path: str | os.PathLike[str], *, columns: Mapping[str, str] | N
                                       expected=LAG_CONVENTION)
     meta = {"format": "TwinCAT Scope CSV", "separator": _NAMES[d],
             "time_unit": "100 ns ticks" if per_s == _FILETIME_TICK_S else (time_unit or "ms"),
-            "unit": ",".join(sorted({u or "mm" for u in units.values()})), **mapping_meta(ax, mapping), **lag,
-            **how}
+            "unit": ",".join(sorted({u or assumed_unit(k) for k, u in units.items()})), **mapping_meta(ax, mapping),
+            **lag, **how}
     if note:
         meta["columns"] = note
     if unit is None:
