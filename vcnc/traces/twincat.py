@@ -25,7 +25,10 @@ or not, double time stamps excluded or not):
   values are read as they stand, and a used channel whose scaling is not 1 and 0 is named in
   ``meta["scaling"]`` (found by tracewild, session 16).
 - **Separator** tab (default), ``;``, ``,``, ``:`` or space, the character after the first
-  ``Name``; **decimal mark** ``.`` or ``,`` (with any separator but ``,``).
+  ``Name``; **decimal mark** ``.`` or ``,`` (with any separator but ``,``). With space, a name or unit
+  holding a space is written as several words (pytcs' ``Seperator_1`` export: ``test space``,
+  ``V (Voltage)``): they are rejoined group by group against a row of one-word cells (``Data-Type``...),
+  units at their parenthesis, and a group whose names cannot be told apart is an error (tracewild10).
 
 Channels are found by ``Name`` (or ``SymbolName``). Without ``--columns``, NC axis channels
 ``...SetPos`` / ``...ActPos`` (``NcToPlc.SetPos`` / ``NcToPlc.ActPos``, Beckhoff infosys
@@ -242,6 +245,8 @@ def _channel_rows(lines: list[str], d: str, src: str) -> tuple[list[_Channel], i
         rows.setdefault(cells[0], cells)
     if data_start is None:
         raise CaptureError("no rows of numbers after the channel rows", file=src, line=len(lines))
+    if d == " ":
+        _rejoin_words(rows, src, start + 1)
     names, symbols, units = rows["Name"], rows.get("SymbolName"), rows.get("Unit")
     channels, time_column = [], 0
     for j, name in enumerate(names):
@@ -255,6 +260,56 @@ def _channel_rows(lines: list[str], d: str, src: str) -> tuple[list[_Channel], i
     if not channels:
         raise CaptureError("the channel 'Name' row names no channel", file=src, line=start + 1)
     return channels, data_start, start + 1
+
+
+#: Channel rows whose cells hold no space: the layout of the groups, in a space-separated export.
+_ONE_WORD_ROWS = ("Data-Type", "SampleTime[ms]", "VariableSize", "SymbolBased", "IndexGroup", "IndexOffset", "NetID",
+                  "Port", "Offset", "ScaleFactor", "BitMask")
+
+
+def _rejoin_words(rows: dict[str, list[str]], src: str, line: int) -> None:
+    """Rejoin the ``Name``, ``SymbolName`` and ``Unit`` cells a space-separated export split at their spaces (a
+    channel ``test space``, a unit ``V (Voltage)``: the pytcs export with separator space), group by group against
+    a row whose cells hold no space. Every later name and unit stood one column off: a channel was read with its
+    neighbour's values (tracewild10). A group whose words cannot be told apart is an error naming it."""
+    ref = next((rows[k] for k in _ONE_WORD_ROWS if k in rows), None)
+    if ref is None:
+        return
+    starts = [j for j, c in enumerate(ref) if c == ref[0]]
+    sizes = [b - a - 1 for a, b in zip(starts, [*starts[1:], len(ref)])]
+    for key in ("Name", "SymbolName", "Unit"):
+        cells = rows.get(key)
+        if cells is None or len(cells) == len(ref):
+            continue
+        marks = [j for j, c in enumerate(cells) if c == key]
+        groups = [cells[a + 1:b] for a, b in zip(marks, [*marks[1:], len(cells)])]
+        if len(groups) != len(sizes):
+            raise CaptureError(f"the {key!r} row has {len(groups)} groups of channels, the {ref[0]!r} row "
+                               f"{len(sizes)} (a space-separated export)", file=src, line=line)
+        out: list[str] = []
+        for size, words, column in zip(sizes, groups, starts):
+            cells = (words if len(words) == size else [" ".join(words)] if size == 1
+                     else _units(words) if key == "Unit" else words)
+            if len(cells) != size:
+                raise CaptureError(
+                    f"a space-separated export splits {key} cells at their spaces, and the {size} channels of "
+                    f"the group at column {column + 1} read as {len(words)} words {words[:8]}: which words form "
+                    "one name cannot be told; export with another separator (tab, the default)", file=src,
+                    line=line)
+            out += [key, *cells]
+        rows[key] = out
+
+
+def _units(words: list[str]) -> list[str]:
+    """``Unit`` words rejoined: a word opening with ``(`` after a symbol (``V (Voltage)``), or within an open
+    parenthesis, belongs to the unit before it."""
+    out: list[str] = []
+    for w in words:
+        if out and (out[-1].count("(") > out[-1].count(")") or (w.startswith("(") and "(" not in out[-1])):
+            out[-1] += " " + w
+        else:
+            out.append(w)
+    return out
 
 
 _SCALE_ROWS = {"ScaleFactor": 1.0, "Offset": 0.0, "Unit ScaleFactor": 1.0, "Unit Offset": 0.0}
