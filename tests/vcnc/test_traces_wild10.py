@@ -11,6 +11,7 @@ import pytest
 
 from vcnc.capture import read_capture
 from vcnc.errors import CaptureError
+from vcnc.traces.names import columns_from_names
 
 _ROWS = [(0, 0.0, 0.0, 0.0), (13, 1.0, 0.5, 0.1), (26, 2.0, 1.5, 0.6), (39, 3.0, 2.5, 1.5), (52, 3.0, 3.0, 2.4),
          (65, 3.0, 3.0, 2.9)]
@@ -79,3 +80,17 @@ def test_space_separated_twincat_names_that_cannot_be_told_apart(tmp_path):
                                            r"'Pos_Ist'\]: which words form one name cannot be told") as err:
         read_capture(f, columns={"x_ref": "Pos Soll", "x": "Pos_Ist"})
     assert err.value.line == 5
+
+
+def test_positions_naming_no_axis_beside_one_named_axis(tmp_path):
+    """``pos_cmd`` and ``pos_fb`` beside ``X Following Error`` (trace_fuzz seed 35100, cases 105390 and 105800 of
+    six alike): the bare positions fill axis x's missing roles, and the measured position is used before the lag.
+    A bare position whose role the named axis already has is left alone."""
+    f = tmp_path / "log.csv"
+    f.write_text("time;pos_cmd;pos_fb;X Following Error\n[us];[mm];[mm];[mm]\n" + "".join(
+        f"{500 * k};{s / 1000};{i / 1000};{(s - i) / 1000}\n" for k, (s, i) in enumerate(zip(_SOLL, _IST))))
+    cap = read_capture(f)
+    assert cap.meta["commanded"] == "x:pos_cmd" and cap.meta["measured"] == "x:pos_fb"
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(_IST) / 1000)
+    assert columns_from_names(["t", "X_pos_cmd", "X_pos_fb", "spindle_pos_cmd"]) == (
+        {"t": "t", "x_ref": "X_pos_cmd", "x": "X_pos_fb"}, "")

@@ -16,7 +16,9 @@ is unambiguous:
   velocity, current, torque, acceleration, force... or carries a unit that is not a length
   (``[mm/min]``, ``[A]``, ``[%]``) is not a position at all;
 - its axis is the one axis letter among its words (``X Soll``, ``x_cmd``, ``xact``); a file whose
-  positions name no axis has one axis, x, when it has one pair;
+  positions name no axis has one axis, x, when it has one pair; beside positions of one named axis, a
+  position naming none fills a role that axis has no column of, when it is the only one of its role
+  (``pos_cmd``, ``pos_fb`` beside ``X Following Error``; tracewild10);
 - each axis needs exactly one commanded and one measured column (or, without a measured one,
   exactly one following error). Two candidates for one role make the header ambiguous.
 
@@ -353,6 +355,9 @@ def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] 
     found = {h: p for h, p in found.items() if p is not None}
     found.update(_bare_counterparts(header, times, found))
     named_axes = {a for _, a in found.values() if a is not None}
+    if len(named_axes) == 1:
+        found.update(_roles_of_the_one_axis(found, named_axes.pop()))
+        named_axes = {a for _, a in found.values() if a is not None}
     if not named_axes:
         found, why = _numbered_axis(found)
         if why:
@@ -481,6 +486,18 @@ def _bare_counterparts(header: Sequence[str], times: Sequence[str],
         if len(bare) == 1:
             out[bare[0]] = ("act", axis)
     return out
+
+
+def _roles_of_the_one_axis(found: dict[str, tuple[str, str | None]], axis: str) -> dict[str, tuple[str, str]]:
+    """Positions that name no axis (letter or number) beside positions of one named axis, as that axis' positions:
+    each only for a role the axis has no column of, and only as the one of its role (``pos_cmd``, ``pos_fb`` beside
+    ``X Following Error``: a logger naming the axis on some channels; tracewild10, from trace_fuzz seed 35100)."""
+    taken = {r for r, a in found.values() if a == axis}
+    bare: dict[str, list[str]] = {}
+    for h, (role, a) in found.items():
+        if a is None and _axis_number(h) is None:
+            bare.setdefault(role, []).append(h)
+    return {hs[0]: (role, axis) for role, hs in bare.items() if len(hs) == 1 and role not in taken}
 
 
 def _no_pair(header: Sequence[str], times: Sequence[str], found: dict[str, tuple[str, str]]) -> str:
