@@ -94,3 +94,27 @@ def test_positions_naming_no_axis_beside_one_named_axis(tmp_path):
     np.testing.assert_allclose(cap.measured[:, 0], np.array(_IST) / 1000)
     assert columns_from_names(["t", "X_pos_cmd", "X_pos_fb", "spindle_pos_cmd"]) == (
         {"t": "t", "x_ref": "X_pos_cmd", "x": "X_pos_fb"}, "")
+
+
+def _aligned(rows: list[list[str]]) -> str:
+    """Rows of cells right-aligned in columns 10 wide, a blank cell left blank."""
+    return "".join("".join(f"{c:>10}" for c in r) + "\n" for r in rows)
+
+
+def test_space_aligned_columns_with_blank_cells_at_the_ends(tmp_path):
+    """A recorder printing fixed-width columns leaves the command's cell blank in the first and last row (trace_fuzz
+    seed 35100 case 105730: 'only one row of numbers (6 values) among 401 lines'): the cells are placed by the
+    column they end at, the two rows skipped as rows with an empty cell. A blank between numbers is still an error."""
+    rows = [[f"{t}", f"{s / 1000:.3f}", f"{i / 1000:.3f}"] for t, s, i in zip(_T, _SOLL, _IST)]
+    rows[0][1] = rows[-1][1] = ""
+    f = tmp_path / "print.txt"
+    f.write_text("Date: 2024-05-02\n" + _aligned([["Time[ms]", "XPosCmd", "XPosAct"], *rows]))
+    cap = read_capture(f)
+    np.testing.assert_allclose(cap.t, np.array(_T[1:-1]) / 1000 - 0.002)
+    np.testing.assert_allclose(cap.reference[:, 0], np.array(_SOLL[1:-1]) / 1000)
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(_IST[1:-1]) / 1000)
+    rows[0][1], rows[-1][1], rows[2][1] = "0.000", "5.500", ""
+    f.write_text("Date: 2024-05-02\n" + _aligned([["Time[ms]", "XPosCmd", "XPosAct"], *rows]))
+    with pytest.raises(CaptureError, match="XPosCmd") as err:
+        read_capture(f)
+    assert err.value.line == 5

@@ -348,9 +348,42 @@ class _Table(NamedTuple):
     header_line: int | None = None  #: the 1-based line of the names (above a row of units), when found above the rows
 
 
+def _aligned_blanks(lines: list[str]) -> list[str]:
+    """``lines`` with ``nan`` written into the blank cells of a table whose columns are aligned by spaces.
+
+    A recorder printing fixed-width columns leaves a channel's cell blank before its first sample or after its last
+    (trace_fuzz's ``spaces`` + ``ends:empty`` layout): split at runs of spaces that row has fewer cells, and the block
+    of rows ended there (seed 35100 case 105730: 'only one row of numbers' among 400 rows). Where every full row of
+    numbers ends (or starts) each cell at the same places, a shorter row's cells are put in the columns they end (start)
+    at, and its blank cells read as missing values, as a ``NaN`` cell (:func:`_nan_cells`). Lines with a tab, ``;`` or
+    ``|`` and rows whose cells do not fall on the columns are left alone (tracewild10)."""
+    rows: list[tuple[int, list[tuple[int, int]]]] = []
+    for i, line in enumerate(lines):
+        spans = [m.span() for m in re.finditer(r"\S+", line)]
+        if len(spans) >= 2 and not any(c in line for c in "\t;|") and _numbers(
+                [line[a:b] for a, b in spans], True) is not None:
+            rows.append((i, spans))
+    width = max((len(sp) for _, sp in rows), default=0)
+    full = [sp for _, sp in rows if len(sp) == width]
+    if len(full) < 2 or len(full) == len(rows):
+        return lines
+    for edge in (1, 0):  # right-aligned columns, else left-aligned
+        places = [p[edge] for p in full[0]]
+        if all([p[edge] for p in sp] == places for sp in full):
+            break
+    else:
+        return lines
+    out = list(lines)
+    for i, sp in rows:
+        cells = {p[edge]: lines[i][p[0]:p[1]] for p in sp}
+        if len(sp) < width and set(cells) <= set(places):
+            out[i] = " ".join(cells.get(p, "nan") for p in places)
+    return out
+
+
 def _table(text: str, src: str) -> _Table:
     """The header, units and rows of the last block of rows in ``text`` (module docstring)."""
-    lines = text.splitlines()
+    lines = _aligned_blanks(text.splitlines())
     blocks = [(d, *_numeric_block(lines, d)) for d in _DELIMITERS]
     # the delimiter that makes the longest block of rows (then the one with fewest text cells, then the widest)
     delimiter, first, last, width, comma, _ = max(blocks, key=lambda b: (b[1] >= 0 and b[3] >= 2, b[2] - b[1],
