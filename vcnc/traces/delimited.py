@@ -357,12 +357,17 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
     numbers ends (or starts) each cell at the same places, a shorter row's cells are put in the columns they end (start)
     at, and its blank cells read as missing values, as a ``NaN`` cell (:func:`_nan_cells`). Lines with a tab, ``;`` or
     ``|`` and rows whose cells do not fall on the columns are left alone (tracewild10)."""
-    rows: list[tuple[int, list[tuple[int, int]]]] = []
-    for i, line in enumerate(lines):
-        spans = [m.span() for m in re.finditer(r"\S+", line)]
-        if len(spans) >= 2 and not any(c in line for c in "\t;|") and _numbers(
-                [line[a:b] for a, b in spans], True) is not None:
-            rows.append((i, spans))
+    words = [line.split() if not any(c in line for c in "\t;|") else [] for line in lines]
+    counts = [len(w) if len(w) >= 2 and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
+    width = max(counts, default=0)
+    if width < 2 or all(c in (0, width) for c in counts):
+        return lines  # every row as wide as the widest: nothing blank (the common case, one split a line)
+
+    def cells_at(i: int) -> list[tuple[int, int]] | None:
+        spans = [m.span() for m in re.finditer(r"\S+", lines[i])]
+        return spans if _numbers([lines[i][a:b] for a, b in spans], True) is not None else None
+
+    rows = [(i, sp) for i, c in enumerate(counts) if c >= 2 and (sp := cells_at(i)) is not None]
     width = max((len(sp) for _, sp in rows), default=0)
     full = [sp for _, sp in rows if len(sp) == width]
     if len(full) < 2 or len(full) == len(rows):
