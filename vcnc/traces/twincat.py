@@ -288,15 +288,15 @@ def _rejoin_words(rows: dict[str, list[str]], src: str, line: int) -> None:
                                f"{len(sizes)} (a space-separated export)", file=src, line=line)
         out: list[str] = []
         for size, words, column in zip(sizes, groups, starts):
-            cells = (words if len(words) == size else [" ".join(words)] if size == 1
-                     else _units(words) if key == "Unit" else words)
-            if len(cells) != size:
+            joined = (words if len(words) == size else [" ".join(words)] if size == 1
+                      else _units(words) if key == "Unit" else words)
+            if len(joined) != size:
                 raise CaptureError(
                     f"a space-separated export splits {key} cells at their spaces, and the {size} channels of "
                     f"the group at column {column + 1} read as {len(words)} words {words[:8]}: which words form "
                     "one name cannot be told; export with another separator (tab, the default)", file=src,
                     line=line)
-            out += [key, *cells]
+            out += [key, *joined]
         rows[key] = out
 
 
