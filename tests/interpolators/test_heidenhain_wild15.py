@@ -72,3 +72,12 @@ def test_a_circle_probing_cycle_without_q365_moves_on_arcs():
     # 340 55x-04, cycle 422 "Cycle run" 3; iTNC 530 cycle manual 340 49x-06, cycle 405): vcnc moved straight
     prog = checked(circle_probe(412, "+40 ", "+0", None))
     assert [k for k, _ in between(prog)] == ["arc", "arc", "arc"]
+
+
+def test_the_measuring_cycle_422_moves_as_413_does():
+    # 421/422 probe as 412/413 (TNC 320 cycle manual 340 55x-04, cycle 422 "Cycle run" 3, quoted above): with
+    # Q365=+1 on arcs about the nominal centre Q273/Q274, here (0, 0) at the clearance height Q260 = +5
+    prog = checked("1 TOOL CALL 100 Z S50\n2 L X+0 Y+0 Z+55 R0 FMAX\n3 TCH PROBE 422 MEAS. CIRCLE OUTSIDE Q273=+0 "
+                   "Q274=+0 Q262=+70 Q325=+0 Q247=+90 Q261=-3 Q320=+12 Q260=+5 Q301=+1 Q277=+0 Q278=+0 Q279=+0 "
+                   "Q280=+0 Q281=+0 Q423=4 Q365=+1\n4 L Z+55 FMAX")
+    assert [k for k, _ in between(prog)] == ["arc", "arc", "arc"]
