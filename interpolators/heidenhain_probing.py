@@ -25,9 +25,13 @@ Cycle runs (measured = nominal):
 * 412 / 413: Q423 (4, or 3) touch points at the angles Q325 + k Q247 about the centre (Q321, Q322) on the
   circle of diameter Q262, at the measuring height Q261, probed radially outward (412, a hole) or inward (413,
   a stud). Between points: at the measuring height (Q301=0) or up to Q260, across and down again (Q301=1), on
-  an arc about the centre (Q365=0) or a straight line (Q365=1), as programmed (a line at the measuring height
-  between two points of 413 may cross the stud: vcnc has no workpiece to collide with). Results: Q151, Q152 =
-  the centre, Q153 = the diameter. The datum: the centre becomes (Q331, Q332);
+  a straight line (Q365=0) or an arc about the centre (Q365=1, also when the definition has no Q365), as
+  programmed: Q365 is the "Type of traverse? Line=0/arc=1" of the pattern cycle 220 (TNC 640 cycle manual
+  34059x-01), and the cycles without it move "in a circular arc either at measuring height or at clearance
+  height to the next starting point" (TNC 320 cycle manual 340 55x-04, cycle 422 "Cycle run" 3; iTNC 530 cycle
+  manual 340 49x-06, cycle 405); a line at the measuring height between two points of 413 may cross the stud:
+  vcnc has no workpiece to collide with. Results: Q151, Q152 = the centre, Q153 = the diameter. The datum: the
+  centre becomes (Q331, Q332);
 * 410 / 411: four touch points on the sides of the rectangle of side lengths Q323 (along the reference axis)
   and Q324 (the minor axis) about the centre (Q321, Q322), at the measuring height Q261, probed outward (410,
   a pocket) or inward (411, a stud), in the order of the manual's figure numbers as we read them: 1 on the
@@ -126,7 +130,7 @@ _REQUIRED = {417: (263, 264, 294, 320, 260), 412: _CIRCLE, 413: _CIRCLE, 410: _R
 _INSPECTION = {421: 412, 422: 413, 423: 410, 424: 411}
 _RENAMED = {273: 321, 274: 322, 282: 323, 283: 324}
 #: Defaults of optional parameters (our reading: the TNC's dialog values): Q301=1 clearance height between
-#: points, Q305=0 the active datum, Q303=1 the preset table, Q423=4 points, Q365=1 straight lines; the limits
+#: points, Q305=0 the active datum, Q303=1 the preset table, Q423=4 points, Q365=1 arcs (see above); the limits
 #: of the measuring cycles 0 (not monitored: TNC 320 cycle manual 16.1, "Tolerance monitoring").
 _DEFAULTS = {301: 1.0, 305: 0.0, 331: 0.0, 332: 0.0, 303: 1.0, 333: 0.0, 381: 0.0, 423: 4.0, 365: 1.0, 405: 0.0,
              **dict.fromkeys((275, 276, 277, 278, 284, 285, 286, 287, 288, 289), 0.0)}
@@ -518,12 +522,12 @@ class _Shape:
             path.touch(start, touch, self.where, f"TCH PROBE {self.number} touch point {k + 1}")
 
     def _across(self, start: np.ndarray, level: float) -> None:
-        """To the next starting point at ``level`` [mm]: 412 / 413 on an arc about the centre (Q365=0) or a line;
+        """To the next starting point at ``level`` [mm]: 412 / 413 on an arc about the centre (Q365=1) or a line;
         410 / 411 at the measuring height paraxially (round the corner), else straight."""
         path, q = self.path, self.q
         target = start.copy()
         target[path.plane] = level
-        if self.number in (412, 413) and q[365] == 0:
+        if self.number in (412, 413) and q[365] != 0:
             pole = self.centre.copy()
             pole[path.plane] = level
             path.arc(pole, target, q[247])

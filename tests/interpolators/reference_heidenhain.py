@@ -1203,7 +1203,7 @@ def _side_touches(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, app
         elif not small:
             go((*t.prog()[:2], lvl))
             circle = None
-            if number in (412, 413) and p["Q365"] == 0:
+            if number in (412, 413) and p["Q365"] != 0:  # Line=0/arc=1, as cycle 220's
                 circle = ((cx, cy, lvl), p["Q247"])
             elif number in (410, 411) and lvl == zm:  # paraxial at the measuring height: round the corner
                 px, py = t.prog()[:2]

@@ -67,9 +67,9 @@ def test_413_outside_circle_four_points_at_clearance_height_between_them():
 
 def test_412_inside_circle_arcs_at_measuring_height_and_results():
     prog = run("3 TCH PROBE 412 DATUM INSIDE CIRCLE Q321=+0 Q322=+0 Q262=+30 Q325=+45 Q247=+120 Q261=-3 Q320=+1 "
-               "Q260=+20 Q301=+0 Q305=+0 Q331=+5 Q332=-5 Q423=3 Q365=0\n4 L X+0 Y+0 FMAX")
+               "Q260=+20 Q301=+0 Q305=+0 Q331=+5 Q332=-5 Q423=3 Q365=1\n4 L X+0 Y+0 FMAX")
     kinds = [b.kind for b in prog.blocks if b.line == 4]
-    assert kinds.count("arc") == 2  # between the three points, at the measuring height
+    assert kinds.count("arc") == 2  # between the three points, at the measuring height (Q365=1: Line=0/arc=1)
     assert [round(b.feed * 60, 6) for b in prog.blocks if b.line == 4 and b.kind == "arc"] == [2000, 2000]
     # touch points on the wall (tip radius 0: the tool has none), 15 mm from the centre at 45, 165, 285 degrees
     touches = [b.target for b in prog.blocks if b.line == 4 and abs(b.feed * 60 - 100) < 1e-9]
