@@ -9,7 +9,7 @@ import dataclasses
 import pytest
 
 from interpolators import parse_program
-from interpolators.context import DIALECTS, MachineContext
+from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
 from vcnc.cli import main
 from vcnc.errors import GCodeError
@@ -68,3 +68,32 @@ def test_default_units_on_the_command_line(tmp_path, capsys):
     with pytest.raises(SystemExit) as exc:  # argparse: a bad choice is a usage error, status 2
         main(["interpolate", str(part), "-o", str(out), "--default-units", "cm"])
     assert exc.value.code == 2 and "invalid choice: 'cm'" in capsys.readouterr().err
+
+
+#: Thaddeus-Maximus/lagun-linuxcnc nc_files/programs/spw_pew.ngc, the first pass rewritten with one tool: a G41
+#: entry that ramps down, a line shorter than the inside corner's retreat, then a tangent arc (G90.1 centres).
+RAMPED_ENTRY = ("G21 G90 F25\nT5 M6\nG0 X2.851 Y-2.2 Z0.2\nG41\nG1 X3.1 Y-1.85 Z-0.22\nG1 X2.851 Y-1.85\n"
+                "G2 I2.851 J-0.948 X2.070 Y-1.399 G90.1\nG40\nG1 X2.851 Y-1.0\nM2\n")
+
+
+def test_linuxcnc_runs_a_line_whose_start_an_inside_corner_moved_past_its_end():
+    # rs274 (linuxcnc_diff, tool 5 of radius 0.13335 mm): the entry ends at the corner's retreat point
+    # (2.8415, -1.98335), past the end of the next line, which it then runs backwards to (2.851, -1.98335):
+    # move_endpoint_and_flush (interp_queue.cc) checks a queued line only when its end is moved. The entry keeps
+    # its programmed end Z: LinuxCNC moves the end in the plane only (before: Z -> 0.0328, interpolated)
+    ctx = MachineContext(tools={5: Tool(number=5, radius=0.13335)})
+    moves = [b.target.tolist() for b in parse_program(RAMPED_ENTRY, context=ctx).blocks]
+    assert moves[1] == pytest.approx([2.84148, -1.98335, -0.22], abs=5e-5)
+    assert moves[2] == pytest.approx([2.851, -1.98335, -0.22], abs=1e-9)
+    assert moves[-1] == pytest.approx([2.851, -1.0, -0.22], abs=1e-12)
+
+
+def test_a_trimmed_inside_corner_keeps_the_programmed_depth_of_its_vertex():
+    # a helical ramp along a pocket wall into an inside corner: LinuxCNC's STRAIGHT_FEED of the first line ends at
+    # the corner point with that line's programmed Z (-1), and the second line runs from there to Z -2
+    text = ("G21 G90 F100\nG0 X0 Y0 Z0\nG41\nG1 X10 Y0 Z0\nG1 X20 Y0 Z-1\nG1 X20 Y10 Z-2\nG40\nG1 X30 Y10\nM2\n")
+    ctx = MachineContext(tools={1: Tool(number=1, radius=1.0)})
+    blocks = parse_program("T1 M6\n" + text, context=ctx).blocks
+    corner = [b for b in blocks if b.line == 6][0]
+    assert corner.target.tolist() == pytest.approx([19.0, 1.0, -1.0], abs=1e-12)
+    assert [b for b in blocks if b.line == 7][0].start.tolist() == pytest.approx([19.0, 1.0, -1.0], abs=1e-12)
