@@ -36,9 +36,12 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   :class:`CompensationError` carries LinuxCNC's message ("Arc move in concave corner cannot be
   reached by the tool without gouging", "Arc to straight motion makes a corner the compensated tool
   can't fit in without gouging", "Arc to arc motion makes a corner ..."). A trimmed element gouges
-  as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line that now runs against its
-  programmed direction ("Straight feed in concave corner cannot be reached by the tool without
-  gouging"), an arc whose sweep grew by more than 0.0254 rad (mm programs) or 0.001 rad (inch).
+  as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line whose end was moved and that now runs
+  against its programmed direction ("Straight feed in concave corner cannot be reached by the tool without
+  gouging"; a line whose start alone moved past its end runs backwards, as rs274 runs it; under
+  ``corner="fanuc"`` every reversed line is refused), an arc whose sweep grew by more than 0.0254 rad (mm
+  programs) or 0.001 rad (inch). Trimmed ends move in the plane only: each block's tool-axis move runs from its
+  programmed start to its programmed end over its compensated element, as LinuxCNC's queue moves ends.
 * **Fanuc/Haas outside corners** (``corner="fanuc"``, the ISO reader under ``--dialect fanuc|haas``): no
   corner arc. Fanuc's cutter compensation C (Fanuc 0i-MF / 0i-MD operator's manual, B-64604EN /
   B-64304EN, "Cutter compensation C", "Tool movement in offset mode"; the Series 15i-MA manual 14.4.3
