@@ -36,9 +36,12 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   :class:`CompensationError` carries LinuxCNC's message ("Arc move in concave corner cannot be
   reached by the tool without gouging", "Arc to straight motion makes a corner the compensated tool
   can't fit in without gouging", "Arc to arc motion makes a corner ..."). A trimmed element gouges
-  as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line that now runs against its
-  programmed direction ("Straight feed in concave corner cannot be reached by the tool without
-  gouging"), an arc whose sweep grew by more than 0.0254 rad (mm programs) or 0.001 rad (inch).
+  as ``move_endpoint_and_flush`` (``interp_queue.cc``) finds: a line whose end was moved and that now runs
+  against its programmed direction ("Straight feed in concave corner cannot be reached by the tool without
+  gouging"; a line whose start alone moved past its end runs backwards, as rs274 runs it; under
+  ``corner="fanuc"`` every reversed line is refused), an arc whose sweep grew by more than 0.0254 rad (mm
+  programs) or 0.001 rad (inch). Trimmed ends move in the plane only: each block's tool-axis move runs from its
+  programmed start to its programmed end over its compensated element, as LinuxCNC's queue moves ends.
 * **Fanuc/Haas outside corners** (``corner="fanuc"``, the ISO reader under ``--dialect fanuc|haas``): no
   corner arc. Fanuc's cutter compensation C (Fanuc 0i-MF / 0i-MD operator's manual, B-64604EN /
   B-64304EN, "Cutter compensation C", "Tool movement in offset mode"; the Series 15i-MA manual 14.4.3
@@ -173,13 +176,6 @@ class _Offset:
             return math.hypot(*(self.b0 - self.a0))
         s = self.param(self.b0)
         return s if s > _EPS else 2.0 * math.pi
-
-    def z_at(self, point: np.ndarray) -> float:
-        """Tool-axis coordinate at ``point``, linear in the position along the element."""
-        if np.array_equal(point, self.b0):  # the untrimmed end (also of a full circle, whose param is 0)
-            return self.zb
-        f = min(max(self.param(point) / self.extent(), 0.0), 1.0)
-        return self.za + (self.zb - self.za) * f
 
 
 def _left(t: np.ndarray) -> np.ndarray:
@@ -319,7 +315,7 @@ def compensate(
     chain = [ent, *offsets]
     corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner, rounded=rounded,
                             small=convex_tolerance)
-    _check_gouges(chain, ent, blocks, radius, inch=inch)
+    _check_gouges(chain, ent, blocks, radius, inch=inch, ends_only=corner == "linuxcnc")
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
 
@@ -616,14 +612,24 @@ def _sweep(el: _Offset, a: np.ndarray, b: np.ndarray) -> float:
     return (sweep if sweep > 1e-12 else 2.0 * math.pi) + 2.0 * math.pi * el.turns
 
 
-def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float, *, inch: bool) -> None:
+def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radius: float, *, inch: bool,
+                  ends_only: bool = False) -> None:
     """CompensationError where a trimmed element gouges, by ``move_endpoint_and_flush`` (interp_queue.cc):
     a line that now runs against its programmed direction (the entry: against its offset direction), or
     an arc whose sweep grew by more than 0.0254 (mm programs) or 0.001 (inch programs) [rad] over the
-    programmed sweep and what Fanuc's outside corners added."""
+    programmed sweep and what Fanuc's outside corners added.
+
+    ``ends_only`` (LinuxCNC's rule): a line is checked only when its end was moved. LinuxCNC checks a queued
+    line when an inside corner moves its end point (the direction from its start to the new end against the
+    direction it was queued with); a line whose start alone an inside corner moved back past its end is
+    flushed as it is, a short move backwards (rs274 runs lagun-linuxcnc's spw_pew.ngc so: an entry, then a line
+    shorter than the corner's retreat, then a tangent arc). Fanuc's interference check (the compensated path
+    against the programmed one, more than 90 deg apart) looks at every trimmed line: ``ends_only`` False."""
     grow = 0.001 if inch else 0.0254
     for el in chain:
         if el.kind == "line":
+            if ends_only and el is not ent and float(np.abs(el.b - el.b0).max()) <= 1e-12:
+                continue
             ref = (el.a0 - el.a) if el is ent else (el.b0 - el.a0)
             if float((el.b - el.a) @ ref) >= 0.0:
                 continue
@@ -642,7 +648,6 @@ def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, list
               last: int | None, side: str, plane: int) -> list[Block]:
     """The compensated blocks: the run's blocks on the tool-centre path, corner arcs inserted."""
     p, q = PLANE_AXES[plane]
-    ent = chain[0]
 
     def point3(template: np.ndarray, xy: np.ndarray, z: float) -> np.ndarray:
         v = np.array(template, dtype=float)
@@ -681,8 +686,10 @@ def _assemble(blocks: list[Block], chain: list[_Offset], corners: dict[int, list
                 raise CompensationError("outside corner between rapid moves: no feed for the corner arc", i)
             feed = feeds[0]
             out.append(dataclasses.replace(b, kind=kind, start=cs, target=ce, segment=seg, feed=feed, dwell=0.0))
-        za = el.za if el is ent or np.array_equal(el.a, el.a0) else el.z_at(el.a)
-        zb = el.z_at(el.b)
+        # a trimmed end keeps its block's tool-axis coordinate: LinuxCNC moves a queued move's end in the plane
+        # only (interp_queue.cc move_endpoint_and_flush sets x, y of the XY plane), and the next move starts
+        # there; so the tool-axis move of each block runs over its compensated element, start to end
+        za, zb = el.za, el.zb
         st, tg = point3(b.start, el.a, za), point3(b.target, el.b, zb)
         if el.kind == "arc":  # intersections onto the circle to rounding, as Arc requires
             st = point3(b.start, el.c + el.radius * (el.a - el.c) / math.hypot(*(el.a - el.c)), za)

@@ -744,13 +744,20 @@ def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, 
 def _arc_code_alone(gcodes, st: State, where: Where) -> None:
     """A G2/G3 block with no axis, centre or radius word: LinuxCNC refuses it (interp_arc.cc convert_arc: "The
     block has neither an r value nor any i,j,k values: NCE_R_I_J_K_WORDS_ALL_MISSING_FOR_ARC", checked also on a
-    block without axis words: rs274 refuses "G3 F360"); the other dialects take the motion mode from it (grbl
-    gcode.c sets the modal motion of a block without axis words). An arc with axis words and no centre is
-    refused by :func:`interpolators.iso_arcs.read_arc`."""
-    if st.context.dialect.name != "linuxcnc" or gcodes.get("motion", (0,))[0] not in (20, 30):
+    block without axis words: rs274 refuses "G3 F360"), and so does grbl (gnea/grbl ``grbl/gcode.c``: a G2/G3
+    word makes the block an axis command, ``axis_command = AXIS_COMMAND_MOTION_MODE``, and the arc checks then
+    fail "[No axis words]" STATUS_GCODE_NO_AXIS_WORDS, error 26; only G0 and G1 without axis words just set the
+    mode); Fanuc, Haas and Fadal take the motion mode from it. An arc with axis words and no centre is refused by
+    :func:`interpolators.iso_arcs.read_arc`."""
+    dialect = st.context.dialect.name
+    if dialect not in ("linuxcnc", "grbl") or gcodes.get("motion", (0,))[0] not in (20, 30):
         return
     w = gcodes["motion"][1]
     code = w.text.upper()
+    if dialect == "grbl":
+        where.fail(f"{code} arc without axis words: grbl refuses it (error 26, no axis words: unlike G0 and G1, "
+                   "an arc code alone does not just set the motion mode)", column=w.column, text=w.text,
+                   expected=f"{code} in the block that moves, with its end point and I/J or R")
     where.fail(f"{code} arc without R, I, J or K (LinuxCNC: 'R i j k words all missing for arc', also on a block "
                "without axis words)", column=w.column, text=w.text, expected=f"{code} with I/J/K or R, in the block "
                "that moves")

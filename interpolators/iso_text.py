@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from interpolators._words import Where
-from interpolators.context import Dialect
+from interpolators.context import DIALECTS, Dialect
 from interpolators.iso_flow import SKIP_AFTER_NUMBER
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_params import Parameters
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
 __all__ = ["prepared_text", "expression_notes", "ends_with_m99", "program_name", "note_comment", "message_stops",
-           "line_notes", "closing_notes"]
+           "line_notes", "closing_notes", "units_note"]
 
 
 def prepared_text(text: str, source: str | None, dialect: str, notes: Notes) -> tuple[str, list[int], bool]:
@@ -80,7 +80,20 @@ def closing_notes(st: State, blocks: list[Block], dialect: Dialect, notes: Notes
                   f"{dialect.initial_feed:g} mm/min ([program] initial_feed, --initial-feed; Fanuc parameter 1411; "
                   "LinuxCNC and grbl refuse such a move)")
     if not st.units_stated and any(b.kind != "dwell" for b in blocks):
-        notes.add(f"no G20/G21: {dialect.default_units} assumed ({reading} default)")
+        notes.add(units_note(dialect, reading))
+
+
+def units_note(dialect: Dialect, reading: str) -> str:
+    """The note on a program without G20/G21: the units it is read in, whose default they are, and how to read it
+    in the others. The control's power-on units decide (Haas mill operator's manual, Setting 9 "Dimensioning":
+    inch or metric; LinuxCNC INI [RS274NGC] RS274NGC_STARTUP_CODE); an inch program without G20, as a Haas set
+    to inch runs it, comes out 25.4 times too small in mm."""
+    other = "inch" if dialect.default_units == "mm" else "mm"
+    base = DIALECTS.get(dialect.name)
+    stock = base is None or dialect.default_units == base.default_units
+    whose = f"{reading} default" if stock else "the machine's power-on units"
+    return (f"no G20/G21: {dialect.default_units} assumed ({whose}; a control powered on in {other} reads it in "
+            f"{other}: --default-units {other}, [program] default_units)")
 
 
 #: A ``(`` inside a ``( ... )`` comment (before any ``;`` comment): rs274 stops at it (interp_internal.cc

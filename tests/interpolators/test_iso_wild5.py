@@ -94,11 +94,12 @@ def test_linuxcnc_refuses_an_arc_code_without_its_centre_words(line):
         parse_program(f"G21 G90 F100\nG0 X0 Y0\n{line}\nX1 Y0 I0.5\n", context=_in_dialect("linuxcnc"))
 
 
-def test_grbl_takes_the_arc_mode_from_a_block_without_words():
-    # grbl 1.1 gcode.c: a G2/G3 block without axis words sets the modal motion only (no "no axis words" error);
-    # the next block's X Y I move on it: from (0, 0) in G54 (100, 50, -20) to (1, 0), Z at home (100)
-    prog = parse_program("G21 G90 F100\nG0 X0 Y0\nG03 F360\nX1 Y0 I0.5\n", context=_in_dialect("grbl"))
-    assert prog.blocks[-1].kind == "arc" and prog.blocks[-1].target.tolist() == [101, 50, 100]
+def test_grbl_refuses_an_arc_code_without_axis_words():
+    # gnea/grbl grbl/gcode.c: a G2/G3 word sets axis_command = AXIS_COMMAND_MOTION_MODE, and the arc checks fail
+    # "[No axis words]" (error 26) on a block without axis words; only G0/G1 alone just set the mode. (This test
+    # said the opposite until wild21, which read the source: a UCCNC file of Eagle's stepcraft.ulp writes "G03 F360".)
+    with pytest.raises(GCodeError, match=r":3:1: G03 arc without axis words: grbl refuses it \(error 26"):
+        parse_program("G21 G90 F100\nG0 X0 Y0\nG03 F360\nX1 Y0 I0.5\n", context=_in_dialect("grbl"))
 
 
 def test_an_unbracketed_assignment_is_read_as_macro_b_with_a_note_under_linuxcnc():

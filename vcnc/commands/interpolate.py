@@ -61,12 +61,17 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
                         help="feed [mm/min] of feed moves before any F word, the control's power-on feed (Fanuc "
                              "parameter 1411; default: the machine's [program] initial_feed, else such a move is an "
                              "error, as on LinuxCNC and grbl)")
+    parser.add_argument("--default-units", choices=("mm", "inch"),
+                        help="units of a program without G20/G21, the control's power-on units (Haas Setting 9 "
+                             "Dimensioning; LinuxCNC INI [RS274NGC] RS274NGC_STARTUP_CODE; default: the machine's "
+                             "[program] default_units, else mm)")
 
 
 def program_context(args: argparse.Namespace, machine=None):
     """The MachineContext for reading a program: the machine's (without one:
     ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect, --tool-table,
-    --subroutine-path, --user-m-path (the paths searched before the machine's) and --initial-feed applied."""
+    --subroutine-path, --user-m-path (the paths searched before the machine's), --initial-feed and --default-units
+    applied."""
     import dataclasses
     import os
 
@@ -84,6 +89,8 @@ def program_context(args: argparse.Namespace, machine=None):
     dialect_changes = {k: v + getattr(context.dialect, k) for k, v in paths.items()}
     if getattr(args, "initial_feed", None) is not None:
         dialect_changes["initial_feed"] = args.initial_feed
+    if getattr(args, "default_units", None):
+        dialect_changes["default_units"] = args.default_units
     if dialect_changes:
         changes["dialect"] = dataclasses.replace(context.dialect, **dialect_changes)
     return dataclasses.replace(context, **changes) if changes else context
