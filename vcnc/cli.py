@@ -22,9 +22,10 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from collections.abc import Iterator, Sequence
 
-from vcnc.core.errors import InputError, VcncError
+from vcnc.core.errors import InputError, VcncError, VcncWarning
 
 __all__ = ["main", "COMMANDS"]
 
@@ -96,8 +97,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help(sys.stderr)
         return 2
-    with _terminate_as_interrupt():
+    with _terminate_as_interrupt(), warnings.catch_warnings():
+        warnings.simplefilter("default", VcncWarning)  # each once, whatever filters the caller set
+        warnings.showwarning = _show_warning
         return _run(args)
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001, PLR0913
+    """vcnc's own warnings (:class:`vcnc.core.errors.VcncWarning`) as one line ``warning: ...`` on stderr; any other
+    as Python prints it."""
+    if issubclass(category, VcncWarning):
+        print(f"warning: {message}", file=sys.stderr)
+    else:
+        sys.stderr.write(warnings.formatwarning(message, category, filename, lineno, line))
 
 
 @contextlib.contextmanager

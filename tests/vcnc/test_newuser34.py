@@ -40,3 +40,63 @@ def test_a_signal_during_the_writing_exits_128_plus_its_number_leaving_no_output
     assert err == f"error: interrupted ({signal.Signals(signum).name})"
     assert {p.name for p in work.iterdir()} == before  # neither the outputs nor their temporary names
     assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL  # the handler is the command's only
+
+
+def _slipped_machine(tmp_path: Path, **changes: str) -> Path:
+    """fadal-pid's file with some lines replaced (``key = value`` written as ``key="value"`` pairs on the x axis)."""
+    from vcnc.engine.machine import builtin_machine_text
+
+    lines = builtin_machine_text("fadal-pid").splitlines()
+    for key, value in changes.items():
+        i = next(i for i, line in enumerate(lines) if line.split("=")[0].strip() == key)  # the first: axis x's
+        lines[i] = f"{key} = {value}"
+    path = tmp_path / "slip.toml"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_a_feed_in_mm_per_min_and_a_lead_in_m_are_warned_naming_file_line_key_and_reason(tmp_path):
+    import vcnc
+    from vcnc.core.errors import PlausibilityWarning
+
+    path = _slipped_machine(tmp_path, velocity="150000.0", lead="0.01")
+    lines = path.read_text().splitlines()
+    with pytest.warns(PlausibilityWarning) as record:
+        machine = vcnc.machine(str(path))
+    assert machine.axis("x").limits.velocity == 150000.0  # a warning, not an error: the file is read as written
+    messages = [str(w.message) for w in record]
+    velocity_line = lines.index("velocity = 150000.0") + 1
+    lead_line = lines.index("lead = 0.01") + 1
+    assert messages == [
+        f"{path}:{velocity_line}: axes.x.limits.velocity = 150000 [mm/s] is above 3000 mm/s, implausible for a real "
+        "machine: machine tools feed at up to 2-3 m/s (180 m/min) and rotary tables turn up to a few thousand rpm; "
+        "in mm/min? 150000 mm/min is 2500 mm/s",
+        f"{path}:{lead_line}: axes.x.drive.lead = 0.01 [mm/rev] is below 0.5 mm/rev, implausible for a real machine: "
+        "ball screws have leads of 1-50 mm per turn; in m or cm? 0.01 m is 10 mm",
+    ]
+
+
+def test_the_command_line_prints_each_plausibility_warning_as_one_line(tmp_path, capsys):
+    path = _slipped_machine(tmp_path, sample_time="0.05", acceleration="0.5")
+    lines = path.read_text().splitlines()
+    code = main(["machines", "--show", str(path)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 0
+    assert err == [
+        f"warning: {path}:{lines.index('sample_time = 0.05') + 1}: sample_time = 0.05 [s] is above 0.02 s, "
+        "implausible for a servo period: position loops close every 31.25 us to a few ms (20 ms and more is a PLC "
+        "task's cycle)",
+        f"warning: {path}:{lines.index('acceleration = 0.5') + 1}: axes.x.limits.acceleration = 0.5 [mm/s^2] is below "
+        "1 mm/s^2, implausible for a real machine: linear motors accelerate at up to 2-5 g, ball screws at 0.3-1.5 g "
+        "(1 g = 9810 mm/s^2); in m/s^2? 0.5 m/s^2 is 500 mm/s^2",
+    ]
+
+
+@pytest.mark.parametrize("name", ["fadal-pid", "fadal-ppi", "fadal-smc", "emps", "ballscrew-ppc", "ballscrew-zpetc",
+                                  "chevalier-pdf"])
+def test_the_built_in_machines_are_plausible(name, recwarn):
+    import vcnc
+    from vcnc.core.errors import PlausibilityWarning
+
+    vcnc.machine(name)
+    assert not [w for w in recwarn if issubclass(w.category, PlausibilityWarning)]
