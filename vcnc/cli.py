@@ -65,6 +65,13 @@ def _interrupt_status(exc: KeyboardInterrupt) -> int:
     return 128 + signum
 
 
+class _LineFormatter(logging.Formatter):
+    """A log record as one line ``warning: message`` (its level in lower case, as the command line's ``error:``)."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        return f"{record.levelname.lower()}: {record.getMessage()}"
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse that reports usage errors as ``error: ...`` with exit status 2."""
 
@@ -91,9 +98,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``vcnc`` console script; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    logging.basicConfig(
-        level=logging.INFO if args.verbose else logging.WARNING, format="%(levelname)s %(name)s: %(message)s"
-    )
+    handler = logging.StreamHandler()
+    # without -v a library's warning reads as the command's own lines do ("warning: ...", as vcnc's warnings and
+    # notes); with -v the logger's name tells where each progress line comes from
+    handler.setFormatter(logging.Formatter("%(levelname)s %(name)s: %(message)s") if args.verbose else _LineFormatter())
+    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING, handlers=[handler])
     if not getattr(args, "command", None):
         parser.print_help(sys.stderr)
         return 2

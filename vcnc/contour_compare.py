@@ -799,6 +799,8 @@ class _Truth:
     positions: Iterator[tuple[np.ndarray, np.ndarray | None]]
     seeds: list[int]
     notes: list[str]
+    #: where a simulated truth's servo period comes from ("'sample_time' [s] of FILE"); None for a captured truth
+    servo_period_of: str | None = None
 
 
 def _captured_truth(capture: Capture, toolpath: str | os.PathLike[str] | Program | Setpoints | None) -> _Truth:
@@ -867,9 +869,11 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
     axes = tuple(sp.axes)
     n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
     seeds = [int(seed) + k for k in range(int(n_runs))]
+    source = machine.source if machine.source and not machine.source.startswith("<") else None
     return _Truth(setpoints=sp, axes=axes, path=sp.path, program=program, toolpath=tp_name, name=machine.name,
                   sample_time=machine.sample_time, positions=(_truth_run(machine, sp, s) for s in seeds),
-                  seeds=seeds, notes=notes)
+                  seeds=seeds, notes=notes, servo_period_of=f"'sample_time' [s] of {source}" if source
+                  else f"the built-in {machine.name}'s sample_time")
 
 
 def _true_contours(run: _Truth, kw: dict) -> tuple[ContourError, ContourError | None, list[dict], list[dict]]:
@@ -955,7 +959,7 @@ def _model_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | No
       mdeg (the summary's ``_um`` keys, as ``vcnc simulate``'s)."""
     from vcnc.core.axes import ROTARY_AXES
 
-    notes = []
+    notes = _servo_period_notes(per_axis, run)
     for a in run.axes:
         ts = float(getattr(per_axis[a], "sample_time", 0.0) or 0.0)
         if ts > run.sample_time * (1 + 1e-9):
@@ -980,6 +984,28 @@ def _model_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | No
         notes.append(f"rotary axis {', '.join(rotary)} does not enter the contour error (measured on X, Y, Z in mm); "
                      "its tracking error is in mdeg")
     return notes
+
+
+def _servo_period_notes(per_axis: dict[str, Any], run: _Truth) -> list[str]:
+    """A warning when a simulated truth's servo period differs from the sampling of the record a model was
+    identified from (newuser34: ``--truth machine.toml`` at 2 ms against models of a 1 ms capture said nothing). A
+    digital position loop's dynamics change with its period (the controller's discrete law, a sample of computation
+    delay: fadal-pid's gains unstable at 4 ms, README "A machine definition"), so the model predicts the loop it was
+    identified on, not this machine's; mostly a slip, the machine file's ``sample_time`` or the wrong model. One
+    sentence for the axes whose models share a period; a captured truth (``servo_period_of`` None) is a record of its
+    own sampling, not a servo period, and is left to :func:`_model_notes`."""
+    if run.servo_period_of is None:
+        return []
+    periods: dict[float, list[str]] = {}
+    for a in run.axes:
+        ts = float(getattr(per_axis[a], "sample_time", 0.0) or 0.0)
+        if ts > 0 and not math.isclose(ts, run.sample_time, rel_tol=1e-6):
+            periods.setdefault(ts, []).append(a)
+    return [f"warning: the true machine's servo period {run.sample_time:g} s ({run.servo_period_of}) differs from "
+            f"the {ts:g} s of the record the model of {', '.join(axes)} was identified from: a digital loop's "
+            "dynamics change with its period, so the prediction is of the loop at the model's period, not of this "
+            "machine (a machine file's sample_time in ms, or the model of another machine?)"
+            for ts, axes in periods.items()]
 
 
 def _truth_run(machine, sp: Setpoints, seed: int) -> tuple[np.ndarray, np.ndarray | None]:

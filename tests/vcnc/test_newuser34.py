@@ -100,3 +100,35 @@ def test_the_built_in_machines_are_plausible(name, recwarn):
 
     vcnc.machine(name)
     assert not [w for w in recwarn if issubclass(w.category, PlausibilityWarning)]
+
+
+def _fadal_models(tmp_path: Path, sample_time: float) -> list[str]:
+    """--model arguments: fadal-pid's exact reduced models of x and y, identified from a record at ``sample_time``."""
+    from identification import ReducedAxisModel
+    from vcnc.engine.machine import load_machine
+
+    m = load_machine("fadal-pid")
+    out = []
+    for a in ("x", "y"):
+        model = ReducedAxisModel(parameters=m.axis(a).reduced_parameters(), sample_time=sample_time, axis=a)
+        model.to_json(tmp_path / f"{a}.json")
+        out += ["--model", f"{a}={tmp_path / f'{a}.json'}"]
+    return out
+
+
+@pytest.mark.parametrize("model_ts", [0.0005, 0.002])
+def test_compare_warns_when_the_true_machines_servo_period_differs_from_the_models(tmp_path, capsys, model_ts):
+    truth = _slipped_machine(tmp_path, sample_time="0.001")  # fadal-pid's own period, in a file
+    code = main(["compare", "--truth", str(truth), *_fadal_models(tmp_path, model_ts), "--toolpath", "diamond",
+                 "--truth-runs", "1"])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert (f"warning: the true machine's servo period 0.001 s ('sample_time' [s] of {truth}) differs from the "
+            f"{model_ts:g} s of the record the model of x, y was identified from") in out
+
+
+def test_compare_says_nothing_of_servo_periods_that_agree(tmp_path, capsys):
+    code = main(["compare", "--truth", "fadal-pid", *_fadal_models(tmp_path, 0.001), "--toolpath", "diamond",
+                 "--truth-runs", "1"])
+    assert code == 0
+    assert "servo period" not in capsys.readouterr().out

@@ -163,5 +163,5 @@ def run(args: argparse.Namespace) -> int:
     out.write(f"{label:9s} contour error: max {p['contour_max_um']:.4g} um, rms {p['contour_rms_um']:.4g} um "
               f"(max {pe['max']:+.2f} %, rms {pe['rms']:+.2f} %)\n")
     for note in summary.get("notes", []):
-        out.write(f"note: {note}\n")
+        out.write(note + "\n" if note.startswith("warning: ") else f"note: {note}\n")
     return 0
