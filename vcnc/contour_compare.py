@@ -644,22 +644,6 @@ def _limits(machine, axes: tuple[str, ...], acceleration: float | None, feed: fl
     return out
 
 
-def _with_settle(sp: Setpoints, seconds: float) -> Setpoints:
-    n = int(round(seconds / sp.sample_time))
-    if n <= 0:
-        return sp
-    pos = np.vstack([sp.position, np.repeat(sp.position[-1:], n, axis=0)])
-    zeros = np.zeros((n, len(sp.axes)))
-    return dataclasses.replace(
-        sp,
-        t=np.arange(len(sp) + n) * sp.sample_time,
-        position=pos,
-        velocity=np.vstack([sp.velocity, zeros]),
-        acceleration=np.vstack([sp.acceleration, zeros]),
-        block=np.concatenate([sp.block, np.full(n, sp.block[-1])]),
-    )
-
-
 def _expand_machine(machine, axes: tuple[str, ...], notes: list[str]):
     """The machine itself, or a copy driving every axis of the toolpath with its single axis."""
     from vcnc.engine.machine import Machine
@@ -865,7 +849,7 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
     cut = truncation_note(sp, done="compared")
     if cut:  # first: every number below is of the first seconds only
         notes.insert(0, f"{tp_name}: {cut}")
-    sp = _with_settle(sp, settle_s)
+    sp = sp.held(settle_s)
     axes = tuple(sp.axes)
     n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
     seeds = [int(seed) + k for k in range(int(n_runs))]

@@ -132,3 +132,63 @@ def test_compare_says_nothing_of_servo_periods_that_agree(tmp_path, capsys):
                  "--truth-runs", "1"])
     assert code == 0
     assert "servo period" not in capsys.readouterr().out
+
+
+def test_the_settling_tail_ends_where_an_exponential_decay_is_within_one_percent():
+    import numpy as np
+
+    from vcnc.core.capture import Capture
+    from vcnc.engine.settling import WINDOW_S, settling_tail
+
+    ts, tau, start = 0.001, 0.05, 200  # a following error of 10 um decaying with 50 ms after the reference stopped
+    t = np.arange(start + 1500) * ts
+    ref = np.full((len(t), 1), 5.0)
+    err = np.where(t >= t[start - 1], 0.01 * np.exp(-(t - t[start - 1]) / tau), 0.01)
+    cap = Capture(t=t, axes=("x",), reference=ref, measured=ref - err[:, None])
+    tail = settling_tail(cap, start)
+    assert tail.settled and tail.band["x"] == pytest.approx(1e-4, rel=1e-3)  # 1 % of the 10 um
+    # the error's mean over the next 20 ms is within 1 % of 10 um from tau ln(100) - 20 ms on (mean over 20 ms of the
+    # decay = e(t) tau/20ms (1 - exp(-20/50))), then WINDOW_S at rest
+    settle = tau * np.log(100 * tau / 0.02 * (1 - np.exp(-0.02 / tau)))
+    assert tail.seconds == pytest.approx(settle + WINDOW_S, abs=2 * ts)
+
+
+def test_the_settling_tail_keeps_the_bound_for_an_axis_that_never_settles():
+    import numpy as np
+
+    from vcnc.core.capture import Capture
+    from vcnc.engine.settling import settling_tail
+
+    t = np.arange(1000) * 0.001
+    ref = np.zeros((1000, 2))
+    measured = np.column_stack([np.zeros(1000), 1e-3 * t])  # y's measured channel creeps 1 um/s
+    tail = settling_tail(Capture(t=t, axes=("x", "y"), reference=ref, measured=measured), 300)
+    assert not tail.settled and tail.unsettled == ("y",) and tail.samples == 1000
+    assert tail.note(0.7).startswith("axis y had not settled 0.7 s after the last setpoint")
+
+
+def test_simulate_records_the_axis_settling_after_the_reference_stops(work, capsys):
+    from vcnc.capture import read_capture
+
+    assert main(["simulate", "part.nc", "--machine", "fadal-pid", "-o", "plain.csv", "--settle", "0"]) == 0
+    assert main(["simulate", "part.nc", "--machine", "fadal-pid", "-o", "tail.csv"]) == 0
+    out = capsys.readouterr().out
+    assert "part.nc: the capture runs on " in out and "until every axis settled (following error within" in out
+    plain, tail = read_capture("plain.csv"), read_capture("tail.csv")
+    n = len(plain)
+    assert n < len(tail) <= n + 2000  # the tail is bounded by --settle's default 2 s
+    assert tail.meta["settle"].startswith("the capture runs on ")
+    import numpy as np
+
+    np.testing.assert_array_equal(tail.reference[:n], plain.reference)  # the same run, longer
+    np.testing.assert_array_equal(tail.reference[n:], np.repeat(plain.reference[-1:], len(tail) - n, axis=0))
+    e_end = np.abs(plain.reference[-1] - plain.measured[-1]).max()
+    e_last = np.abs(tail.reference[-1] - tail.measured[-1]).max()
+    assert e_end > 5 * e_last  # when the reference stopped the axis had not arrived; at the tail's end it had
+
+
+@pytest.mark.parametrize("value", ["-1", "nan", "1000"])
+def test_a_bad_settle_bound_is_refused_naming_the_option(work, capsys, value):
+    assert main(["simulate", "part.nc", "--machine", "fadal-pid", "-o", "c.csv", "--settle", value]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: --settle {value}: ") and not Path("c.csv").exists()
