@@ -976,15 +976,19 @@ def _servo_period_notes(per_axis: dict[str, Any], run: _Truth) -> list[str]:
     digital position loop's dynamics change with its period (the controller's discrete law, a sample of computation
     delay: fadal-pid's gains unstable at 4 ms, README "A machine definition"), so the model predicts the loop it was
     identified on, not this machine's; mostly a slip, the machine file's ``sample_time`` or the wrong model. One
-    sentence for the axes whose models share a period; a captured truth (``servo_period_of`` None) is a record of its
-    own sampling, not a servo period, and is left to :func:`_model_notes`."""
-    if run.servo_period_of is None:
-        return []
+    sentence for the axes whose models share a period. A captured truth (``servo_period_of`` None) is sampled by its
+    logger, not necessarily at the servo period: a note for a model from a finer record only (a coarser one is
+    :func:`_model_notes`'s)."""
     periods: dict[float, list[str]] = {}
     for a in run.axes:
         ts = float(getattr(per_axis[a], "sample_time", 0.0) or 0.0)
         if ts > 0 and not math.isclose(ts, run.sample_time, rel_tol=1e-6):
             periods.setdefault(ts, []).append(a)
+    if run.servo_period_of is None:  # a record's sampling, not a servo period: only a finer model is news
+        return [f"the model of {', '.join(axes)} was identified from a record sampled every {ts:g} s, finer than the "
+                f"capture's {run.sample_time:g} s: it runs at the capture's step (its continuous-time parameters "
+                "discretised there), which predicts the loop it was identified on, not one closed at another period"
+                for ts, axes in periods.items() if ts < run.sample_time]
     return [f"warning: the true machine's servo period {run.sample_time:g} s ({run.servo_period_of}) differs from "
             f"the {ts:g} s of the record the model of {', '.join(axes)} was identified from: a digital loop's "
             "dynamics change with its period, so the prediction is of the loop at the model's period, not of this "

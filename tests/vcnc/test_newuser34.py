@@ -192,3 +192,17 @@ def test_a_bad_settle_bound_is_refused_naming_the_option(work, capsys, value):
     assert main(["simulate", "part.nc", "--machine", "fadal-pid", "-o", "c.csv", "--settle", value]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"error: --settle {value}: ") and not Path("c.csv").exists()
+
+
+def test_compare_notes_a_model_from_a_finer_record_than_the_captured_truth(tmp_path, capsys):
+    # the truth: a capture of the diamond at 2 ms (fadal-pid's file at 2 ms, simulated); the models: of a 1 ms record
+    truth = _slipped_machine(tmp_path, sample_time="0.002")
+    Path(tmp_path / "d.nc").write_text("G21 G90\nG0 X0 Y0\nG1 X10 Y10 F3000\nG1 X20 Y0\nG1 X0 Y0\nM2\n")
+    assert main(["simulate", str(tmp_path / "d.nc"), "--machine", str(truth), "-o", str(tmp_path / "c.csv")]) == 0
+    capsys.readouterr()
+    code = main(["compare", "--truth", str(tmp_path / "c.csv"), *_fadal_models(tmp_path, 0.001), "--toolpath",
+                 str(tmp_path / "d.nc")])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert ("note: the model of x, y was identified from a record sampled every 0.001 s, finer than the capture's "
+            "0.002 s") in out
