@@ -206,3 +206,14 @@ def test_compare_notes_a_model_from_a_finer_record_than_the_captured_truth(tmp_p
     assert code == 0
     assert ("note: the model of x, y was identified from a record sampled every 0.001 s, finer than the capture's "
             "0.002 s") in out
+
+
+@pytest.mark.parametrize("command", ["export-fmu", "compare"])
+def test_a_capture_given_as_the_model_is_named_for_what_it_is(work, capsys, command):
+    Path("cap.csv").write_text("# machine: fadal-pid\nt,x_ref,x\n0,0,0\n0.001,0,0\n")
+    argv = (["export-fmu", "cap.csv", "-o", "d.fmu"] if command == "export-fmu"
+            else ["compare", "--truth", "fadal-pid", "--model", "cap.csv"])
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("error: cap.csv: this is a capture (CSV), not a model file; expected a model file")
+    assert not Path("d.fmu").exists()
