@@ -146,10 +146,10 @@ def test_the_settling_tail_ends_where_an_exponential_decay_is_within_one_percent
     err = np.where(t >= t[start - 1], 0.01 * np.exp(-(t - t[start - 1]) / tau), 0.01)
     cap = Capture(t=t, axes=("x",), reference=ref, measured=ref - err[:, None])
     tail = settling_tail(cap, start)
-    assert tail.settled and tail.band["x"] == pytest.approx(1e-4, rel=1e-3)  # 1 % of the 10 um
-    # the error's mean over the next 20 ms is within 1 % of 10 um from tau ln(100) - 20 ms on (mean over 20 ms of the
-    # decay = e(t) tau/20ms (1 - exp(-20/50))), then WINDOW_S at rest
-    settle = tau * np.log(100 * tau / 0.02 * (1 - np.exp(-0.02 / tau)))
+    assert tail.settled and tail.band["x"] == pytest.approx(1e-5, rel=1e-2)  # 0.1 % of the 10 um
+    # the error's mean over the next 20 ms is within 0.1 % of 10 um from tau ln(1000) - 20 ms on (mean over 20 ms of
+    # the decay = e(t) tau/20ms (1 - exp(-20/50))), then WINDOW_S at rest
+    settle = tau * np.log(1000 * tau / 0.02 * (1 - np.exp(-0.02 / tau)))
     assert tail.seconds == pytest.approx(settle + WINDOW_S, abs=2 * ts)
 
 

@@ -9,8 +9,9 @@ loop's slowest pole most plainly. ``vcnc simulate`` therefore holds the last com
 
 Settled means: from that sample on, the following error ``reference - measured`` of every axis, averaged over
 :data:`SMOOTH_S` (a noise sample or an encoder count's flicker is no motion), stays within a band around its final
-value (the median of the last :data:`WINDOW_S` of the hold). The band is the largest of 1 % of the error's largest
-deviation from that value in the tail (an exponential decay settles to 1 % in 4.6 time constants), three standard
+value (the median of the last :data:`WINDOW_S` of the hold). The band is the largest of :data:`RELATIVE` (0.1 %) of
+the error's largest deviation from that value in the tail (an exponential decay settles there in 6.9 time
+constants), three standard
 deviations of the error about its trend over that last window (measurement noise, encoder counts, a limit cycle)
 and :data:`FLOOR_MM`. The control signal, where the capture has it, must have settled in the same sense (an axis
 held by static friction while its integrator winds up has a steady error and a ramping control signal: it will
@@ -27,13 +28,17 @@ import numpy as np
 
 from vcnc.core.capture import Capture
 
-__all__ = ["BOUND_S", "WINDOW_S", "SMOOTH_S", "FLOOR_MM", "FLOOR_V", "SettlingTail", "settling_tail"]
+__all__ = ["BOUND_S", "WINDOW_S", "RELATIVE", "SMOOTH_S", "FLOOR_MM", "FLOOR_V", "SettlingTail", "settling_tail"]
 
 #: Longest settling tail ``vcnc simulate`` runs [s] (``--settle S``): several time constants of the slowest loop
 #: of the built-in machines (fadal-pid's integral pole at 1.17 Hz: 0.14 s; EMPS's slowest pole about 0.2 Hz)
 BOUND_S = 2.0
 #: Time at rest recorded after the axes settled, and the window of the final value [s]
 WINDOW_S = 0.1
+#: Part of the largest deviation from the final value in the tail that counts as settled: 0.1 % (an exponential
+#: decay settles there in 6.9 time constants; 1 % left fadal-ppi's P loop 15 um from rest, its error 1.5 mm at the
+#: last setpoint)
+RELATIVE = 0.001
 #: Averaging time of the error's deviation before it is compared with the band [s]
 SMOOTH_S = 0.02
 #: Smallest settling band [mm] (deg on a rotary axis): 1 nm, below any machine's measurement
@@ -96,7 +101,7 @@ def _settled_from(tail: np.ndarray, w: int, k: int, floor: float) -> tuple[np.nd
     # flicker beyond the band are no motion (a raw sample beyond three deviations would keep the tail to the bound)
     cums = np.cumsum(np.vstack([np.zeros((1, tail.shape[1])), tail - final]), axis=0)
     dev = np.abs(cums[k:] - cums[:-k]) / k  # sample j: the mean over j .. j + k - 1
-    band = np.maximum.reduce([0.01 * np.abs(tail - final).max(axis=0), 3.0 * _scatter(tail[-w:]),
+    band = np.maximum.reduce([RELATIVE * np.abs(tail - final).max(axis=0), 3.0 * _scatter(tail[-w:]),
                               np.full(tail.shape[1], floor)])
     settle_at = np.zeros(tail.shape[1], dtype=int)
     for i in range(tail.shape[1]):
