@@ -970,8 +970,12 @@ def _lathe_program(seen, gcodes, st: State, where: Where) -> None:
     system A): "G50 Coordinate system setting, maximum spindle speed setting", "G96 Constant surface speed
     control"; Haas lathe operator's manual: "G50 Spindle Speed Limit", "G96 Constant Surface Speed On". On a
     mill G50 is the scaling cancel and G96 an option no milling post writes beside it. A lathe's X is a diameter
-    and its U W incremental X Z: read as a mill program each X would end twice as far from the centre. Either
-    code alone stays a note (:data:`LATHE_G50`, "G96/G97 spindle mode")."""
+    and its U W incremental X Z: read as a mill program each X would end twice as far from the centre. A T word of
+    four digits with a leading zero (``T0101``) is the lathe's tool and offset number (Fanuc lathe "T code": the
+    first two digits the tool, the last two its offset; Haas lathe manual "Tool Functions": "T0101"), which no mill
+    post writes: either code beside it is a lathe's too (newuser34: a lathe program with G96 or G50 S alone was
+    read as a mill's, its F0.2 [mm/rev] as 0.2 mm/min, seven hours). Any one of the three alone stays a note
+    (:data:`LATHE_G50`, "G96/G97 spindle mode")."""
     if st.context.dialect.name not in ("fanuc", "haas"):
         return
     marks = []
@@ -979,6 +983,8 @@ def _lathe_program(seen, gcodes, st: State, where: Where) -> None:
         marks.append(("G50 S (the lathe's maximum spindle speed)", gcodes["scaling"][1]))
     if gcodes.get("spindle mode", (0,))[0] == 960:
         marks.append(("G96 (constant surface speed)", gcodes["spindle mode"][1]))
+    if "T" in seen and re.fullmatch(r"T\s*0\d{3}", seen["T"].text.strip(), re.IGNORECASE):
+        marks.append(("a T word of four digits (T0101: a lathe's tool and offset number)", seen["T"]))
     for what, w in marks:
         other = next(((k, at) for k, at in st.lathe_marks.items() if k != what), None)
         if other is not None:

@@ -644,22 +644,6 @@ def _limits(machine, axes: tuple[str, ...], acceleration: float | None, feed: fl
     return out
 
 
-def _with_settle(sp: Setpoints, seconds: float) -> Setpoints:
-    n = int(round(seconds / sp.sample_time))
-    if n <= 0:
-        return sp
-    pos = np.vstack([sp.position, np.repeat(sp.position[-1:], n, axis=0)])
-    zeros = np.zeros((n, len(sp.axes)))
-    return dataclasses.replace(
-        sp,
-        t=np.arange(len(sp) + n) * sp.sample_time,
-        position=pos,
-        velocity=np.vstack([sp.velocity, zeros]),
-        acceleration=np.vstack([sp.acceleration, zeros]),
-        block=np.concatenate([sp.block, np.full(n, sp.block[-1])]),
-    )
-
-
 def _expand_machine(machine, axes: tuple[str, ...], notes: list[str]):
     """The machine itself, or a copy driving every axis of the toolpath with its single axis."""
     from vcnc.engine.machine import Machine
@@ -799,6 +783,8 @@ class _Truth:
     positions: Iterator[tuple[np.ndarray, np.ndarray | None]]
     seeds: list[int]
     notes: list[str]
+    #: where a simulated truth's servo period comes from ("'sample_time' [s] of FILE"); None for a captured truth
+    servo_period_of: str | None = None
 
 
 def _captured_truth(capture: Capture, toolpath: str | os.PathLike[str] | Program | Setpoints | None) -> _Truth:
@@ -863,13 +849,15 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
     cut = truncation_note(sp, done="compared")
     if cut:  # first: every number below is of the first seconds only
         notes.insert(0, f"{tp_name}: {cut}")
-    sp = _with_settle(sp, settle_s)
+    sp = sp.held(settle_s)
     axes = tuple(sp.axes)
     n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
     seeds = [int(seed) + k for k in range(int(n_runs))]
+    source = machine.source if machine.source and not machine.source.startswith("<") else None
     return _Truth(setpoints=sp, axes=axes, path=sp.path, program=program, toolpath=tp_name, name=machine.name,
                   sample_time=machine.sample_time, positions=(_truth_run(machine, sp, s) for s in seeds),
-                  seeds=seeds, notes=notes)
+                  seeds=seeds, notes=notes, servo_period_of=f"'sample_time' [s] of {source}" if source
+                  else f"the built-in {machine.name}'s sample_time")
 
 
 def _true_contours(run: _Truth, kw: dict) -> tuple[ContourError, ContourError | None, list[dict], list[dict]]:
@@ -955,7 +943,7 @@ def _model_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | No
       mdeg (the summary's ``_um`` keys, as ``vcnc simulate``'s)."""
     from vcnc.core.axes import ROTARY_AXES
 
-    notes = []
+    notes = _servo_period_notes(per_axis, run)
     for a in run.axes:
         ts = float(getattr(per_axis[a], "sample_time", 0.0) or 0.0)
         if ts > run.sample_time * (1 + 1e-9):
@@ -980,6 +968,32 @@ def _model_notes(per_axis: dict[str, Any], run: _Truth, samples: np.ndarray | No
         notes.append(f"rotary axis {', '.join(rotary)} does not enter the contour error (measured on X, Y, Z in mm); "
                      "its tracking error is in mdeg")
     return notes
+
+
+def _servo_period_notes(per_axis: dict[str, Any], run: _Truth) -> list[str]:
+    """A warning when a simulated truth's servo period differs from the sampling of the record a model was
+    identified from (newuser34: ``--truth machine.toml`` at 2 ms against models of a 1 ms capture said nothing). A
+    digital position loop's dynamics change with its period (the controller's discrete law, a sample of computation
+    delay: fadal-pid's gains unstable at 4 ms, README "A machine definition"), so the model predicts the loop it was
+    identified on, not this machine's; mostly a slip, the machine file's ``sample_time`` or the wrong model. One
+    sentence for the axes whose models share a period. A captured truth (``servo_period_of`` None) is sampled by its
+    logger, not necessarily at the servo period: a note for a model from a finer record only (a coarser one is
+    :func:`_model_notes`'s)."""
+    periods: dict[float, list[str]] = {}
+    for a in run.axes:
+        ts = float(getattr(per_axis[a], "sample_time", 0.0) or 0.0)
+        if ts > 0 and not math.isclose(ts, run.sample_time, rel_tol=1e-6):
+            periods.setdefault(ts, []).append(a)
+    if run.servo_period_of is None:  # a record's sampling, not a servo period: only a finer model is news
+        return [f"the model of {', '.join(axes)} was identified from a record sampled every {ts:g} s, finer than the "
+                f"capture's {run.sample_time:g} s: it runs at the capture's step (its continuous-time parameters "
+                "discretised there), which predicts the loop it was identified on, not one closed at another period"
+                for ts, axes in periods.items() if ts < run.sample_time]
+    return [f"warning: the true machine's servo period {run.sample_time:g} s ({run.servo_period_of}) differs from "
+            f"the {ts:g} s of the record the model of {', '.join(axes)} was identified from: a digital loop's "
+            "dynamics change with its period, so the prediction is of the loop at the model's period, not of this "
+            "machine (a machine file's sample_time in ms, or the model of another machine?)"
+            for ts, axes in periods.items()]
 
 
 def _truth_run(machine, sp: Setpoints, seed: int) -> tuple[np.ndarray, np.ndarray | None]:

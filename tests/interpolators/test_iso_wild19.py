@@ -78,10 +78,17 @@ TURNING = ("%\nO0001\nG98 G18\nG21\nG50 S6000\nG28 U0.\nT0100\nG54\nG99\nG97 S36
 
 @pytest.mark.parametrize("context", [FANUC, HAAS])
 def test_a_fanuc_lathe_program_is_refused_naming_its_lathe_codes(context):
+    # (newuser34: its T0100, the lathe's tool and offset number, is the second lathe code, at line 7)
+    with pytest.raises(GCodeError, match=r":7:1: a lathe program: a T word of four digits \(T0101: a lathe's tool "
+                                         r"and offset number\) here and G50 S \(the lathe's maximum spindle speed\) at "
+                                         r"line 5 are a Fanuc/Haas lathe's codes \(its X is a diameter, U and W "
+                                         r"incremental X and Z\): not supported"):
+        parse_program(TURNING, context=context)
+    # with a mill's T word, G96 at line 13 is the second
     with pytest.raises(GCodeError, match=r":13:1: a lathe program: G96 \(constant surface speed\) here and G50 S "
                                          r"\(the lathe's maximum spindle speed\) at line 5 are a Fanuc/Haas lathe's "
                                          r"codes \(its X is a diameter, U and W incremental X and Z\): not supported"):
-        parse_program(TURNING, context=context)
+        parse_program(TURNING.replace("T0100", "T1"), context=context)
 
 
 @pytest.mark.parametrize("context", [FANUC, HAAS])

@@ -126,8 +126,10 @@ def test_the_contour_error_of_the_feed_moves_is_given_beside_that_of_every_move(
     # deviation is the program's largest (7.7 um), the cut's smaller (5.3 um, measured)
     prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG0 X120 Y80\nG1 X140 Y90 F300\nM30\n")
     js, rep = tmp_path / "s.json", tmp_path / "rep"
+    # (--settle 0: the capture ends with the reference, as machine.simulate below; with the settling tail
+    # (newuser34) fadal-pid overshoots the last point by 15.8 um after the reference stopped, the run's largest)
     assert main(["simulate", str(prog), "--machine", "fadal-pid", "-o", str(tmp_path / "c.csv"), "--json", str(js),
-                 "--report", str(rep)]) == 0
+                 "--report", str(rep), "--settle", "0"]) == 0
     s = json.loads(js.read_text())
     program = interpolators.load_program(prog)
     machine = load_machine("fadal-pid")

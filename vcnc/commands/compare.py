@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from vcnc.commands.export_fmu import check_model_file
 from vcnc.commands.interpolate import add_context_arguments, print_program_notes, read_program, sample_guard
 from vcnc.commands.trace_options import add_trace_arguments, read_trace_argument
 from vcnc.core.errors import InputError
@@ -135,6 +136,8 @@ def run(args: argparse.Namespace) -> int:
     check_output(args.json, option="--json", what="the summary file", inputs=inputs)
     check_output(args.report, option="--report", what="the report", folder=True)
     check_distinct_outputs((("--json", args.json), ("--report", args.report)))
+    for file in model_files:
+        check_model_file(file)
     truth, toolpath = _machine_and_program(_truth(args), args.toolpath, args)
     with sample_guard(command="compare", max_samples=MAX_SAMPLES):
         result = compare(truth, models, toolpath, feed=args.feed, acceleration=args.acceleration,
@@ -163,5 +166,5 @@ def run(args: argparse.Namespace) -> int:
     out.write(f"{label:9s} contour error: max {p['contour_max_um']:.4g} um, rms {p['contour_rms_um']:.4g} um "
               f"(max {pe['max']:+.2f} %, rms {pe['rms']:+.2f} %)\n")
     for note in summary.get("notes", []):
-        out.write(f"note: {note}\n")
+        out.write(note + "\n" if note.startswith("warning: ") else f"note: {note}\n")
     return 0

@@ -19,11 +19,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--fmi", type=int, choices=(2, 3), default=2, help="FMI version (default 2)")
 
 
+def check_model_file(path: str) -> None:
+    """:class:`vcnc.InputError` naming what ``path`` is when it is plainly another of vcnc's files (a capture or
+    setpoints CSV, a machine TOML, an FMU, an empty file; :func:`vcnc.commands.interpolate.other_file_kind`), not a
+    model file: before, a capture given as the model read "FILE:1:1: invalid JSON: Expecting value" (newuser34)."""
+    from vcnc.commands.interpolate import other_file_kind
+    from vcnc.core.errors import ModelFileError
+
+    kind = other_file_kind(path)
+    if kind is not None and not kind.startswith("a JSON file"):
+        raise ModelFileError(f"this is {kind}, not a model file", file=path,
+                             expected="a model file written by vcnc identify --json (vcnc.axis-model)")
+
+
 def run(args: argparse.Namespace) -> int:
     from vcnc.core.io import check_output
     from vcnc.fmu import export_fmu, export_spec
 
     check_output(args.output, option="-o", what="the FMU", inputs=(args.model,))
+    check_model_file(args.model)
     spec = export_spec(args.model)  # a bad model file fails here, before any build
     path = export_fmu(args.model, args.output, fmi_version=args.fmi)
     effects = spec.effect_names

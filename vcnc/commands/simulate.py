@@ -38,6 +38,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--max-seconds", type=float, metavar="S",
                         help="simulate only the blocks that run within the first S seconds (a note says where the "
                              "program was cut; default: the whole program)")
+    parser.add_argument("--settle", type=float, default=None, metavar="S",
+                        help="run on after the last setpoint, the command held, until the following error of every "
+                             "axis has settled, for at most S seconds (default 2; 0: the capture ends with the "
+                             "reference; none after a cut by --max-seconds)")
     add_context_arguments(parser)
 
 
@@ -130,6 +134,38 @@ def read_for_machine(args: argparse.Namespace, machine, *, option: str = "--mach
         raise
 
 
+def _settle_seconds(args: argparse.Namespace) -> float:
+    """``--settle S`` [s], checked (InputError naming the option: a number in [0, 600])."""
+    from vcnc.core.errors import InputError
+    from vcnc.engine.settling import BOUND_S
+
+    bound = BOUND_S if args.settle is None else float(args.settle)
+    if not 0.0 <= bound <= 600.0:  # (NaN fails too)
+        raise InputError(f"--settle {args.settle:g}: the settling tail's bound must be a number of seconds in "
+                         "[0, 600]", expected="--settle 2 (the default), or 0 for no tail")
+    return bound
+
+
+def _simulate_and_settle(machine, setpoints, args: argparse.Namespace):
+    """The capture of ``setpoints`` on ``machine``, run on with the last command held until the axes settled
+    (:func:`vcnc.engine.settling.settling_tail`, at most ``--settle`` seconds; a note on stdout and in the
+    capture's header says how long); a program cut by ``--max-seconds`` stops mid-motion and gets no tail."""
+    from vcnc.engine.settling import settling_tail
+
+    bound = _settle_seconds(args)
+    if bound == 0.0 or setpoints.meta.get("truncated"):
+        return machine.simulate(setpoints, seed=args.seed)
+    capture = machine.simulate(setpoints.held(bound), seed=args.seed)
+    if len(capture) == len(setpoints):  # a bound under one sample
+        return capture
+    tail = settling_tail(capture, len(setpoints))
+    capture = capture.slice(0, tail.samples)
+    note = tail.note(bound)
+    capture.meta["settle"] = note
+    print(f"{args.program}: {note}")
+    return capture
+
+
 def _run(args: argparse.Namespace) -> int:
     from vcnc.core.errors import GCodeError
     from vcnc.core.io import atomic_path
@@ -138,6 +174,7 @@ def _run(args: argparse.Namespace) -> int:
     from vcnc.simulation_report import build_report, feed_contour_line, result_line, saturation_note, summarize
 
     check_outputs(args)
+    _settle_seconds(args)  # checked before any work
     machine = load_machine(args.machine)
     program = read_for_machine(args, machine)
     print_program_notes(program, args.program)
@@ -150,7 +187,7 @@ def _run(args: argparse.Namespace) -> int:
     stability = sampling_note({}, machine)
     if stability:
         print(f"{args.program}: {stability}")
-    capture = machine.simulate(setpoints, seed=args.seed)
+    capture = _simulate_and_settle(machine, setpoints, args)
     capture.meta.update(meta)
     with contextlib.ExitStack() as stack:
         # everything goes to temporary names, renamed into place only when all parts succeeded

@@ -19,6 +19,8 @@ __all__ = [
     "IdentificationError",
     "SimulationError",
     "ExportError",
+    "VcncWarning",
+    "PlausibilityWarning",
 ]
 
 
@@ -143,3 +145,13 @@ class SimulationError(VcncError):
 
 class ExportError(VcncError):
     """An FMU that could not be built or did not validate."""
+
+
+class VcncWarning(UserWarning):
+    """Base class of the warnings vcnc issues on purpose (``warnings.warn``); the command line prints each as one
+    line ``warning: ...`` on stderr."""
+
+
+class PlausibilityWarning(VcncWarning):
+    """A legal input value no real machine has (``velocity = 150000`` [mm/s], a lead of 0.01 mm), most often a unit
+    slip: the message names the file, line, key, value, unit and the reason (:mod:`vcnc.engine.plausibility`)."""

@@ -119,6 +119,23 @@ class Setpoints:
             acceleration=self.acceleration[start:stop], block=self.block[start:stop], meta=dict(self.meta),
         )
 
+    def held(self, seconds: float) -> Setpoints:
+        """The setpoints followed by ``seconds`` of the last position held (velocity and acceleration 0, the last
+        sample's block): the time a loop is given to settle after its command stopped (``vcnc simulate``'s
+        settling tail, ``vcnc compare``'s start from rest). ``self`` when that is under one sample."""
+        n = int(round(seconds / self.sample_time))
+        if n <= 0 or not len(self):
+            return self
+        zeros = np.zeros((n, len(self.axes)))
+        return dataclasses.replace(
+            self,
+            t=np.arange(len(self) + n) * self.sample_time,
+            position=np.vstack([self.position, np.repeat(self.position[-1:], n, axis=0)]),
+            velocity=np.vstack([self.velocity, zeros]),
+            acceleration=np.vstack([self.acceleration, zeros]),
+            block=np.concatenate([self.block, np.full(n, self.block[-1])]),
+        )
+
     def table(self) -> tuple[list[str], np.ndarray, list[str]]:
         """The CSV's columns ``t, <a>_ref, <a>_vel, <a>_acc`` per axis and ``block``: (header, data, one
         ``%``-format per column)."""

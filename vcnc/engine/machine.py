@@ -23,6 +23,7 @@ import logging
 import math
 import os
 import tomllib
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -35,7 +36,7 @@ from drives.effects import EFFECTS as EFFECT_REGISTRY
 from interpolators.context import DEFAULT_CONTEXT, MachineContext
 from interpolators.limits import AxisLimits
 from vcnc.core.capture import Capture
-from vcnc.core.errors import InputError, MachineError, SimulationError
+from vcnc.core.errors import InputError, MachineError, PlausibilityWarning, SimulationError
 from vcnc.core.setpoints import AXIS_NAMES, Setpoints
 from vcnc.engine.axis import AxisDefinition
 from vcnc.engine.layout import N_OUT
@@ -217,6 +218,8 @@ class Machine:
     @classmethod
     def _from_text(cls, text: str, *, file: str, default_name: str) -> Machine:
         spec = parse_machine_text(text, file=file, default_name=default_name)
+        for message in spec.warnings:
+            warnings.warn(message, PlausibilityWarning, stacklevel=3)
         axes: dict[str, Any] = {}
         for a, ax in spec.axes.items():
             if isinstance(ax, tuple) and ax[0] == "fmu":

@@ -80,6 +80,7 @@ from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError, MachineError
 from vcnc.core.setpoints import AXIS_NAMES
 from vcnc.engine.axis import NONIDEALITY_FIELDS, AxisDefinition
+from vcnc.engine.plausibility import plausibility_warnings
 
 __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
@@ -102,6 +103,8 @@ class MachineSpec:
     axes: dict[str, Any]
     limits: dict[str, AxisLimits]
     context: MachineContext = dataclasses.field(default_factory=MachineContext)
+    #: values legal but implausible for a real machine, one sentence each (:mod:`vcnc.engine.plausibility`)
+    warnings: tuple[str, ...] = ()
 
 
 class LineIndex:
@@ -314,7 +317,7 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
                 raise where.error(f"'program.kinematics.axes' names axis {ax.name!r}, which has no [axes.{ax.name}] "
                                   "table", ("program", "kinematics", "axes"))
     return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits,
-                       context=context)
+                       context=context, warnings=tuple(plausibility_warnings(data, file=file, line=where.index.line)))
 
 
 def _xyz_value(value: Any, path: tuple[str, ...], where: _Where) -> list[float]:
