@@ -167,8 +167,9 @@ def _chains(program: Program) -> list[_Chain]:
             if (cur is not None and not cur.extra and np.any(b.extra_delta != 0) and b.kind != "rapid"
                     and seg is not None and seg.length > 0):
                 cur = _feeds_after_rapid(chains, cur)
-                cur.extra = True  # a G64 chain of feed moves with these axes still, into a feed move of X, Y, Z
-                # that moves them too (it joins: _extra_block); a rapid or a move of these axes alone starts its own
+                if cur is not None:  # a G64 chain of feed moves with these axes still, into a feed move of X, Y, Z
+                    cur.extra = True  # that moves them too (it joins: _extra_block); a rapid or a move of these
+                    # axes alone starts its own
             cur = _extra_block(chains, items, cur, i, b, program.blocks)
             continue
         if seg is None or seg.length <= 0:
@@ -182,20 +183,21 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
-def _feeds_after_rapid(chains: list[_Chain], cur: _Chain) -> _Chain:
+def _feeds_after_rapid(chains: list[_Chain], cur: _Chain) -> _Chain | None:
     """The chain of the feed moves of ``cur`` (the last of ``chains``) after its last rapid, split off it as a chain
     of its own (the last of ``chains``), for a feed move that moves the axes beyond X, Y, Z to join; ``cur`` itself
-    without a rapid. A chain that moves those axes takes no rapid beside a feed move (:func:`_extra_block`), so
-    before session 34 a feed move starting A after ``G0 .. G1 ..`` (an approach, a plunge, the contour's first
-    lines) stopped where A started, whatever its rate step, and only such a junction inside the chain passed at
-    speed (a ramp of A, :func:`_ramped_extra`, or its blend). The junction of the rapid and the first feed move is
-    now a stop instead: the feed move's speed is its bound there, and the rapid decelerates to it either way."""
+    without a rapid; None where ``cur`` ends in a rapid (the feed move starts a chain of its own). A chain that
+    moves those axes takes no rapid beside a feed move (:func:`_extra_block`), so before session 34 a feed move
+    starting A after ``G0 .. G1 ..`` (an approach, a plunge, the contour's first lines) stopped where A started,
+    whatever its rate step, and only such a junction inside the chain passed at speed (a ramp of A,
+    :func:`_ramped_extra`, or its blend). The junction of the rapid and the first feed move is now a stop instead:
+    the feed move's speed is its bound there, and the rapid decelerates to it either way."""
     rapid = cur.rapid
     if not any(rapid):
         return cur
     last = len(rapid) - 1 - rapid[::-1].index(True)
     if last == len(rapid) - 1:
-        return cur  # the chain ends in its rapid: the feed move starts a chain of its own (_extra_block)
+        return None
     tail = _Chain(cur.items)
     tail.lo, tail.hi = cur.lo + last + 1, cur.hi
     cur.hi = tail.lo
