@@ -7,7 +7,8 @@ samples at 1 ms) was refined from the equation error's solution to p 4.61 Hz bes
 (0.524 um RMS), and started again with the pair complex to 67.2 Hz / 0.99 (0.503 um); refined from the pair at
 36 Hz / 0.71 it ends at 39.9 Hz / 0.71 and 0.490 um, from 20 Hz at 20.5 Hz (1.01 um), from 120 Hz at 152 Hz
 (0.73 um). When the equation error's own valley says the record barely pins the pair
-(``fit.solver.identifiability``, :meth:`identification.problem.Problem.valley`), the refinement is also started at
+(``fit.solver.identifiability``, :meth:`identification.problem.Problem.valley`) and the refinement ended with the
+pair real (zeta >= 1), the refinement is also started at
 :data:`PAIR_STARTS` pair frequencies spread evenly (log) over that valley and the pair found so far, each with the
 damping :data:`PAIR_START_ZETA` (the equation error solved with the pair held there gives the other parameters), and
 the fit that predicts the record best is kept. Fits with poles that differ by more than :data:`DISTINCT_POLES` and
@@ -37,6 +38,11 @@ __all__ = ["PAIR_STARTS", "PAIR_START_ZETA", "TIED_RMS", "DISTINCT_POLES", "pair
 #: Pair frequencies the refinement is started from, log-spaced over the equation error's valley and the pair
 #: refined so far [-].
 PAIR_STARTS = 8
+#: The starts run only when the refinement ended with the pair real (zeta >= 1): three real poles standing in for a
+#: damped pair is the wrong basin of fadal-ppi on corpus program 0136 (whole: 9.77 Hz / 1.29 with p 499 Hz; its
+#: first 15 s: 5.97 Hz / 1.03, p 146 Hz; 8 s: 57.6 Hz / 1.19). Eight refinements more cost a long record dearly: the
+#: thesis' PID x axis (``FADAL_PID_X``) on 601,126 samples at 125 us, whose refinement ends complex (33.0 Hz / 0.45,
+#: p 1.17 Hz), spent 1043 s of 1636 s wall (two loaded cores) in them when they ran whenever the valley was wide.
 #: Damping ratio of those starts [-]: a complex pair, as a tuned position loop's; a start at zeta 1 stays near 1
 #: (fadal-ppi on 0136: 36 Hz / 1.0 ends at 38.9 Hz / 0.99 and 0.528 um, 36 Hz / 0.71 at 0.490 um).
 PAIR_START_ZETA = 0.7
@@ -80,6 +86,8 @@ def pair_starts(stats: SufficientStatistics, params: dict, poles: dict, err: np.
     """
     valley = fit.get("solver", {}).get("identifiability")
     if not valley or valley["identifiable"] or b.zeta[0] > PAIR_START_ZETA or b.zeta[1] < PAIR_START_ZETA:
+        return params, poles, err
+    if poles["zeta"] < 1.0:  # a complex pair found: the starts' cost is not spent (module docstring)
         return params, poles, err
     starts = _start_frequencies(valley, poles, b)
     fits, origin = [(params, poles, err)], [math.nan]
