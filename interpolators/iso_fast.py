@@ -32,6 +32,8 @@ import numpy as np
 
 from interpolators._words import INCH
 from interpolators.arcs import ArcWordError, arc_from_center, center_arc_tolerance
+from interpolators.iso_axes import EXTRA_LETTERS
+from interpolators.iso_motion import move_feed
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Line
 
@@ -64,6 +66,11 @@ class PlainMoves:
         self.used = used
         self.ready: bool | None = None  # None: to be judged at the next block
         self.offset: list[float] = []
+        self.extra_offset: list[float] = []
+        # the words of the axes beyond X Y Z the machine has -> their column in State.extra; a word of another
+        # (an error, or with value 0 a note) goes the general way
+        self.extra_columns = {letter: i for i, letter in enumerate(EXTRA_LETTERS)
+                              if letter.lower() in st.context.extra_axes}
         self.fanuc = st.context.dialect.name == "fanuc"
         self.grbl = st.context.dialect.arc_rule == "grbl"
 
@@ -78,6 +85,7 @@ class PlainMoves:
                       and st.comp_close_at is None and st.corner is None and st.corner_word is None and not st.tcp)
         if self.ready:
             self.offset = st.offset().tolist()
+            self.extra_offset = st.extra_offset().tolist()
         return self.ready
 
     def move(self, words: list, line: int, text: str) -> bool:  # noqa: C901 - one pass over the words
@@ -88,6 +96,8 @@ class PlainMoves:
         motion = number = feed = None
         axes: dict[int, float] = {}
         centre: dict[int, float] = {}
+        extra: dict[int, float] = {}
+        extra_columns = self.extra_columns
         fanuc = self.fanuc
         for w in words:
             letter = w.letter
@@ -113,10 +123,15 @@ class PlainMoves:
                 if feed is not None or not w.value > 0:
                     return False
                 feed = w.value
+            elif letter in extra_columns:
+                i = extra_columns[letter]
+                if i in extra or fanuc and "." not in w.text:
+                    return False
+                extra[i] = w.value
             else:
                 return False
         st = self.st
-        if not axes:
+        if not axes and (not extra or centre):
             return False
         if st.motion not in (None, 0, 10, 20, 30):
             return False
@@ -155,6 +170,12 @@ class PlainMoves:
         # committed: the modal state as the general path leaves it
         if feed is not None:
             st.feed, st.feed_rotary, st.feed_zero = new_feed, feed / 60.0, False
+        if extra:
+            extra_start, extra_target = self._extra(extra, scale)
+            if motion != 0:  # a move of the extra axes alone runs at the F along their own distance
+                path_feed = move_feed(st, seg, extra_target - extra_start)
+        else:
+            extra_start = extra_target = None
         st.block_f = feed
         st.motion = motion
         st.after_g80 = False
@@ -167,10 +188,33 @@ class PlainMoves:
             number = int(number.value) if number.value == int(number.value) else None
         self.blocks.append(Block.plain(line=line, number=number, text=text, kind=_KIND[motion], start=seg.start,
                                        target=target, feed=path_feed, segment=seg, exact_stop=st.exact_stop,
-                                       tolerance=st.tolerance))
+                                       tolerance=st.tolerance, extra_start=extra_start, extra_target=extra_target))
         st.pos = target  # read-only: the next block's start, shared (interpolators.program.Block)
+        if extra:
+            st.extra = extra_target
         st.stopped = False  # a move since a program stop: positions read are the program's again
         return True
+
+    def _extra(self, words: dict[int, float], scale: float) -> tuple[np.ndarray, np.ndarray]:
+        """The start and end positions ``(a, b, c, u, v, w)`` [deg, mm] of a move with the extra axis words
+        ``words`` (column -> value), read-only, as :func:`interpolators.iso_axes.extra_target` makes them: A B C in
+        degrees whatever G20/G21, U V W times ``scale``; added to the position under G91, to the work plus G92
+        offset under G90. Marks the axes used."""
+        st = self.st
+        start = st.extra
+        if start.flags.writeable:  # the previous block's end is read-only already; another is copied
+            start = start.copy()
+            start.setflags(write=False)
+        end = start.copy()
+        off = self.extra_offset
+        for i, v in words.items():
+            if i >= 3:  # U V W [program units]
+                v = v * scale
+            end[i] = end[i] + v if st.incremental else v + off[i]
+        end.setflags(write=False)
+        st.extra_used = True
+        self.used.update(3 + i for i in words)
+        return start, end
 
     def _arc(self, motion: int, axes: dict[int, float], centre: dict[int, float], target: np.ndarray,
              scale: float):
