@@ -1,22 +1,32 @@
 """The ISO reader's shortcut for plain moves: the bulk of a CAM program, run without the general machinery.
 
-Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] X.. Y.. Z.. [I.. J.. K..] [F..]``: a move in the modal
-state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a block itself and
-appends the same :class:`interpolators.program.Block` the general executor (:mod:`interpolators.iso`,
-``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and text, bit for bit, and
-the same modal state after it -- and declines everything else, which then goes the general way.
+Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] X.. Y.. Z.. [A.. B.. C.. U.. V.. W..] [I.. J.. K..] [F..]``:
+a move in the modal state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a
+block itself and appends the same :class:`interpolators.program.Block` the general executor
+(:mod:`interpolators.iso`, ``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and
+text, the extra axes' start and end positions, bit for bit, and the same modal state after it -- and declines
+everything else, which then goes the general way.
 
-It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, an
-axis beyond X Y Z, a Fanuc ``,R``/``,C`` ...), a repeated letter, a G code other than G0-G3 (by its exact
-value), a centre word on a G0/G1 or on the plane normal of an arc, an F <= 0, no X/Y/Z word, a feed move
-without a feed, an arc whose centre is not on the circle (the general path then words the error), under grbl
-an arc without an end-point word in its plane, and under Fanuc an X Y Z I J K written without a decimal point
-(:mod:`interpolators.iso_decimal`); and every block in a modal state it does not model: no motion mode, a
-motion other than G0-G3 (a canned cycle, G5, G33), axis words after G80 with no motion code (a note),
-G93 inverse time, G95 feed per revolution, Fanuc G16 polar coordinates, a rotated system (G10 L2 R, G68),
-G51 scaling and G51.1 mirroring, cutter compensation (on, or its exit move pending), a Fanuc ``,R``/``,C``
-corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets, the tool length
-and the G61/G64 path mode are modelled as the general path has set them.
+The words of the axes beyond X Y Z the machine has (``MachineContext.extra_axes``) are taken as
+:mod:`interpolators.iso_axes` reads them (LinuxCNC G-code overview, "Feed Rate"; RS274/NGC 3, Sec. 2.1.2.5): A B C
+in degrees whatever G20/G21, U V W in program units; absolute to the work plus G92 offset of the axis under G90,
+increments under G91; on G0/G1 with or without X Y Z, and on an arc that has an X Y Z word (the axes then move in
+proportion). A move of the extra axes alone runs at the F along their own distance, in deg/min along A B C or
+along U V W (:func:`interpolators.iso_motion.move_feed`, the general path's rule).
+
+It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, a word of
+an axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, a Fanuc ``,R``/``,C``
+...), a repeated letter, a G code other than G0-G3 (by its exact value), a centre word on a G0/G1 or on the plane
+normal of an arc, an arc without an X Y Z word, an F <= 0, no axis word, a feed move without a feed, an arc whose
+centre is not on the circle (the general path then words the error), under grbl an arc without an end-point word
+in its plane, and under Fanuc an axis or centre word written without a decimal point (:mod:`interpolators.iso_decimal`);
+and every block in a modal state it does not model: no motion mode, a motion other than G0-G3 (a canned cycle,
+G5, G33), axis words after G80 with no motion code (a note), G93 inverse time, G95 feed per revolution, Fanuc G16
+polar coordinates, a rotated system (G10 L2 R, G68), a tilted working plane (G68.2), G51 scaling and G51.1
+mirroring, tool centre point control (G43.4, G43.5, Haas G234: the rotary words then move the tool tip on the
+part, :mod:`interpolators.iso_tcp`), cutter compensation (on, or its exit move pending), a Fanuc ``,R``/``,C``
+corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets (of the extra axes too),
+the tool length and the G61/G64 path mode are modelled as the general path has set them.
 
 The state is looked at once after each block the general path ran, and after each write of a work offset or
 tool entry by a Fanuc/Haas system variable (``#5221 = ..``, which may share its line with a move)
@@ -172,7 +182,7 @@ class PlainMoves:
             st.feed, st.feed_rotary, st.feed_zero = new_feed, feed / 60.0, False
         if extra:
             extra_start, extra_target = self._extra(extra, scale)
-            if motion != 0:  # a move of the extra axes alone runs at the F along their own distance
+            if motion != 0 and seg.length == 0:  # the extra axes alone: the F along their own distance
                 path_feed = move_feed(st, seg, extra_target - extra_start)
         else:
             extra_start = extra_target = None

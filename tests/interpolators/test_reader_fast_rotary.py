@@ -23,7 +23,7 @@ import re
 import numpy as np
 import pytest
 
-from benchmarks.gcode_corpus import corpus_dir
+from benchmarks.gcode_corpus import corpus_dir, extra_axis_lines, without_remapped_m
 from interpolators.context import MachineContext, Tool
 from interpolators.iso import parse_iso
 from interpolators.tilted import Kinematics, RotaryAxis
@@ -244,23 +244,17 @@ def test_random_rotary_programs_read_alike(seed):
     assert accepted >= 30
 
 
-#: A word of an extra axis outside a comment (not a parameter ``#<a>``, not inside a word such as ``M3``).
-_EXTRA_WORD = re.compile(r"(?<![A-Z#<_])[ABCUVW]\s*[-+]?[.\d]", re.IGNORECASE)
-_COMMENT = re.compile(r"\([^)]*\)|;.*")
-#: A line with a configuration's remapped M code (M428: a LinuxCNC sim's TCP switch), which the reader refuses.
-_REMAPPED = re.compile(r"^\s*M\s*(?:[2-9]\d\d|\d{4,})\b.*$", re.IGNORECASE | re.MULTILINE)
-
-
 def rotary_corpus() -> list[tuple[str, str, MachineContext]]:
     """The corpus' ISO programs with extra-axis words, each read on a machine with all six extra axes; a program
     with remapped M codes (above M199) also with those lines blanked, so that its moves are read."""
     out = []
     for name, text, context in corpus_programs("iso"):
-        if sum(bool(_EXTRA_WORD.search(_COMMENT.sub("", ln))) for ln in text.splitlines()) < 3:
+        if extra_axis_lines(text) < 3:
             continue
         out.append((name, text, context))
-        if _REMAPPED.search(text):
-            out.append((name + " (remapped M lines blanked)", _REMAPPED.sub("", text), context))
+        blanked = without_remapped_m(text)
+        if blanked is not None:
+            out.append((name + " (remapped M lines blanked)", blanked, context))
     return out
 
 
