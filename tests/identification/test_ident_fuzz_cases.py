@@ -6,6 +6,7 @@ Each test states the case it comes from (runner seed and index) and what was wro
 from __future__ import annotations
 
 import dataclasses
+import re
 
 import numpy as np
 import pytest
@@ -334,10 +335,12 @@ def test_removed_datum_offset_is_fitted_again_without_it():
 def test_a_mode_a_later_refit_moves_above_the_nyquist_frequency_is_dropped():
     """ident_fuzz seed 21 case 52 with a one-sample delay only (fadal-pid's y, T = 1 ms, no mode). Round 1 accepted a
     resonance of damping 0.33 (it acts as the lag: held out 1.78 -> 0.75 um over its null), round 2 the delay, and the
-    joint refit of both moved the mode to 2744 Hz, above the record's 500 Hz Nyquist frequency, where a sampled record
-    shows nothing (Shannon 1949): the final model named a resonance the machine does not have, at 0.043 um held out.
-    The final model now faces every accepted effect again (diagnosis._backward_check): the mode is dropped, said in
-    the last round's record and the diagnosis text, and the delay alone, refitted, predicts the record to 3 nm."""
+    joint refit of both moved the mode above the record's 500 Hz Nyquist frequency, where a sampled record shows nothing
+    (Shannon 1949): the final model named a resonance the machine does not have, at 0.043 um held out. Where the
+    ill-posed refit lands is the platform's rounding (2744 Hz and 0.043 um on session 33's machine, 2419 Hz and
+    0.053 um on session 34's): the test asserts that it lies above the Nyquist frequency. The final model now faces
+    every accepted effect again (diagnosis._backward_check): the mode is dropped, said in the last round's record and
+    the diagnosis text, and the delay alone, refitted, predicts the record to 3 nm."""
     from benchmarks.ident_fuzz import build, draw_case
     from identification.diagnosis import format_before_after
 
@@ -350,9 +353,17 @@ def test_a_mode_a_later_refit_moves_above_the_nyquist_frequency_is_dropped():
     assert rounds[0]["resonance_damping"] == pytest.approx(0.33, abs=0.02)
     dropped = rounds[-1]["dropped"]
     assert list(dropped) == ["resonance"]
-    assert "its frequency 2744 Hz lies above the record's Nyquist frequency 1/(2T) = 500 Hz" in \
-        dropped["resonance"]["reason"]
-    assert dropped["resonance"]["validation_rms_with_um"] == pytest.approx(0.043, abs=0.005)
+    # where above the Nyquist frequency the refit puts the mode is incidental (2744 Hz on one machine, 2419 Hz on
+    # another: the platform's rounding moves an ill-posed refit); that it lies above it, and is dropped, is the point
+    reason = re.fullmatch(r"its frequency (\S+) Hz lies above the record's Nyquist frequency 1/\(2T\) = 500 Hz, "
+                          r"which a sampled record cannot show", dropped["resonance"]["reason"])
+    assert reason is not None, dropped["resonance"]["reason"]
+    assert float(reason.group(1)) > 500.0
+    # with the mode the final model predicted the held-out folds well (0.043 um on one machine, 0.053 um on another):
+    # it is dropped for what it claims, not for a poor fit; without it the model predicts better still
+    with_mode = dropped["resonance"]["validation_rms_with_um"]
+    assert 0.0 < with_mode < 0.05 * rounds[0]["current_validation_rms_um"]
+    assert dropped["resonance"]["validation_rms_without_um"] < with_mode
     assert [e.name for e in model.effects] == ["delay"]
     assert model.effects[0]["parameters"]["samples"] == 1
     assert model.effects[0]["evidence"]["refitted_without"] == ["resonance"]
@@ -360,7 +371,7 @@ def test_a_mode_a_later_refit_moves_above_the_nyquist_frequency_is_dropped():
     assert model.validation["rms_after_um"] < 0.01
     assert dropped["resonance"]["validation_rms_without_um"] == model.validation["rms_after_um"]
     text = format_before_after(model)
-    assert "dropped: resonance, accepted in an earlier round, because its frequency 2744 Hz" in text
+    assert f"dropped: resonance, accepted in an earlier round, because {dropped['resonance']['reason']}" in text
     assert "+ delay (1 samples)" in text and "+ resonance" not in text
 
 
