@@ -23,3 +23,13 @@ def test_a_linear_axis_noise_in_um_still_names_the_slip():
 
     (message,) = plausibility_warnings({"axes": {"x": {"noise": {"std": 0.5}}}}, file="m.toml", line=lambda *p: 3)
     assert message.endswith("; in um? 0.5 um is 0.0005 mm")
+
+
+def test_the_settling_note_gives_a_rotary_axis_band_in_millidegrees():
+    """x settles to within 1 um, c (deg) within 0.02 deg: the note said 'within 20 um' for the c axis' 0.02 deg."""
+    from vcnc.engine.settling import SettlingTail
+
+    tail = SettlingTail(samples=10, seconds=0.2, settled=True, band={"x": 0.001, "c": 0.02})
+    assert "following error within 1 um (20 mdeg on a rotary axis) of its final value" in tail.note(2.0)
+    assert "within 3 um of its final value" in SettlingTail(samples=10, seconds=0.2, settled=True,
+                                                            band={"x": 0.003}).note(2.0)
