@@ -66,6 +66,24 @@ def reason(message: str) -> str:
     return text[:90]
 
 
+#: A word of an axis beyond X Y Z outside a comment (not a parameter ``#<a>``, not the end of another word).
+_EXTRA_WORD = re.compile(r"(?<![A-Z#<_])[ABCUVW]\s*[-+]?[.\d]", re.IGNORECASE)
+_COMMENT = re.compile(r"\([^)]*\)|;.*")
+#: A line with a LinuxCNC configuration's remapped M code (above M199, such as the sims' TCP switch M428).
+_REMAPPED_M = re.compile(r"^\s*M\s*0*(?:[2-9]\d\d|\d{4,})\b.*$", re.IGNORECASE | re.MULTILINE)
+
+
+def extra_axis_lines(text: str) -> int:
+    """How many lines of the program have a word of an axis beyond X Y Z (A B C U V W) outside comments."""
+    return sum(bool(_EXTRA_WORD.search(_COMMENT.sub("", line))) for line in text.splitlines())
+
+
+def without_remapped_m(text: str) -> str | None:
+    """The program with its lines of remapped M codes (above M199, which vcnc refuses by name) blanked, so that
+    its moves can be read; None when it has none."""
+    return _REMAPPED_M.sub("", text) if _REMAPPED_M.search(text) else None
+
+
 def run_corpus(d: Path, *, interpolate_too: bool = True, max_samples: int = 2_000_000,
                visit: Callable[[Path, Program], dict] | None = None) -> dict:
     """Run the corpus; returns the per-program outcomes and the totals. ``visit(path, program)``,

@@ -1,13 +1,18 @@
 """Reading throughput of the ISO and Heidenhain readers: lines and blocks per second of ``load_program``.
 
-Run: ``.venv/bin/python benchmarks/reader.py [--lines N] [--tnc-lines N] [--largest K] [--repeat R] [FILE ...]``
+Run: ``.venv/bin/python benchmarks/reader.py [--lines N] [--tnc-lines N] [--rotary-lines N] [--rotary-only]
+[--largest K] [--repeat R] [FILE ...]``
 
 Programs: the ``K`` largest ISO programs of the G-code corpus (``VCNC_GCODE_CORPUS``, default
 ``../shared/data/gcode-corpus`` beside the repository; skipped with a message when absent), read with the
 context of ``vcnc interpolate`` (``INTERPOLATION_CONTEXT``); a generated CAM program of ``N`` lines (default
 1,000,000: ``N`` numbers, ``G1 X Y Z F`` moves, ``G2``/``G3`` arcs with ``I J``, comments); and two programs of
 the general machinery: a LinuxCNC O-word ``while`` loop with ``#`` parameters and ``[expressions]``, and the
-same moves written with ``#`` parameters on every line. Heidenhain TNC programs: the ``K`` largest of the corpus
+same moves written with ``#`` parameters on every line. 4/5-axis programs: the corpus' ISO programs with
+A B C U V W words on 20 lines or more and a generated 4-axis wrap program of ``N`` lines (default 50,000:
+``X Z A`` on every line, as Universal G-code Sender's ``rotation.ngc``), each beside the same program with its
+A-W words taken out, read in the same run (the reference: how much the rotary words cost). Heidenhain TNC
+programs: the ``K`` largest of the corpus
 (by content, :func:`interpolators.detect_dialect`) and a generated CAM program of ``N`` lines (default 200,000:
 ``L X Y Z F`` lines, ``L IX IY``, ``CC`` + ``C .. DR-``, ``CR .. R.. DR+``, ``L .. FMAX``, ``L .. R0``, M functions,
 ``;`` comments and ``*`` structure blocks). Any ``FILE`` given is measured too (a wild program kept outside the
@@ -30,6 +35,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import resource
 import shutil
 import subprocess
@@ -40,6 +46,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from benchmarks.gcode_corpus import extra_axis_lines, without_remapped_m  # noqa: E402
 from interpolators import detect_dialect, load_program  # noqa: E402
 from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
 
@@ -68,6 +75,30 @@ def cam_program(lines: int) -> str:
         n += 10
     out.append("M30")
     return "\n".join(out) + "\n"
+
+
+def rotary_program(lines: int) -> str:
+    """A 4-axis wrap program as a CAM post for a rotary table writes it (Universal G-code Sender's
+    ``test_files/rotation.ngc`` is one): passes along X at a stepped A angle, ``X Z A`` on every line (modal G1,
+    1-decimal X, 4-decimal Z and A), the depth following a surface, a rapid retract and an A step between passes."""
+    out = ["(generated 4-axis wrap program: benchmarks/reader.py)", "G21 G90 G94", "G0 X0.0 Z45.0 A0.0",
+           "G1 F50.0 X0.0 Z20.0 A0.0", "G1 F100.0"]
+    per_pass = 161
+    i = 0
+    while len(out) < lines - 1:
+        a = -1.1465 * (i // per_pass)
+        k = i % per_pass
+        x = 0.5 * (k if (i // per_pass) % 2 == 0 else per_pass - 1 - k)
+        out.append(f"X{x:.1f} Z{19.9 + 0.002 * math.sin(0.05 * x + 0.02 * a):.4f} A{a:.4f}")
+        i += 1
+    out.append("M30")
+    return "\n".join(out) + "\n"
+
+
+def without_extra_words(text: str) -> str:
+    """``text`` with its A B C U V W words taken out: the same program on three axes (the reference of a rotary
+    program's reading)."""
+    return re.sub(r"[ \t]?[ABCUVW]-?[\d.]+", "", text)
 
 
 def tnc_program(lines: int) -> str:
@@ -174,23 +205,49 @@ def measure(label: str, path: Path, repeat: int, *, rs274: bool = True) -> None:
           f"x{best / ref:6.0f} the str.split reference ({ref * 1e3:.1f} ms){other}")
 
 
+def rotary_section(lines: int, repeat: int) -> None:
+    """4/5-axis programs, each measured beside its reference read in the same run: the same program with its
+    A B C U V W words taken out (:func:`without_extra_words`). The corpus' ISO programs with extra-axis words on 20
+    lines or more (a LinuxCNC configuration's remapped M codes blanked, :func:`without_remapped_m`), and a generated
+    4-axis wrap program of ``lines`` lines (:func:`rotary_program`)."""
+    programs = []
+    if CORPUS.is_dir():
+        for p in sorted(CORPUS.iterdir()):
+            text = p.read_bytes().decode("latin-1")
+            if p.suffix.lower() not in (".tsv", ".md") and detect_dialect(text) == "iso" \
+                    and extra_axis_lines(text) >= 20:
+                programs.append((f"corpus {p.name[:30]}", without_remapped_m(text) or text))
+    programs.append((f"generated 4-axis wrap, {lines:,d} lines", rotary_program(lines)))
+    with tempfile.TemporaryDirectory() as tmp:
+        for label, text in programs:
+            for suffix, body in (("", text), (", A-W words out", without_extra_words(text))):
+                path = Path(tmp) / "program.ngc"
+                path.write_text(body)
+                measure(label[:44 - len(suffix)] + suffix, path, repeat, rs274=False)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lines", type=int, default=1_000_000, help="lines of the generated CAM program")
     ap.add_argument("--tnc-lines", type=int, default=200_000, help="lines of the generated TNC program")
     ap.add_argument("--largest", type=int, default=3, help="how many of the corpus' largest ISO and TNC programs")
+    ap.add_argument("--rotary-lines", type=int, default=50_000, help="lines of the generated 4-axis program")
     ap.add_argument("--repeat", type=int, default=1, help="runs per program (the best is shown)")
     ap.add_argument("files", nargs="*", type=Path, help="further programs to measure")
+    ap.add_argument("--rotary-only", action="store_true", help="only the 4/5-axis programs and their references")
     args = ap.parse_args()
-    if CORPUS.is_dir():
+    if CORPUS.is_dir() and not args.rotary_only:
         by_size = [p for p in sorted(CORPUS.iterdir(), key=lambda p: -p.stat().st_size)
                    if p.suffix.lower() not in (".tsv", ".md")]
         dialects = {p: detect_dialect(p.read_bytes().decode("latin-1")) for p in by_size}
         for dialect in ("iso", "heidenhain"):
             for p in [p for p in by_size if dialects[p] == dialect][:args.largest]:
                 measure(f"corpus {p.name[:37]}", p, args.repeat, rs274=dialect == "iso")
-    else:
+    elif not CORPUS.is_dir():
         print(f"G-code corpus not found at {CORPUS} (set VCNC_GCODE_CORPUS): corpus programs skipped")
+    rotary_section(args.rotary_lines, args.repeat)
+    if args.rotary_only:
+        return
     with tempfile.TemporaryDirectory() as tmp:
         for label, text in ((f"generated CAM, {args.lines:,d} lines", cam_program(args.lines)),
                             ("O-word while loop, 20,000 passes", param_loop_program(20_000)),

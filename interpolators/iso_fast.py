@@ -1,22 +1,32 @@
 """The ISO reader's shortcut for plain moves: the bulk of a CAM program, run without the general machinery.
 
-Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] X.. Y.. Z.. [I.. J.. K..] [F..]``: a move in the modal
-state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a block itself and
-appends the same :class:`interpolators.program.Block` the general executor (:mod:`interpolators.iso`,
-``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and text, bit for bit, and
-the same modal state after it -- and declines everything else, which then goes the general way.
+Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] X.. Y.. Z.. [A.. B.. C.. U.. V.. W..] [I.. J.. K..] [F..]``:
+a move in the modal state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a
+block itself and appends the same :class:`interpolators.program.Block` the general executor
+(:mod:`interpolators.iso`, ``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and
+text, the extra axes' start and end positions, bit for bit, and the same modal state after it -- and declines
+everything else, which then goes the general way.
 
-It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, an
-axis beyond X Y Z, a Fanuc ``,R``/``,C`` ...), a repeated letter, a G code other than G0-G3 (by its exact
-value), a centre word on a G0/G1 or on the plane normal of an arc, an F <= 0, no X/Y/Z word, a feed move
-without a feed, an arc whose centre is not on the circle (the general path then words the error), under grbl
-an arc without an end-point word in its plane, and under Fanuc an X Y Z I J K written without a decimal point
-(:mod:`interpolators.iso_decimal`); and every block in a modal state it does not model: no motion mode, a
-motion other than G0-G3 (a canned cycle, G5, G33), axis words after G80 with no motion code (a note),
-G93 inverse time, G95 feed per revolution, Fanuc G16 polar coordinates, a rotated system (G10 L2 R, G68),
-G51 scaling and G51.1 mirroring, cutter compensation (on, or its exit move pending), a Fanuc ``,R``/``,C``
-corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets, the tool length
-and the G61/G64 path mode are modelled as the general path has set them.
+The words of the axes beyond X Y Z the machine has (``MachineContext.extra_axes``) are taken as
+:mod:`interpolators.iso_axes` reads them (LinuxCNC G-code overview, "Feed Rate"; RS274/NGC 3, Sec. 2.1.2.5): A B C
+in degrees whatever G20/G21, U V W in program units; absolute to the work plus G92 offset of the axis under G90,
+increments under G91; on G0/G1 with or without X Y Z, and on an arc that has an X Y Z word (the axes then move in
+proportion). A move of the extra axes alone runs at the F along their own distance, in deg/min along A B C or
+along U V W (:func:`interpolators.iso_motion.move_feed`, the general path's rule).
+
+It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, a word of
+an axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, a Fanuc ``,R``/``,C``
+...), a repeated letter, a G code other than G0-G3 (by its exact value), a centre word on a G0/G1 or on the plane
+normal of an arc, an arc without an X Y Z word, an F <= 0, no axis word, a feed move without a feed, an arc whose
+centre is not on the circle (the general path then words the error), under grbl an arc without an end-point word
+in its plane, and under Fanuc an axis or centre word written without a decimal point (:mod:`interpolators.iso_decimal`);
+and every block in a modal state it does not model: no motion mode, a motion other than G0-G3 (a canned cycle,
+G5, G33), axis words after G80 with no motion code (a note), G93 inverse time, G95 feed per revolution, Fanuc G16
+polar coordinates, a rotated system (G10 L2 R, G68), a tilted working plane (G68.2), G51 scaling and G51.1
+mirroring, tool centre point control (G43.4, G43.5, Haas G234: the rotary words then move the tool tip on the
+part, :mod:`interpolators.iso_tcp`), cutter compensation (on, or its exit move pending), a Fanuc ``,R``/``,C``
+corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets (of the extra axes too),
+the tool length and the G61/G64 path mode are modelled as the general path has set them.
 
 The state is looked at once after each block the general path ran, and after each write of a work offset or
 tool entry by a Fanuc/Haas system variable (``#5221 = ..``, which may share its line with a move)
@@ -32,6 +42,8 @@ import numpy as np
 
 from interpolators._words import INCH
 from interpolators.arcs import ArcWordError, arc_from_center, center_arc_tolerance
+from interpolators.iso_axes import EXTRA_LETTERS
+from interpolators.iso_motion import move_feed
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Line
 
@@ -64,6 +76,11 @@ class PlainMoves:
         self.used = used
         self.ready: bool | None = None  # None: to be judged at the next block
         self.offset: list[float] = []
+        self.extra_offset: list[float] = []
+        # the words of the axes beyond X Y Z the machine has -> their column in State.extra; a word of another
+        # (an error, or with value 0 a note) goes the general way
+        self.extra_columns = {letter: i for i, letter in enumerate(EXTRA_LETTERS)
+                              if letter.lower() in st.context.extra_axes}
         self.fanuc = st.context.dialect.name == "fanuc"
         self.grbl = st.context.dialect.arc_rule == "grbl"
 
@@ -78,6 +95,7 @@ class PlainMoves:
                       and st.comp_close_at is None and st.corner is None and st.corner_word is None and not st.tcp)
         if self.ready:
             self.offset = st.offset().tolist()
+            self.extra_offset = st.extra_offset().tolist()
         return self.ready
 
     def move(self, words: list, line: int, text: str) -> bool:  # noqa: C901 - one pass over the words
@@ -88,6 +106,8 @@ class PlainMoves:
         motion = number = feed = None
         axes: dict[int, float] = {}
         centre: dict[int, float] = {}
+        extra: dict[int, float] = {}
+        extra_columns = self.extra_columns
         fanuc = self.fanuc
         for w in words:
             letter = w.letter
@@ -113,10 +133,15 @@ class PlainMoves:
                 if feed is not None or not w.value > 0:
                     return False
                 feed = w.value
+            elif letter in extra_columns:
+                i = extra_columns[letter]
+                if i in extra or fanuc and "." not in w.text:
+                    return False
+                extra[i] = w.value
             else:
                 return False
         st = self.st
-        if not axes:
+        if not axes and (not extra or centre):
             return False
         if st.motion not in (None, 0, 10, 20, 30):
             return False
@@ -155,6 +180,12 @@ class PlainMoves:
         # committed: the modal state as the general path leaves it
         if feed is not None:
             st.feed, st.feed_rotary, st.feed_zero = new_feed, feed / 60.0, False
+        if extra:
+            extra_start, extra_target = self._extra(extra, scale)
+            if motion != 0 and seg.length == 0:  # the extra axes alone: the F along their own distance
+                path_feed = move_feed(st, seg, extra_target - extra_start)
+        else:
+            extra_start = extra_target = None
         st.block_f = feed
         st.motion = motion
         st.after_g80 = False
@@ -167,10 +198,33 @@ class PlainMoves:
             number = int(number.value) if number.value == int(number.value) else None
         self.blocks.append(Block.plain(line=line, number=number, text=text, kind=_KIND[motion], start=seg.start,
                                        target=target, feed=path_feed, segment=seg, exact_stop=st.exact_stop,
-                                       tolerance=st.tolerance))
+                                       tolerance=st.tolerance, extra_start=extra_start, extra_target=extra_target))
         st.pos = target  # read-only: the next block's start, shared (interpolators.program.Block)
+        if extra:
+            st.extra = extra_target
         st.stopped = False  # a move since a program stop: positions read are the program's again
         return True
+
+    def _extra(self, words: dict[int, float], scale: float) -> tuple[np.ndarray, np.ndarray]:
+        """The start and end positions ``(a, b, c, u, v, w)`` [deg, mm] of a move with the extra axis words
+        ``words`` (column -> value), read-only, as :func:`interpolators.iso_axes.extra_target` makes them: A B C in
+        degrees whatever G20/G21, U V W times ``scale``; added to the position under G91, to the work plus G92
+        offset under G90. Marks the axes used."""
+        st = self.st
+        start = st.extra
+        if start.flags.writeable:  # the previous block's end is read-only already; another is copied
+            start = start.copy()
+            start.setflags(write=False)
+        end = start.copy()
+        off = self.extra_offset
+        for i, v in words.items():
+            if i >= 3:  # U V W [program units]
+                v = v * scale
+            end[i] = end[i] + v if st.incremental else v + off[i]
+        end.setflags(write=False)
+        st.extra_used = True
+        self.used.update(3 + i for i in words)
+        return start, end
 
     def _arc(self, motion: int, axes: dict[int, float], centre: dict[int, float], target: np.ndarray,
              scale: float):

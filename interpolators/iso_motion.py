@@ -28,7 +28,7 @@ from toolpaths.geometry import PLANE_AXES, Arc, Line
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "initial_feed", "per_rev_spindle",
+__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "move_feed", "initial_feed", "per_rev_spindle",
            "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P", "dwell_p_point_note",
            "dwell_p_seconds"]
 
@@ -169,7 +169,7 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
     turn = np.zeros(6) if rot is None else rot - st.extra
     if motion in (0, 10):
         seg = Line(st.pos, target)
-        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else _feed(st, seg, turn),
+        blk = Block(kind="rapid" if motion == 0 else "line", feed=np.inf if motion == 0 else move_feed(st, seg, turn),
                     segment=seg, **common)
     else:
         if st.rotation and st.plane != 2 or off_plane(st):
@@ -190,7 +190,7 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
         used.update((p, q))
         target = np.array(seg.end)
         common["target"] = target
-        blk = Block(kind="arc", feed=_feed(st, seg, turn), segment=seg, **common)
+        blk = Block(kind="arc", feed=move_feed(st, seg, turn), segment=seg, **common)
     blk = _corner(st, blocks, blk, motion, where)
     blocks.append(blk)
     st.pos = target
@@ -380,7 +380,7 @@ def _spline(seen, target, st: State, blocks, where: Where, common: dict, mcol: i
     # under G93 the whole spline takes the block's 1/F minutes: one speed along all its chords
     speed = sum(g.length for g in segs) * st.block_f / 60.0 if st.inverse_time else None
     for seg in segs:
-        blocks.append(Block(kind="line", feed=_feed(st, seg) if speed is None else speed, segment=seg,
+        blocks.append(Block(kind="line", feed=move_feed(st, seg) if speed is None else speed, segment=seg,
                             **{**common, "start": np.array(seg.start), "target": np.array(seg.end)}))
     st.pos = np.array(target, dtype=float)
 
@@ -447,13 +447,13 @@ def _nurbs_curve(st: State, blocks, used, where: Where, number, mcol: int, mtok:
     for a, b in zip(chain[:-1], chain[1:]):
         seg = Line(a, b)
         blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
-                            target=np.array(b), feed=_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
+                            target=np.array(b), feed=move_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
                             tolerance=st.tolerance))
     st.pos = np.array(chain[-1], dtype=float)
     st.nurbs, st.motion = None, None
 
 
-def _feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
+def move_feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
     time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
     0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed

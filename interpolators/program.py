@@ -119,11 +119,13 @@ class Block:
 
     @classmethod
     def plain(cls, *, line: int, number: int | None, text: str, kind: str, start: np.ndarray, target: np.ndarray,
-              feed: float, segment: Line | Arc, exact_stop: bool, tolerance: float | None) -> Block:
-        """A motion block without the axes beyond X, Y, Z: the same as ``Block(...)`` with these fields, made
-        without the frozen dataclass's ``__init__`` (the readers make one per line, :mod:`interpolators.iso_fast`,
-        :mod:`interpolators.heidenhain_fast`). ``start`` and ``target`` must be read-only already: they are kept
-        as given (a reader passes the previous block's target as the start)."""
+              feed: float, segment: Line | Arc, exact_stop: bool, tolerance: float | None,
+              extra_start: np.ndarray | None = None, extra_target: np.ndarray | None = None) -> Block:
+        """A motion block: the same as ``Block(...)`` with these fields, made without the frozen dataclass's
+        ``__init__`` (the readers make one per line, :mod:`interpolators.iso_fast`,
+        :mod:`interpolators.heidenhain_fast`). ``start``, ``target`` and the extra axes' ``extra_start`` and
+        ``extra_target`` (None: a block without them) must be read-only already: they are kept as given (a reader
+        passes the previous block's target as the start)."""
         blk = object.__new__(cls)
         _set_line(blk, line)
         _set_number(blk, number)
@@ -136,8 +138,8 @@ class Block:
         _set_dwell(blk, 0.0)
         _set_exact_stop(blk, exact_stop)
         _set_tolerance(blk, tolerance)
-        _set_extra_start(blk, None)
-        _set_extra_target(blk, None)
+        _set_extra_start(blk, extra_start)
+        _set_extra_target(blk, extra_target)
         _set_tcp(blk, False)
         return blk
 
