@@ -171,14 +171,10 @@ def fit_reduced_model(
                               widened=widened)
     params, poles, label, err = _refine(sol, xr, x, T, b, method=method, refine=refine, fit=fit, opt=opt,
                                         offset=offset.applied, first=frame.start)
-    if bounds is None and widened is None and label.endswith("+oe") and not offset.applied:
-        params, poles, err, b, widened = _widen_refined(params, poles, err, xr, x, T, b, fit)
-    if bounds is None and label.endswith("+oe") and "initial_state" not in fit:
-        params, poles, err = _pair_below_nyquist(stats, params, poles, err, xr, x, T, b, fit)
-        if not fit["offset"]["applied"]:
-            params, poles, err = pair_starts(stats, params, poles, err, xr, x, T, b, fit)
-    if widened is not None and label.endswith("+oe") and not fit["offset"]["applied"] and "initial_state" not in fit:
-        params, poles, err = _offset_for_slow_pole(narrow, xr, x, T, b, params, poles, err, fit)
+    if label.endswith("+oe"):
+        params, poles, err, b = _after_refinement(stats, narrow, params, poles, err, xr, x, T, b, fit,
+                                                  default_box=bounds is None, widened=widened,
+                                                  offset_applied=offset.applied)
     if delay_s and delay_fit["estimated"] and label.endswith("+oe"):
         params, poles, err, delay_s = _with_refined_delay(original, axis, params, poles, err, T, b, delay_s, fit)
     fit.update(error_metrics(err))
@@ -198,6 +194,26 @@ def fit_reduced_model(
     check_scale(params, x.size * T, axis, original.source)
     return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
                             fit=fit, delay_s=delay_s, setpoint_filter_s=filter_s)
+
+
+def _after_refinement(stats: SufficientStatistics, narrow: SolveResult, params: dict, poles: dict, err: np.ndarray,
+                      xr: np.ndarray, x: np.ndarray, T: float, b: PoleBounds, fit: dict, *, default_box: bool,
+                      widened: dict | None, offset_applied: bool) -> tuple[dict, dict, np.ndarray, PoleBounds]:
+    """The output-error fit's later stages, in :func:`fit_reduced_model`'s order: under the default box
+    (``default_box``) the box widened for p after the refinement (:func:`_widen_refined`, when the equation error
+    did not widen it and no offset was removed), the pair moved below Nyquist (:func:`_pair_below_nyquist`) and
+    started across its frequency (:func:`identification.pair_starts.pair_starts`, without a removed offset); after a
+    widened box, the offset tried for the slow pole (:func:`_offset_for_slow_pole`). Returns ``(parameters, poles,
+    error, box)``."""
+    if default_box and widened is None and not offset_applied:
+        params, poles, err, b, widened = _widen_refined(params, poles, err, xr, x, T, b, fit)
+    if default_box and "initial_state" not in fit:
+        params, poles, err = _pair_below_nyquist(stats, params, poles, err, xr, x, T, b, fit)
+        if not fit["offset"]["applied"]:
+            params, poles, err = pair_starts(stats, params, poles, err, xr, x, T, b, fit)
+    if widened is not None and not fit["offset"]["applied"] and "initial_state" not in fit:
+        params, poles, err = _offset_for_slow_pole(narrow, xr, x, T, b, params, poles, err, fit)
+    return params, poles, err, b
 
 
 def _equation_error_fit(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, *,

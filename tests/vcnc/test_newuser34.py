@@ -134,7 +134,7 @@ def test_compare_says_nothing_of_servo_periods_that_agree(tmp_path, capsys):
     assert "servo period" not in capsys.readouterr().out
 
 
-def test_the_settling_tail_ends_where_an_exponential_decay_is_within_one_percent():
+def test_the_settling_tail_ends_where_an_exponential_decay_is_within_a_tenth_of_a_percent():
     import numpy as np
 
     from vcnc.core.capture import Capture

@@ -53,6 +53,16 @@ _AXIS_BOUNDS: dict[tuple[str, str], tuple[tuple[float | None, float | None], tup
                             "backlash beyond 0.1 mm is a worn-out axis no machine tool is run with"),
 }
 
+#: (table, key) -> the reason on a rotary axis, where :data:`_AXIS_BOUNDS`' reason speaks of a linear axis' units
+_ROTARY_REASONS: dict[tuple[str, str], str] = {
+    ("limits", "velocity"): "rotary tables turn at up to a few thousand rpm (direct-drive turn-mill tables)",
+    ("limits", "acceleration"): "even a heavy rotary table accelerates faster than 0.1 deg/s^2",
+    ("noise", "std"): "angle encoders resolve arc-seconds (1 arc-second = 0.00028 deg)",
+    ("encoder", "resolution"): "angle encoders count in steps of arc-seconds or finer (1 arc-second = 0.00028 deg)",
+    ("backlash", "width"): "the lost motion of a worm or gear stage of a rotary table is arc-minutes "
+                           "(1 arc-minute = 0.017 deg)",
+}
+
 #: sample_time [s]: its plausible range and why
 _SAMPLE_TIME = (1.0e-5, 0.02, "position loops close every 31.25 us to a few ms (20 ms and more is a PLC task's cycle)")
 
@@ -67,7 +77,7 @@ def _slip(value: float, unit: str, key: str) -> str:
         return f"; in m/s^2? {value:g} m/s^2 is {value * 1000.0:g} mm/s^2"
     if key == "lead" and value < 0.5:
         return f"; in m or cm? {value:g} m is {value * 1000.0:g} mm"
-    if unit in ("mm", "deg") and value >= 0.1:
+    if unit == "mm" and value >= 0.1:
         return f"; in um? {value:g} um is {value / 1000.0:g} mm"
     return ""
 
@@ -87,6 +97,7 @@ def _axis_warnings(axis: str, tab: Mapping[str, Any], at: Callable[..., str]) ->
         if not isinstance(sub, Mapping) or key not in sub or bounds is None or not _outside(sub[key], bounds):
             continue
         value, unit = float(sub[key]), rot_unit if rotary else lin_unit
+        reason = _ROTARY_REASONS.get((table, key), reason) if rotary else reason
         lo, hi = bounds
         side = f"above {hi:g}" if hi is not None and value > hi else f"below {lo:g}"
         yield (f"{at('axes', axis, table, key)}: axes.{axis}.{table}.{key} = {value:g} [{unit}] is {side} {unit}, "

@@ -26,6 +26,7 @@ import dataclasses
 
 import numpy as np
 
+from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import Capture
 
 __all__ = ["BOUND_S", "WINDOW_S", "RELATIVE", "SMOOTH_S", "FLOOR_MM", "FLOOR_V", "SettlingTail", "settling_tail"]
@@ -74,14 +75,22 @@ class SettlingTail:
     def note(self, bound_s: float) -> str:
         """The tail in words, for the command line and the capture's header."""
         if self.settled:
-            worst = max(self.band.values(), default=0.0) * 1000.0
             return (f"the capture runs on {self.seconds:.4g} s after the last setpoint, the command held, until "
-                    f"every axis settled (following error within {worst:.3g} um of its final value, control signal "
-                    f"steady; then {WINDOW_S:g} s at rest; --settle S bounds the tail, --settle 0 ends the capture "
-                    "with the reference)")
+                    f"every axis settled (following error within {self._worst_band()} of its final value, control "
+                    f"signal steady; then {WINDOW_S:g} s at rest; --settle S bounds the tail, --settle 0 ends the "
+                    "capture with the reference)")
         return (f"axis {', '.join(self.unsettled)} had not settled {bound_s:g} s after the last setpoint (the "
                 "command held; following error or control signal still moving): the capture runs on to that bound "
                 "(--settle S to change it)")
+
+    def _worst_band(self) -> str:
+        """The widest band in words: um on the linear axes, mdeg on the rotary ones (the band is in deg there)."""
+        linear = [b for a, b in self.band.items() if a.lower() not in ROTARY_AXES]
+        rotary = [b for a, b in self.band.items() if a.lower() in ROTARY_AXES]
+        turns = f"{max(rotary) * 1000.0:.3g} mdeg" if rotary else ""
+        if not linear:
+            return turns or "0 um"
+        return f"{max(linear) * 1000.0:.3g} um" + (f" ({turns} on a rotary axis)" if turns else "")
 
 
 def _scatter(window: np.ndarray) -> np.ndarray:
