@@ -1,0 +1,61 @@
+"""Places of the readers that share one home after tidy34, pinned by hand-written programs: the end of a TNC
+cycle's run at a hole (out to the set-up clearance Q200, then to the 2nd set-up clearance Q204 when it is higher:
+:func:`interpolators.heidenhain_cycles.to_second_clearance`)."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.parse import parse_program
+
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+TOOL = "TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\n"
+
+#: One definition of each cycle whose run ends at the clearances, written from the TNC 640 cycle programming
+#: manual's parameter lists; ``{s}`` the surface Q203, ``{c2}`` the 2nd set-up clearance Q204 (Q200 = 2).
+CYCLES = {
+    "200 hole_moves": "CYCL DEF 200 DRILLING Q200=2 Q201=-10 Q206=120 Q202=4 Q210=0 Q203={s} Q204={c2} Q211=0",
+    "203 hole_moves, out at Q208": "CYCL DEF 203 UNIVERSAL DRILLING Q200=2 Q201=-10 Q206=120 Q202=4 Q210=0 Q203={s} "
+                                   "Q204={c2} Q212=0 Q213=0 Q205=0 Q211=0 Q208=500 Q256=0.2",
+    "204 back_boring_moves": "CYCL DEF 204 BACK BORING Q200=2 Q249=+5 Q250=20 Q251=3.5 Q252=3 Q253=MAX Q254=200 "
+                             "Q255=0 Q203={s} Q204={c2} Q214=1 Q336=0",
+    "208 _bore_milling": "CYCL DEF 208 BORE MILLING Q200=2 Q201=-10 Q206=150 Q334=5 Q203={s} Q204={c2} Q335=16 "
+                         "Q342=0 Q351=-1",
+    "241 single_lip_moves": "CYCL DEF 241 SINGLE-LIP DEEP-HOLE DRILLING Q200=2 Q201=-40 Q206=50 Q211=0 Q203={s} "
+                            "Q204={c2} Q379=0 Q253=750 Q208=1000 Q426=3 Q427=50 Q428=1790 Q429=8 Q430=9 Q435=0",
+    "252 _circular_pocket": "CYCL DEF 252 CIRCULAR POCKET Q215=0 Q223=20 Q368=0 Q207=500 Q351=+1 Q201=-5 Q202=2.5 "
+                            "Q369=0 Q206=150 Q338=0 Q200=2 Q203={s} Q204={c2} Q370=1 Q366=0 Q385=400",
+    "256 _rectangular_stud": "CYCL DEF 256 RECTANGULAR STUD Q218=20 Q424=26 Q219=10 Q425=14 Q220=0 Q368=0 Q224=0 "
+                             "Q367=0 Q207=500 Q351=+1 Q201=-2 Q202=2 Q206=150 Q200=2 Q203={s} Q204={c2} Q370=1 "
+                             "Q215=0 Q369=0 Q338=0 Q385=400",
+    "262 _thread_milling": "CYCL DEF 262 THREAD MILLING Q335=+12 Q239=+1.5 Q201=-6 Q355=0 Q253=750 Q351=+1 Q200=2 "
+                           "Q203={s} Q204={c2} Q207=300",
+}
+
+
+def _tail(cycle: str, *, surface: float, second: float) -> list[tuple[str, float]]:
+    """The kinds and Z levels of the moves after the cycle's last move below the set-up clearance, one per level (204
+    moves back over the centre in the plane at the set-up clearance)."""
+    text = "0 BEGIN PGM T MM\n" + TOOL + cycle.format(s=f"{surface:+g}", c2=f"{second:g}") + "\nCYCL CALL\n"
+    prog = parse_program(text + "END PGM T MM\n", context=CTX)
+    moves = [(b.kind, float(b.target[2])) for b in prog.blocks]
+    last_low = max(i for i, (_, z) in enumerate(moves) if z < surface + 2 - 1e-9)
+    tail = moves[last_low + 1:]
+    return [mv for k, mv in enumerate(tail) if k == 0 or mv[1] != tail[k - 1][1]]
+
+
+@pytest.mark.parametrize("name", sorted(CYCLES))
+@pytest.mark.parametrize("surface", [0.0, -7.5])
+def test_a_cycle_ends_at_the_set_up_clearance_then_at_the_higher_2nd_one(name, surface):
+    tail = _tail(CYCLES[name], surface=surface, second=20.0)
+    # 203 retracts at Q208, 241 at its Q208 (a feed move), the others at FMAX; then FMAX to Q203 + Q204
+    assert [z for _, z in tail] == pytest.approx([surface + 2, surface + 20])
+    assert tail[-1][0] == "rapid"
+
+
+@pytest.mark.parametrize("name", sorted(CYCLES))
+@pytest.mark.parametrize("second", [0.0, 2.0])
+def test_a_2nd_set_up_clearance_not_above_the_set_up_clearance_adds_no_move(name, second):
+    tail = _tail(CYCLES[name], surface=0.0, second=second)
+    assert [z for _, z in tail] == pytest.approx([2.0])
