@@ -102,9 +102,53 @@ def memory(samples: int) -> None:
               f"{r['wall_s']:.1f} s wall, {r['cpu_s']:.1f} s CPU")
 
 
+def speed_child(samples: int) -> None:
+    """In a child process: ``identify`` of a ``samples``-long 125 us record with and without the diagnosis, after the
+    named reference, the equation-error fit alone (``refine="none"``, no diagnosis), all in this process; prints
+    a JSON line of CPU seconds and whether python-control was imported."""
+    T = 125e-6
+    xr = random_moves_reference(moves=max(1, round(samples / 862)), sample_time=T, seed=5)
+    cap = synthetic_capture(FADAL_PID_X, xr, sample_time=T, noise=2e-4, resolution=1e-3, seed=3)
+    out = {"samples": xr.size}
+    for name, kwargs in (("reference", {"refine": "none", "diagnose": False}), ("fit", {"diagnose": False}),
+                         ("diagnosis", {"diagnose": True})):
+        t0, c0 = time.perf_counter(), time.process_time()
+        model = identify(cap, **kwargs)
+        out[name] = {"wall_s": time.perf_counter() - t0, "cpu_s": time.process_time() - c0,
+                     "poles": model.poles, "rms_um": model.fit["rms_um"]}
+    out["control_imported"] = "control" in sys.modules
+    print(json.dumps(out))
+
+
+def speed(samples: int) -> None:
+    """CPU time of ``identify`` on a long record, with and without the diagnosis, against the equation-error fit
+    alone measured in the same child process (a shared machine's load moves the seconds, less their ratio).
+    Measured 2026-11-26 (2 shared cores, load 12-15, VCNC_THREADS=1), 161,742 samples: main eb2bfcc with the
+    diagnosis 20.5 s CPU = 29.4 x the reference (0.7 s), without 4.3 s = 6.2 x; identfit34 (the pure-delay baseline's
+    shifts ranked by FFT) 9.6 s = 11.4 x and 4.8 s = 5.7 x (reference 0.8 s); the same poles (33 Hz, 0.4468,
+    1.172 Hz) and RMS (0.3505 um) in both."""
+    out = subprocess.run([sys.executable, __file__, "--speed-child", str(samples)], capture_output=True, text=True,
+                         check=True).stdout
+    r = json.loads(out.strip().splitlines()[-1])
+    ref = r["reference"]["cpu_s"]
+    print(f"{r['samples']} samples at 125 us; reference (equation error alone) {ref:.1f} s CPU "
+          f"({r['reference']['wall_s']:.1f} s wall)")
+    for name in ("fit", "diagnosis"):
+        v = r[name]
+        print(f"identify {'with' if name == 'diagnosis' else 'without'} diagnosis: {v['cpu_s']:.1f} s CPU = "
+              f"{v['cpu_s'] / ref:.2f} x the reference ({v['wall_s']:.1f} s wall); poles omega_n "
+              f"{v['poles']['omega_n_hz']:.4g} Hz, zeta {v['poles']['zeta']:.4g}, p {v['poles']['p_hz']:.4g} Hz, "
+              f"rms {v['rms_um']:.4g} um")
+    print(f"python-control imported by identify: {'yes' if r['control_imported'] else 'no'}")
+
+
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--memory-child"]:
         memory_child(int(sys.argv[2]), sys.argv[3] == "1")
+    elif sys.argv[1:2] == ["--speed-child"]:
+        speed_child(int(sys.argv[2]))
+    elif sys.argv[1:2] == ["--speed"]:
+        speed(int(sys.argv[2]) if len(sys.argv) > 2 else 200_000)
     elif sys.argv[1:2] == ["--memory"]:
         memory(int(sys.argv[2]) if len(sys.argv) > 2 else 1_000_000)
     else:

@@ -660,14 +660,17 @@ def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) ->
     return out
 
 
-def run_case(source: str, seed: int) -> list[tuple[str, str, float, list[str]]]:
+def run_case(source: str, seed: int, sample_time: float | None = None) -> list[tuple[str, str, float, list[str]]]:
     """Both profiles of the program of ``source`` and ``seed``: (outcome, profile, sample time, failures) each;
-    outcome ``ok``, ``fail``, ``refused`` (the reader's GCodeError), ``too_long`` or ``crash``."""
+    outcome ``ok``, ``fail``, ``refused`` (the reader's GCodeError), ``too_long`` or ``crash``. ``sample_time``
+    [s]: instead of the seed's own (the program and the limits stay the seed's)."""
     text, context = program_of(source, seed)
     rng = random.Random(f"limits:{source}:{seed}")
     Ts = 10 ** rng.uniform(math.log10(2.5e-4), math.log10(4e-3))
     if source == "rotary_cam" and seed >= ROTARY_EDGE_TS_SEED:
         Ts = random.Random(f"ts:{seed}").choice((Ts, Ts, 2.5e-4, 4e-3))  # the range's ends, as often as the rest
+    if sample_time is not None:
+        Ts = sample_time
     try:
         program = parse_program(text, source=f"{source}-{seed}", context=context)
     except GCodeError as e:
@@ -696,12 +699,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=0, help="first seed")
     ap.add_argument("--sources", default=",".join(SOURCES), help="comma-separated: " + ", ".join(SOURCES))
     ap.add_argument("--list", action="store_true", help="name every failing case")
+    ap.add_argument("--sample-time", type=float, help="sample time [s] of every case (default: each seed's own)")
     args = ap.parse_args(argv)
     table: dict[str, collections.Counter] = {}
     for source in args.sources.split(","):
         counts = table.setdefault(source, collections.Counter())
         for seed in range(args.seed, args.seed + args.count):
-            for outcome, profile, Ts, fails in run_case(source, seed):
+            for outcome, profile, Ts, fails in run_case(source, seed, args.sample_time):
                 counts[outcome] += 1
                 for f in fails if outcome in ("fail", "crash") else ():
                     counts[f.split(":")[0]] += 1

@@ -70,7 +70,7 @@ def notch_ratio(reference: np.ndarray, measured: np.ndarray, sample_time: float,
     if not power > 0.0:
         return math.nan
     H = np.sum(X * R.conj()) / power
-    G = ReducedAxisModel(parameters=dict(parameters), sample_time=T).G_track(2j * np.pi * f)
+    G = ReducedAxisModel(parameters=dict(parameters), sample_time=T).tracking_response(2j * np.pi * f)
     return float(abs(H) / abs(complex(G)))
 
 

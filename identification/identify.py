@@ -39,6 +39,7 @@ from identification.ga import GAOptions
 from identification.initial_state import centred_statistics, fit_initial_state, starts_in_motion
 from identification.loop_frame import loop_frame, starts_at_rest, without_offset
 from identification.output_error import refine_output_error
+from identification.pair_starts import pair_starts
 from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, SufficientStatistics, iter_regressor
 from identification.segments import settled_start
@@ -174,6 +175,8 @@ def fit_reduced_model(
         params, poles, err, b, widened = _widen_refined(params, poles, err, xr, x, T, b, fit)
     if bounds is None and label.endswith("+oe") and "initial_state" not in fit:
         params, poles, err = _pair_below_nyquist(stats, params, poles, err, xr, x, T, b, fit)
+        if not fit["offset"]["applied"]:
+            params, poles, err = pair_starts(stats, params, poles, err, xr, x, T, b, fit)
     if widened is not None and label.endswith("+oe") and not fit["offset"]["applied"] and "initial_state" not in fit:
         params, poles, err = _offset_for_slow_pole(narrow, xr, x, T, b, params, poles, err, fit)
     if delay_s and delay_fit["estimated"] and label.endswith("+oe"):

@@ -34,7 +34,7 @@ from interpolators.kinematics import (
 )
 from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS, DEFAULT_SECONDARY_LIMITS, AxisLimits
 from interpolators.lookahead import DEFAULT_TOLERANCE, JUNCTION_SHARE, CornerBlends, blend_corners, junction_speeds
-from interpolators.profiles import PROFILES, phase_states, reach_many, scurve_phases, trapezoid_phases
+from interpolators.profiles import PROFILES, phase_clock, phase_states, reach_many, scurve_phases, trapezoid_phases
 from interpolators.program import Program
 from toolpaths.geometry import AXIS_LETTERS, Arc, Line, Path, SplineCurve, piece_of, rows_by_owner
 from toolpaths.packed import HOLD, PackedSegments
@@ -164,10 +164,12 @@ def _chains(program: Program) -> list[_Chain]:
             continue
         seg = b.segment
         if b.extra_start is not None and (np.any(b.extra_delta != 0) or _joins_extra(cur, b)):
-            if (cur is not None and not cur.extra and np.any(b.extra_delta != 0) and not any(cur.rapid)
-                    and b.kind != "rapid" and seg is not None and seg.length > 0):
-                cur.extra = True  # a G64 chain of feed moves with these axes still, into a feed move of X, Y, Z
-                # that moves them too (it joins: _extra_block); a rapid or a move of these axes alone starts its own
+            if (cur is not None and not cur.extra and np.any(b.extra_delta != 0) and b.kind != "rapid"
+                    and seg is not None and seg.length > 0):
+                cur = _feeds_after_rapid(chains, cur)
+                if cur is not None:  # a G64 chain of feed moves with these axes still, into a feed move of X, Y, Z
+                    cur.extra = True  # that moves them too (it joins: _extra_block); a rapid or a move of these
+                    # axes alone starts its own
             cur = _extra_block(chains, items, cur, i, b, program.blocks)
             continue
         if seg is None or seg.length <= 0:
@@ -179,6 +181,28 @@ def _chains(program: Program) -> list[_Chain]:
         if b.exact_stop:
             cur = None
     return chains
+
+
+def _feeds_after_rapid(chains: list[_Chain], cur: _Chain) -> _Chain | None:
+    """The chain of the feed moves of ``cur`` (the last of ``chains``) after its last rapid, split off it as a chain
+    of its own (the last of ``chains``), for a feed move that moves the axes beyond X, Y, Z to join; ``cur`` itself
+    without a rapid; None where ``cur`` ends in a rapid (the feed move starts a chain of its own). A chain that
+    moves those axes takes no rapid beside a feed move (:func:`_extra_block`), so before session 34 a feed move
+    starting A after ``G0 .. G1 ..`` (an approach, a plunge, the contour's first lines) stopped where A started,
+    whatever its rate step, and only such a junction inside the chain passed at speed (a ramp of A,
+    :func:`_ramped_extra`, or its blend). The junction of the rapid and the first feed move is now a stop instead:
+    the feed move's speed is its bound there, and the rapid decelerates to it either way."""
+    rapid = cur.rapid
+    if not any(rapid):
+        return cur
+    last = len(rapid) - 1 - rapid[::-1].index(True)
+    if last == len(rapid) - 1:
+        return None
+    tail = _Chain(cur.items)
+    tail.lo, tail.hi = cur.lo + last + 1, cur.hi
+    cur.hi = tail.lo
+    chains.append(tail)
+    return tail
 
 
 def _joins_extra(cur: _Chain | None, b) -> bool:
@@ -1321,7 +1345,6 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     _check_samples(total_N, Ts, program, max_samples)
     lam = np.where(chain_T > 0, chain_T / (chain_N * Ts), 1.0)
     chain_n0 = np.concatenate([[0], np.cumsum(chain_N)[:-1]]).astype(np.int64) if n_chains else np.zeros(0, np.int64)
-    chain_t0 = chain_n0 * Ts
 
     # phase table: one row per phase of positive duration
     ph_seg = np.concatenate([np.repeat(mi, n_ph), hold])
@@ -1333,26 +1356,18 @@ def _phases(g: _Geom, c: _Chains, v0: np.ndarray, v1: np.ndarray, v_max: np.ndar
     ph_j = np.concatenate([pj.reshape(-1), np.zeros(len(hold))]) * lam_ph**3
     order = np.argsort(ph_seg, kind="stable")
     ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j = (x[order] for x in (ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j))
-    # start time of each phase inside its chain
-    ph_chain = seg_chain_a[ph_seg]
-    csum = np.cumsum(ph_dur)
-    chain_first_ph = np.searchsorted(ph_chain, np.arange(n_chains))
-    excl = csum - ph_dur
-    base = excl[chain_first_ph] if n_chains else np.zeros(0)
-    ph_rel = excl - base[ph_chain]
-    ph_start = chain_t0[ph_chain] + ph_rel
-    # each phase's start as a whole sample and a fraction of one after it, for the time into the phase
-    whole = np.floor(ph_rel / Ts)
-    ph_n0 = chain_n0[ph_chain] + whole.astype(np.int64)
-    ph_rel = ph_rel - whole * Ts
+    # each phase's start as a whole sample and a fraction of one after it, counted from its chain's first sample
+    ph_n0, ph_rel = phase_clock(seg_chain_a[ph_seg], ph_dur, chain_n0, Ts)
     # the last phase of a segment ends exactly at the segment end (no rounding residue)
     last_of_seg = np.ones(len(ph_seg), dtype=bool)
     last_of_seg[:-1] = ph_seg[1:] != ph_seg[:-1]
     keep = (ph_dur > 0) | last_of_seg
-    ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, ph_rel, ph_n0, last_of_seg = (
-        x[keep] for x in (ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_start, ph_rel, ph_n0, last_of_seg)
+    ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_rel, ph_n0, last_of_seg = (
+        x[keep] for x in (ph_seg, ph_dur, ph_p, ph_v, ph_a, ph_j, ph_rel, ph_n0, last_of_seg)
     )
-    return {"seg": ph_seg, "dur": ph_dur, "p": ph_p, "v": ph_v, "a": ph_a, "j": ph_j, "start": ph_start,
+    # the first sample at or after each phase's start
+    ph_first = ph_n0 + (ph_rel > 0)
+    return {"seg": ph_seg, "dur": ph_dur, "p": ph_p, "v": ph_v, "a": ph_a, "j": ph_j, "first": ph_first,
             "rel": ph_rel, "n0": ph_n0, "last": last_of_seg}, total_N
 
 
@@ -1403,10 +1418,10 @@ def _sample_chunk(g: _Geom, ph: dict[str, np.ndarray], phase_end: np.ndarray, se
     its start (less the fraction of a sample it starts after that one), not from the program's start: minutes
     into a program, that time's rounding (1e-13 s at 300 s) times the speed moved the samples by 1e-10 mm, a
     1e-4 excess of jerk by finite differences on a 1 m/s rapid at Ts = 0.35 ms (setpoint fuzzer tnc seed 31017)."""
-    ph_seg, ph_start = ph["seg"], ph["start"]
-    k = np.searchsorted(ph_start, t, side="right") - 1
-    np.clip(k, 0, len(ph_start) - 1, out=k)
-    t_phase = (np.arange(lo, lo + len(t)) - ph["n0"][k]) * Ts
+    ph_seg, sample = ph["seg"], np.arange(lo, lo + len(t))
+    k = np.searchsorted(ph["first"], sample, side="right") - 1
+    np.clip(k, 0, len(ph_seg) - 1, out=k)
+    t_phase = (sample - ph["n0"][k]) * Ts
     s, v, a = phase_states(t_phase, k, ph["rel"], ph["dur"], ph["p"], ph["v"], ph["a"], ph["j"], phase_end)
     seg = ph_seg[k]
     if last:

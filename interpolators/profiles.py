@@ -25,6 +25,7 @@ __all__ = [
     "reach_many",
     "reach_passes",
     "phase_states",
+    "phase_clock",
     "trapezoid_duration",
 ]
 
@@ -237,6 +238,62 @@ def phase_states(t: np.ndarray, phase: np.ndarray, start: np.ndarray, duration: 
     _phase_states(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(phase, dtype=np.int64), start, duration,
                   p0, v0, a0, jerk, end_at, s, v, a)
     return s, v, a
+
+
+@numba.njit(cache=True, nogil=True)
+def _phase_clock(chain, duration, chain_n0, Ts, n0, rel):  # pragma: no cover - compiled
+    whole, frac, current = 0, 0.0, -1
+    for i in range(chain.shape[0]):
+        if chain[i] != current:  # a chain starts on its own whole sample
+            current, whole, frac = chain[i], chain_n0[chain[i]], 0.0
+        n0[i] = whole
+        rel[i] = frac
+        frac += duration[i]
+        w = math.floor(frac / Ts)
+        whole += w
+        frac -= w * Ts
+        if frac >= Ts:  # the floor's own rounding
+            frac -= Ts
+            whole += 1
+        elif frac < 0.0:
+            frac += Ts
+            whole -= 1
+
+
+def phase_clock(chain: np.ndarray, duration: np.ndarray, chain_n0: np.ndarray, Ts: float
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """The start of each phase as a whole sample and a fraction of a sample after it, counted phase by phase.
+
+    Parameters
+    ----------
+    chain : ndarray of int, shape (n,)
+        The chain of each phase; the phases of a chain are consecutive, in time order.
+    duration : ndarray, shape (n,)
+        Phase durations [s].
+    chain_n0 : ndarray of int
+        The sample each chain starts on.
+    Ts : float
+        Sample time [s].
+
+    Returns
+    -------
+    n0, rel : ndarray, shape (n,)
+        Phase ``i`` starts ``rel[i]`` (``0 <= rel < Ts``) [s] after sample ``n0[i]``.
+
+    Notes
+    -----
+    Each start is the one before plus that phase's duration, carried in whole samples (integers) and a fraction
+    below ``Ts``: the rounding of a start is that of ``rel + duration`` (at most an ulp of the phase's own duration
+    plus ``Ts``), whatever the time into the program or the chain. A sum of the durations from the program's start
+    rounded each start by an ulp of the time into the program: 534 s into corpus program 0284 at Ts = 0.25 ms a
+    phase started 5e-14 s off the end of the one before, 1.7e-11 deg of B at 360 deg/s, and the jerk by finite
+    differences read 36002.4 for 36000 deg/s^3.
+    """
+    n = len(duration)
+    n0, rel = np.empty(n, dtype=np.int64), np.empty(n)
+    _phase_clock(np.ascontiguousarray(chain, dtype=np.int64), np.ascontiguousarray(duration, dtype=float),
+                 np.ascontiguousarray(chain_n0, dtype=np.int64), float(Ts), n0, rel)
+    return n0, rel
 
 
 class _Ruckig:

@@ -150,3 +150,27 @@ def test_compare_runs_the_model_on_the_delayed_reference():
     assert exact.to_dict()["prediction_error_pct"] == {"max": 0.0, "rms": 0.0}
     assert np.max(np.abs(delayed.predicted["identified"].error - exact.predicted["identified"].error)) > 1e-3
     assert all("reference dead time 0.01 s" in text for text in delayed.models["identified"].values())
+
+
+def test_pure_delay_baseline_ranks_many_shifts_by_fft_and_sums_the_best_exactly():
+    """A hand-made record at 125 us (8000 shifts tried) whose measured position is the reference 400 samples late
+    plus a small ripple: the fast path (:data:`identification.dead_time.BASELINE_CANDIDATES` shifts ranked by the
+    Fourier transform) returns what summing every shift returns, to the last bit, with and without a mask."""
+    import numpy as np
+
+    import identification.dead_time as dt
+
+    T = 125e-6
+    t = np.arange(60_000) * T
+    xr = 10.0 * np.sin(2 * np.pi * 0.7 * t) + 3.0 * np.sin(2 * np.pi * 2.3 * t)
+    x = dt.delay_reference(xr, 400.0) + 1e-4 * np.sin(2 * np.pi * 31.0 * t)
+    mask = (np.arange(t.size) // 997) % 3 != 0
+    for m in (None, mask):
+        fast = dt.pure_delay_baseline(xr, x, T, mask=m)
+        every = dt.BASELINE_EXACT_SHIFTS
+        try:
+            dt.BASELINE_EXACT_SHIFTS = 10**9
+            slow = dt.pure_delay_baseline(xr, x, T, mask=m)
+        finally:
+            dt.BASELINE_EXACT_SHIFTS = every
+        assert fast == slow and fast["pure_delay_samples"] == 400

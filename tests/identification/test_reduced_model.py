@@ -155,3 +155,17 @@ def test_bad_reference_rejected():
         simulate(FADAL_PID_X, np.array([0.0, np.nan, 1.0]), T)
     with pytest.raises(InputError, match="a3"):
         simulate(dict(FADAL_PID_X, a3=0.0), np.zeros(3), T)
+
+
+def test_tracking_response_is_g_track_without_python_control():
+    """``tracking_response`` evaluates G_track as python-control does, to the last bit (the thesis' PID x axis of
+    Table 3.4, ``FADAL_PID_X``), so that the setpoint filter's signature need not import python-control."""
+    import numpy as np
+
+    from identification.reduced_model import ReducedAxisModel
+    from identification.synthetic import FADAL_PID_X
+
+    m = ReducedAxisModel(parameters=FADAL_PID_X, sample_time=1e-3)
+    for f in (0.3, 7.8, 37.0, 125.0, 499.0):
+        s = 2j * np.pi * f
+        assert complex(m.tracking_response(s)) == complex(m.G_track(s))

@@ -682,3 +682,34 @@ def test_kinks_beside_a_small_full_circle_with_a_are_blended_along_the_arc(turn)
     assert distance_to_path(sp) <= 0.01
     assert _a_off_path(sp, prog) <= 0.9 * 0.01 + 1e-6
     assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)
+
+
+def _a_start_after_an_approach() -> list[str]:
+    """A rapid approach, a line along -Y, then a G3 half circle of R5 tangent to it turning A 20 deg (1.27 deg/mm),
+    then a line along +Y tangent to the arc's end with A still, at F1200 under G64 P0.5 (0.45 deg on A)."""
+    return ["G21 G90 G17 G64 P0.5", "G0 X10 Y10 Z0 A0", "F1200", "G1 Y0", "G3 X20 Y0 I5 J0 A20", "G1 Y10"]
+
+
+def _speed_at(sp, point: tuple[float, float]) -> float:
+    """The X/Y path speed of the sample nearest ``point`` [mm/s]."""
+    near = int(np.argmin(np.linalg.norm(sp.position[:, :2] - np.asarray(point), axis=1)))
+    return float(np.linalg.norm(sp.velocity[near, :2]))
+
+
+@pytest.mark.parametrize("Ts", [1e-3, 2.5e-4])
+def test_a_starting_on_an_arc_after_an_approach_passes_at_speed(Ts):
+    """S-curve. Where A starts (line/arc at X10 Y0): the line after the rapid belonged to the rapid's chain, and a
+    chain with a rapid took no feed move of A: a stop, 0 mm/s; now the feed moves after the rapid start the chain of
+    A (:func:`interpolators.interpolate._feeds_after_rapid`) and the junction passes at the rule of its curvature and
+    rate steps, 15.5 mm/s at 1 ms, 7.9 mm/s at 0.25 ms (20 mm/s without A; the kink blend that would carry both
+    leaves A beyond 0.9 P), as the junction where A stops (arc/line at X20 Y0) did before. 2.069 / 2.097 s ->
+    2.029 / 2.084 s (2.009 s without A)."""
+    prog = _program(_a_start_after_an_approach())
+    sp = interpolate(prog, profile="scurve", sample_time=Ts)
+    assert _speed_at(sp, (10.0, 0.0)) >= 7.5
+    assert _speed_at(sp, (10.0, 0.0)) == pytest.approx(_speed_at(sp, (20.0, 0.0)), rel=0.02)
+    assert sp.duration <= {1e-3: 2.03, 2.5e-4: 2.085}[Ts]
+    check_limits(sp, prog, LIMITS, jerk=True)
+    assert distance_to_path(sp) <= 0.5
+    assert _a_off_path(sp, prog) <= 0.9 * 0.5 + 1e-6
+    assert np.allclose(sp.position[-1], _end(prog, sp.axes), rtol=0, atol=1e-12)

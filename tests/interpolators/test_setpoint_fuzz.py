@@ -10,7 +10,8 @@ import pytest
 from benchmarks.setpoint_fuzz import cam_program, check_setpoints, junction_tolerances, rotary_cam_program, run_case
 from interpolators import AxisLimits, interpolate, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
-from tests.interpolators.setpoint_checks import xyz
+from interpolators.limits import DEFAULT_LIMITS, DEFAULT_ROTARY_LIMITS
+from tests.interpolators.setpoint_checks import check_limits, xyz
 from toolpaths.geometry import SplineCurve
 
 #: Seeds run per source: CAM-like code is quick; of the readers' generators, one program each that runs in seconds
@@ -156,6 +157,24 @@ def test_a_rapid_minutes_into_a_program_keeps_its_jerk_by_finite_differences():
     assert np.abs(fd - column[1:-1])[phase].max() < 0.02
     assert np.abs(fd).max() <= 50000.0
     assert sp.position[-1, 0] == 1700.0
+
+
+def test_phases_minutes_into_a_program_start_where_the_phase_before_ends():
+    # B rapids 0 <-> 90 deg at 360 deg/s (default rotary limits, jerk 36000 deg/s^3), S-curve, Ts = 0.25 ms, after a
+    # dwell of 0.3 s or 250.3 s (both whole samples): the motion after the dwell is the same to the bit, and within
+    # every limit by finite differences. Each phase's start was a sum of the durations from the program's start,
+    # rounded by an ulp of that time: after 250 s a phase started 3e-14 s off the end of the one before and B's jerk
+    # by finite differences read 1.0000095 x its limit, 0.3 deg/s^3 beyond check_limits' allowance (found: corpus
+    # program 0284 at 534 s, 36002.4 for 36000 deg/s^3; setpoint fuzzer rotary_cam seed 43378, C 1.000018 x)
+    moves = "".join(f"G0 B{90 if i % 2 == 0 else 0}\nG1 X{i % 2 * 5} F600\n" for i in range(8))
+    runs = []
+    for dwell in (0.3, 250.3):
+        prog = parse_program(f"G21 G90 G94\nG0 B0\nG4 P{dwell}\n{moves}M2\n", context=INTERPOLATION_CONTEXT)
+        sp = interpolate(prog, sample_time=0.00025, profile="scurve")
+        check_limits(sp, prog, DEFAULT_LIMITS | DEFAULT_ROTARY_LIMITS, jerk=True)
+        runs.append(sp.position[round((dwell + 0.1) / 0.00025):])
+    assert len(runs[0]) == len(runs[1]) > 30000
+    assert np.array_equal(runs[0], runs[1])
 
 
 def test_scurve_kink_blend_keeps_the_slower_feed_of_the_block_after_it():

@@ -163,6 +163,24 @@ def pair_restart_line(model) -> str | None:
             "predictions do: the record pins the prediction better than the poles")
 
 
+def pair_pinned_line(model) -> str | None:
+    """What to say when refinements started across the pair's frequency ended at distinct poles that predict the
+    record nearly equally (``fit['output_error']['pair_starts']``, :mod:`identification.pair_starts`): the record
+    does not pin the poles, and those printed are one of several sets. None otherwise."""
+    rec = model.fit.get("output_error", {}).get("pair_starts")
+    if not rec or rec["pinned"]:
+        return None
+    from identification.pair_starts import TIED_RMS
+
+    u = axis_unit(model.axis, small=True)
+    tied = rec["tied"]
+    return (f"poles not pinned by this record: refined from {len(rec['fits'])} starts across the pair's frequency, "
+            f"fits with omega_n {tied['omega_n_hz'][0]:.3g}-{tied['omega_n_hz'][1]:.3g} Hz, zeta "
+            f"{tied['zeta'][0]:.2f}-{tied['zeta'][1]:.2f}, p {tied['p_hz'][0]:.3g}-{tied['p_hz'][1]:.3g} Hz predict "
+            f"within {TIED_RMS - 1:.0%} of the best ({rec['fits'][rec['kept']][3]:.4g} {u} RMS); the poles above are "
+            "the best of them, not a measurement of the loop's: trust the prediction, not the poles")
+
+
 def closed_loop_poles_line(model) -> str:
     """The three closed-loop poles as the loop has them (thesis Tables 3.3-3.5), beside omega_n, zeta and p: with
     zeta > 1 the pair is two real poles, and the same three real poles can be written with either as p (a TNCscope
@@ -471,6 +489,8 @@ def run(args: argparse.Namespace) -> int:
         out.write(weak_poles_line(model) + "\n")
     if restart := pair_restart_line(model):
         out.write(restart + "\n")
+    if unpinned := pair_pinned_line(model):
+        out.write(unpinned + "\n")
     if "excitation" in fit:
         out.write(excitation_line(model) + "\n")
     if model.validation:
