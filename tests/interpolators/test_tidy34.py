@@ -1,6 +1,7 @@
 """Places of the readers that share one home after tidy34, pinned by hand-written programs: the end of a TNC
 cycle's run at a hole (out to the set-up clearance Q200, then to the 2nd set-up clearance Q204 when it is higher:
-:func:`interpolators.heidenhain_cycles.to_second_clearance`)."""
+:func:`interpolators.heidenhain_cycles.to_second_clearance`); the ISO codes that read a P, LinuxCNC's drilling
+cycles among them (:data:`interpolators.iso.LINUXCNC_CYCLE_WORDS`)."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ from interpolators.context import MachineContext
 from interpolators.parse import parse_program
 
 CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)})
+LINUXCNC = MachineContext().with_dialect("linuxcnc")
 TOOL = "TOOL DEF 2 L+0 R+2\nTOOL CALL 2 Z S500\nL X+10 Y+20 Z+50 R0 FMAX\n"
 
 #: One definition of each cycle whose run ends at the clearances, written from the TNC 640 cycle programming
@@ -59,3 +61,28 @@ def test_a_cycle_ends_at_the_set_up_clearance_then_at_the_higher_2nd_one(name, s
 def test_a_2nd_set_up_clearance_not_above_the_set_up_clearance_adds_no_move(name, second):
     tail = _tail(CYCLES[name], surface=0.0, second=second)
     assert [z for _, z in tail] == pytest.approx([2.0])
+
+
+# LinuxCNC's drilling cycles that read P (interpolators.iso.LINUXCNC_CYCLE_WORDS) are among the codes that own a
+# block's P, so a G8 beside them is LinuxCNC's lathe radius mode, not Fanuc's G08 P1 look-ahead (rs274ngc
+# interp_check.cc check_other_codes: "P word with no G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ...")
+@pytest.mark.parametrize(("spindle", "cycle", "kinds"), [
+    ("M3", "G82", ["line", "dwell", "rapid"]), ("M3", "G84", ["line", "dwell", "line"]),
+    ("M4", "G74", ["line", "dwell", "line"]), ("M3", "G89", ["line", "dwell", "line"]),
+])
+def test_g8_beside_a_drilling_cycle_that_reads_p_is_the_lathe_radius_mode(spindle, cycle, kinds):
+    from interpolators.iso import LINUXCNC_CYCLE_WORDS
+
+    assert int(cycle[1:]) * 10 in LINUXCNC_CYCLE_WORDS["P"]
+    text = f"G21 G90 G17 G0 Z5\n{spindle} S500\nG8 {cycle} X1 Y1 Z-1 R1 P0.5 F100\nG80\nM2\n"
+    prog = parse_program(text, context=LINUXCNC)
+    assert [b.kind for b in prog.blocks][-3:] == kinds
+    assert any(n.startswith("G8 lathe radius mode") for n in prog.notes)
+
+
+def test_g8_beside_a_drilling_cycle_that_reads_no_p_is_named_as_fanucs_look_ahead():
+    from vcnc.errors import GCodeError
+
+    with pytest.raises(GCodeError, match=r":3:1: G8 lathe radius mode: not supported \(G08 P1 / P0 with a P is "):
+        parse_program("G21 G90 G17 G0 Z5\nM3 S500\nG8 G81 X1 Y1 Z-1 R1 P0.5 F100\nG80\nM2\n", context=LINUXCNC)
+
