@@ -1,7 +1,7 @@
 """Places of the readers that share one home after tidy34, pinned by hand-written programs: the end of a TNC
 cycle's run at a hole (out to the set-up clearance Q200, then to the 2nd set-up clearance Q204 when it is higher:
 :func:`interpolators.heidenhain_cycles.to_second_clearance`); the ISO codes that read a P, LinuxCNC's drilling
-cycles among them (:data:`interpolators.iso.LINUXCNC_CYCLE_WORDS`)."""
+cycles among them (:data:`interpolators.iso.LINUXCNC_CYCLE_WORDS`); cycle 22's rest machining naming its tools."""
 
 from __future__ import annotations
 
@@ -86,3 +86,23 @@ def test_g8_beside_a_drilling_cycle_that_reads_no_p_is_named_as_fanucs_look_ahea
     with pytest.raises(GCodeError, match=r":3:1: G8 lathe radius mode: not supported \(G08 P1 / P0 with a P is "):
         parse_program("G21 G90 G17 G0 Z5\nM3 S500\nG8 G81 X1 Y1 Z-1 R1 P0.5 F100\nG80\nM2\n", context=LINUXCNC)
 
+
+# cycle 22 ROUGH-OUT with Q18 (TNC 426/430 user's manual, "ROUGH-OUT (Cycle 22)": Q18 the coarse roughing tool,
+# 0: none): the tool of the TOOL CALL before the cycle call machines what Q18's tool left, so Q18's tool must be
+# the larger one; the error names both
+ROUGH_22 = ("0 BEGIN PGM T MM\n1 TOOL DEF 2 L+0 R+1\n2 TOOL CALL 1 Z S1000\n3 L Z+100 R0 FMAX\n"
+            "4 CYCL DEF 14.0 CONTOUR\n5 CYCL DEF 14.1 CONTOUR LABEL 1\n"
+            "6 CYCL DEF 20 CONTOUR DATA Q1=-10 Q2=+1 Q3=+0.5 Q4=+0.5 Q5=+0 Q6=+2 Q7=+50 Q8=+0 Q9=+1\n"
+            "7 CYCL DEF 22 ROUGH-OUT Q10=-5 Q11=100 Q12=350 Q18={q18} Q19=150\n8 CYCL CALL\n9 M30\n10 LBL 1\n"
+            "11 L X+0 Y+0 RL\n12 L X+40 Y+0\n13 L X+40 Y+30\n14 L X+0 Y+30\n15 L X+0 Y+0\n16 LBL 0\nEND PGM T MM\n")
+
+
+@pytest.mark.parametrize("q18", [2, 7])  # tool 2: R 1 mm, smaller than tool 1; tool 7: in no TOOL DEF or table
+def test_rest_machining_22_names_the_tool_called_for_it_when_q18_is_no_larger(q18):
+    from interpolators.context import Tool
+    from vcnc.errors import GCodeError
+
+    ctx = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
+    with pytest.raises(GCodeError, match=rf":9:3: cycle 22: the coarse roughing tool Q18 = {q18} has no radius "
+                                         r"larger than that of tool 1 \(3 mm\), the rest-machining tool"):
+        parse_program(ROUGH_22.format(q18=q18), context=ctx)
