@@ -27,7 +27,6 @@ from interpolators.heidenhain_cycles import (
 from interpolators.heidenhain_paths import helical_arc
 from interpolators.heidenhain_surfaces import RuledSurface, SurfaceCycle, ruled_surface_moves, surface_moves
 from interpolators.heidenhain_targets import program_target
-from interpolators.heidenhain_transforms import TransformError
 from interpolators.heidenhain_words import SourceBlock
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
@@ -668,11 +667,7 @@ def _pitch_circle_move(m: Machine, pat: PatternCycle, target: np.ndarray, where:
     """Cycle 220 Q365 = 1: from the tool's position along the pitch circle by ``pat.step`` to ``target``
     (the next position, at the tool's height), at rapid traverse (see :func:`pattern_cycle_run`)."""
     axis, p, q = m.plane, *PLANE_AXES[m.plane]
-    try:
-        m.transform.length(axis)
-    except TransformError as e:
-        where.fail(f"cycle 220 Q365=1 (arcs on the pitch circle) under {e.message}", column=blk.column,
-                   text=blk.code, expected=e.expected)
+    m.lengths(where, blk, what="cycle 220 Q365=1 (arcs on the pitch circle)")
     centre, _ = program_target(m, {"XYZ"[p]: pat.centre[0], "XYZ"[q]: pat.centre[1]}, m.pos)
     centre[axis] = m.pos[axis]
     if not np.array_equal(target, m.pos):

@@ -106,3 +106,20 @@ def test_rest_machining_22_names_the_tool_called_for_it_when_q18_is_no_larger(q1
     with pytest.raises(GCodeError, match=rf":9:3: cycle 22: the coarse roughing tool Q18 = {q18} has no radius "
                                          r"larger than that of tool 1 \(3 mm\), the rest-machining tool"):
         parse_program(ROUGH_22.format(q18=q18), context=ctx)
+
+
+def test_cycle_220_q365_1_under_axis_specific_scaling_names_the_pattern_block():
+    # Machine.lengths with the pattern's block: the error stands at cycle 220's definition (block 6 on line 7, after its
+    # block number), names what needs the plane's one factor and what cycle 26 did
+    from vcnc.errors import GCodeError
+
+    text = ("0 BEGIN PGM T MM\n1 TOOL DEF 1 L+0 R+2\n2 TOOL CALL 1 Z S1000\n3 CYCL DEF 26.0 AXIS-SPECIFIC SCALING\n"
+            "4 CYCL DEF 26.1 X1.5 Y1\n5 CYCL DEF 200 DRILLING Q200=2 Q201=-5 Q206=150 Q202=5 Q210=0 Q203=+0 Q204=10 "
+            "Q211=0\n6 CYCL DEF 220 POLAR PATTERN Q216=+50 Q217=+50 Q244=80 Q245=+0 Q246=+360 Q247=+0 Q241=4 "
+            "Q200=2 Q203=+0 Q204=10 Q301=0 Q365=1\n7 END PGM T MM\n")
+    with pytest.raises(GCodeError) as err:
+        parse_program(text, context=CTX)
+    assert str(err.value).startswith(
+        "<input>:7:3: cycle 220 Q365=1 (arcs on the pitch circle) under axis-specific scaling 1.5 and 1 in the working "
+        "plane distorts arcs (got 'CYCL DEF 220 POLAR PATTERN")
+    assert str(err.value).endswith("expected the same factor for both axes of the working plane (cycle 26)")
