@@ -96,6 +96,7 @@ __all__ = [
     "diagnose_report",
     "refit",
     "stribeck_static_ratios",
+    "no_stribeck_curve",
     "before_after_rows",
     "format_before_after",
     "samples_note",
@@ -890,7 +891,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
         if ok and c.effect.NAME == "friction_stribeck":
             ratios = stribeck_static_ratios(j.model)
             record["stribeck_static_ratios"] = list(ratios)
-            ok = min(ratios) >= _MIN_STATIC_RATIO
+            ok = no_stribeck_curve(ratios) is None
         if ok and c.effect.KIND == "element":
             # the element must beat its own null (the sampled split form without it), refitted
             null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
@@ -936,10 +937,7 @@ def _unphysical(model: AugmentedAxisModel, name: str, data: Data) -> str | None:
     if name == "resonance":
         return _unphysical_mode(e, data.T)
     if name == "friction_stribeck":
-        ratios = stribeck_static_ratios(model)
-        if min(ratios) < _MIN_STATIC_RATIO:
-            return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below "
-                    f"{_MIN_STATIC_RATIO}: no Stribeck curve")
+        return no_stribeck_curve(stribeck_static_ratios(model))
     return None
 
 
@@ -1069,6 +1067,15 @@ def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
         return math.inf if excess * resisting >= 0 else -math.inf
 
     return ratio(p["d0"], st.excess_positive, 1.0), ratio(p["d1"], st.excess_negative, -1.0)
+
+
+def no_stribeck_curve(ratios: tuple[float, float]) -> str | None:
+    """Why a Stribeck term with static / Coulomb friction ``ratios`` (:func:`stribeck_static_ratios`, moving + and
+    moving -) is no Stribeck curve, or None: either ratio below :data:`_MIN_STATIC_RATIO` (or not a number)."""
+    if min(ratios) >= _MIN_STATIC_RATIO:
+        return None
+    return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below {_MIN_STATIC_RATIO}: "
+            "no Stribeck curve")
 
 
 def _worse_on_the_record(before: ReducedAxisModel, after: AugmentedAxisModel, data: Data,
