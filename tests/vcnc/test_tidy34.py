@@ -53,3 +53,37 @@ def test_a_zip_archive_beside_a_diadem_header_naming_it_stays_a_zip_archive(tmp_
     with pytest.raises(CaptureError) as err:
         read_capture(f)
     assert "a ZIP archive of ['t.r64']" in str(err.value) and "DIAdem" not in str(err.value)
+
+
+# ident_fuzz seed 31 case 42 (tests/identification/test_ident_fuzz_cases.py): ballscrew-zpetc's x, 2 samples of
+# delay and an 84.7 Hz mode of damping 0.074 with 54 % of the mass on the table
+MODE = {"frequency_hz": 84.7, "damping": 0.074, "load_fraction": 0.54}
+
+
+def _zpetc(mode: dict | None, feedback: str = "motor"):
+    import dataclasses
+
+    import vcnc
+
+    m = vcnc.machine("ballscrew-zpetc").with_effect("x", "delay", {"samples": 2})
+    if mode is not None:
+        m = m.with_effect("x", "resonance", mode)
+    return m.with_axis("x", dataclasses.replace(m.axis("x"), feedback=feedback))
+
+
+def test_unstable_axes_sees_the_structural_mode_in_the_loop():
+    assert _zpetc(None).unstable_axes() == {}  # the rigid loop with the delay: |z| = 0.962
+    assert _zpetc(MODE).unstable_axes() == {"x": pytest.approx(1.1248, abs=1e-4)}
+    assert _zpetc({**MODE, "damping": 0.5}).unstable_axes() == {}
+
+
+def test_a_mode_behind_a_linear_scale_rings_the_loop_the_table_share_says_is_unstable():
+    import numpy as np
+
+    import vcnc
+
+    m = _zpetc({**MODE, "damping": 0.5}, feedback="table")  # stable on the motor encoder (above)
+    assert m.unstable_axes() == {"x": pytest.approx(1.0619, abs=1e-4)}
+    cap = m.simulate(vcnc.interpolate(vcnc.parse_program("G21 G90\nG1 X20 F3000\nG4 P1.5\nM2\n"), m), seed=1)
+    assert cap.aux["saturated"][:, 0].mean() > 0.3  # a limit cycle its current limit holds
+    assert np.ptp(cap.measured[-500:, 0]) > 0.1  # still ringing 0.1 mm peak to peak after 1 s at rest
