@@ -51,7 +51,6 @@ import control  # noqa: E402
 
 import toolpaths  # noqa: E402
 import vcnc  # noqa: E402
-from controllers import discrete_closed_loop  # noqa: E402
 from drives.effects import EFFECT_NAMES  # noqa: E402
 from identification import identify  # noqa: E402
 from vcnc.core.errors import IdentificationError, MachineError, SimulationError  # noqa: E402
@@ -126,26 +125,6 @@ def _record(case: dict, cap) -> vcnc.Capture:
     return vcnc.Capture(t=t[:n], axes=(case["axis"],), reference=ref[:n, None], measured=meas[:n, None])
 
 
-class _TwoMassDrive:
-    """``drive`` with the case's structural mode in its plant, as the loop closed on the motor sees it.
-
-    The rigid plant x/u times the motor side's share of the two-mass model of :class:`drives.StructuralMode`
-    (motor mass (1 - r) m, table mass r m, spring and damper set by the free-free frequency w and damping z):
-    x_motor / x_rigid = (s^2 / (1 - r) + 2 z w s + w^2) / (s^2 + 2 z w s + w^2) (our reading of its notes; the
-    plant's viscous term stays on the whole mass)."""
-
-    def __init__(self, drive, mode) -> None:
-        self._drive, self._mode = drive, mode
-
-    def __getattr__(self, name):
-        return getattr(self._drive, name)
-
-    def transfer_function(self):
-        w, z, r = self._mode.omega, self._mode.damping, self._mode.load_fraction
-        share = control.tf([1.0 / (1.0 - r), 2 * z * w, w * w], [1.0, 2 * z * w, w * w])
-        return self._drive.transfer_function() * share
-
-
 def unstable_delay(case: dict) -> str | None:
     """Why the case's ``delay`` makes the truth's sampled linear loop unstable, else None.
 
@@ -153,24 +132,22 @@ def unstable_delay(case: dict) -> str | None:
     160 Hz) past the unit circle: the truth then limit-cycles at that frequency, held only by its current
     limit (seed 12 case 70: 31 um at 65.6 Hz, 3 % of the samples saturated, none without the delay). That is
     an unstable machine, not a loop delay a linear model with a delay element can reproduce. A case's
-    ``resonance`` is in the loop checked (:class:`_TwoMassDrive`): seed 31 case 42 (ballscrew-zpetc, 2 samples
-    and an 84.7 Hz mode) limit-cycled at 1.6 mm peak to peak where the rigid loop with the delay alone is stable
-    (|z| = 0.962).
+    ``resonance`` is in the loop checked (:meth:`vcnc.engine.axis.AxisDefinition.sampled_loop`, as
+    :meth:`vcnc.Machine.unstable_axes` checks it): seed 31 case 42 (ballscrew-zpetc, 2 samples and an 84.7 Hz
+    mode) limit-cycled at 1.6 mm peak to peak where the rigid loop with the delay alone is stable (|z| = 0.962).
     """
     if "delay" not in case["effects"]:
         return None
     m = vcnc.machine(case["machine"]).with_effect(case["axis"], "delay", case["effects"]["delay"])
+    if "resonance" in case["effects"]:
+        m = m.with_effect(case["axis"], "resonance", case["effects"]["resonance"])
     a = m.axis(case["axis"])
-    drive = a.drive
-    if "resonance" in case["effects"] and a.feedback == "motor":
-        mode = vcnc.machine(case["machine"]).with_effect(case["axis"], "resonance", case["effects"]["resonance"])
-        drive = _TwoMassDrive(drive, mode.axis(case["axis"]).resonance)
-    g, _ = discrete_closed_loop(a.controller, drive, m.sample_time, delay=a.delay.samples)
+    g, _ = a.sampled_loop(m.sample_time)
     z = control.poles(g)
     k = int(np.argmax(np.abs(z)))
     if abs(z[k]) < 1.0:
         return None
-    mode_note = " and its structural mode" if drive is not a.drive else ""
+    mode_note = " and its structural mode" if a.resonance is not None else ""
     return (f"the sampled loop with a {a.delay.samples}-sample delay{mode_note} is unstable (pole |z| = "
             f"{abs(z[k]):.4f} at {abs(np.angle(z[k])) / (2 * np.pi * m.sample_time):.0f} Hz): a limit cycle its "
             "current limit holds")

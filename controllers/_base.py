@@ -33,10 +33,15 @@ def velocity_estimator(kind: str, sample_time: float) -> control.TransferFunctio
     return control.tf([1.0, -1.0], [ts, 0.0], ts)
 
 
-def plant_zoh(drive: Any, sample_time: float) -> control.TransferFunction:
-    """The drive's rigid plant x/u [mm/V] seen through a zero-order hold at ``sample_time``."""
+def plant_zoh(drive: Any, sample_time: float, *,
+              structure: control.TransferFunction | None = None) -> control.TransferFunction:
+    """The drive's rigid plant x/u [mm/V] seen through a zero-order hold at ``sample_time``; times ``structure``
+    (continuous, [-]: the measured position over the rigid body's, a structural mode's
+    :meth:`drives.StructuralMode.share`) before the hold when given."""
     import control
     tf = drive.transfer_function()
+    if structure is not None:
+        tf = tf * structure
     if tf.isdtime():
         if not math.isclose(tf.dt, sample_time, rel_tol=1e-9):
             raise MachineError(
@@ -187,17 +192,20 @@ def continuous_closed_loop(p: dict[str, float], gain: float) -> tuple[control.Tr
 
 
 def discrete_closed_loop(
-    controller: Controller, drive: Any, sample_time: float, *, delay: int = 0, velocity_input: bool = False
+    controller: Controller, drive: Any, sample_time: float, *, delay: int = 0, velocity_input: bool = False,
+    structure: control.TransferFunction | None = None,
 ) -> tuple[control.TransferFunction, control.TransferFunction]:
     """The sampled loop: controller law, ZOH plant and ``delay`` samples of computation delay.
 
     Returns ``(G_track, G_dist)``: x/r (reference pre-filter included, delayed by the preview so it
     stays causal) and x/d [mm/V] with d an input disturbance [V]. With ``velocity_input`` the
-    feedforward paths are ignored (they need v_r, a_r, not r).
+    feedforward paths are ignored (they need v_r, a_r, not r). ``structure`` multiplies the plant
+    (:func:`plant_zoh`: a structural mode as the feedback sees it); the law is the one the controller
+    builds from the drive's parameters.
     """
     import control
     law = controller.discrete_law(drive, sample_time)
-    p = plant_zoh(drive, sample_time)
+    p = plant_zoh(drive, sample_time, structure=structure)
     if delay:
         p = p * control.tf([1.0], [1.0] + [0.0] * delay, sample_time)
     loop = control.feedback(p, law.c_y)

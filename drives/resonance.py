@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 from drives._record import Record
+
+if TYPE_CHECKING:  # imported where used: python-control loads scipy.signal and matplotlib (seconds)
+    import control
 
 __all__ = ["StructuralMode"]
 
@@ -50,3 +53,27 @@ class StructuralMode(Record):
     def omega(self) -> float:
         """Natural frequency [rad/s]."""
         return 2.0 * math.pi * self.frequency_hz
+
+    def share(self, feedback: str = "motor") -> control.TransferFunction:
+        """The position the loop measures over the rigid body's for the same force, x_fb / x_rigid [-]
+        (continuous): the motor side's for ``feedback="motor"`` (a rotary encoder),
+        ``(s^2 / (1 - r) + 2 zeta omega s + omega^2) / (s^2 + 2 zeta omega s + omega^2)``, with the
+        anti-resonance omega sqrt(1 - r) in its numerator; the table's for ``"table"`` (a linear scale),
+        ``(2 zeta omega s + omega^2) / (s^2 + 2 zeta omega s + omega^2)``.
+
+        Notes
+        -----
+        From the two masses of the class notes, the force on m1 and without viscous damping:
+        ``m1 s^2 x1 = F - (c s + k)(x1 - x2)``, ``m2 s^2 x2 = (c s + k)(x1 - x2)`` and ``x_rigid = F / (m s^2)``.
+        Multiplied into a rigid plant ``x/u``, the plant's viscous term stays on the whole mass (in the
+        simulation it acts on the table mass): our approximation for the sampled loop's stability
+        (:meth:`vcnc.engine.axis.AxisDefinition.sampled_loop`).
+        """
+        import control
+
+        if feedback not in ("motor", "table"):
+            raise ValueError(f"feedback must be 'motor' or 'table' (got {feedback!r})")
+        w, z, r = self.omega, self.damping, self.load_fraction
+        den = [1.0, 2.0 * z * w, w * w]
+        num = [1.0 / (1.0 - r), 2.0 * z * w, w * w] if feedback == "motor" else [2.0 * z * w, w * w]
+        return control.tf(num, den)

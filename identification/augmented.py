@@ -315,6 +315,19 @@ class AugmentedAxisModel(ReducedAxisModel):
         xr = self.loop_reference(np.asarray(reference, dtype=float), sample_time)
         return simulate_augmented(self.parameters, xr, self.spec(xr.size, sample_time), return_velocity=True)[1]
 
+    def element(self, name: str) -> Any:
+        """The element named ``name`` (its ``NAME``: ``"resonance"``, ``"friction_stribeck"``, ...).
+
+        Raises
+        ------
+        KeyError
+            When the model has no element of that name.
+        """
+        for e in self.elements:
+            if e.NAME == name:
+                return e
+        raise KeyError(f"the model has no element {name!r} (its elements: {[e.NAME for e in self.elements]})")
+
     @property
     def fmu_representable(self) -> bool:
         """True when every element can be exported to an FMU (see each effect's ``FMU`` flag)."""

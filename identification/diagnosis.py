@@ -96,6 +96,7 @@ __all__ = [
     "diagnose_report",
     "refit",
     "stribeck_static_ratios",
+    "no_stribeck_curve",
     "before_after_rows",
     "format_before_after",
     "samples_note",
@@ -807,7 +808,7 @@ def _better_windup_form(m: AugmentedAxisModel, r_fit: float, m_fit: float, data:
     starts, regressed on the unsaturated samples, are far enough from it that the form the screen
     prefers is not always the one whose refit finds it (there, the unclamped form refitted to 1.02 um
     on a machine with anti-windup; the clamped form from that fit: 0.20 um)."""
-    sat = next(e for e in m.elements if e.NAME == "saturation")
+    sat = m.element("saturation")
     flipped = [dataclasses.replace(e, anti_windup=not e.anti_windup) if e is sat else e for e in m.elements]
     m2 = refit(augment(m, flipped), data, active, max_nfev=opt.max_nfev)
     r2, m2_max = _errors(m2, data, active)
@@ -826,7 +827,7 @@ def _shorter_period_form(m: AugmentedAxisModel, r_fit: float, m_fit: float, data
     harmonic the refit ends at 9.94 mm with one, predicting the held-out folds as well (0.798 um). The shorter form is
     kept unless the longer one lowers its error by the gain an effect must bring (:func:`_lowers`; our reading of
     parsimony: the longer form's extra harmonics are terms of their own)."""
-    pp = next(e for e in m.elements if e.NAME == "position_periodic")
+    pp = m.element("position_periodic")
     coef = np.array(pp.coefficients, float).reshape(-1, 2)
     k = int(np.argmax(np.hypot(coef[:, 0], coef[:, 1]))) + 1
     if k == 1 or pp.period <= 0.5 * data.span:
@@ -881,7 +882,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             # a mode is claimed only when the axis' own motion excites it: the residual's line
             # must be coherent with a force of the commanded motion, its acceleration or its velocity's sign
             # (not an external line)
-            e_new = next(e for e in j.model.elements if e.NAME == "resonance")
+            e_new = j.model.element("resonance")
             coh = motion_coherence(ctx.r, data.xr, data.T, active, [e_new.frequency, e_new.antiresonance])
             record["resonance_motion_coherence"] = coh
             record["resonance_damping"] = e_new.damping
@@ -890,7 +891,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
         if ok and c.effect.NAME == "friction_stribeck":
             ratios = stribeck_static_ratios(j.model)
             record["stribeck_static_ratios"] = list(ratios)
-            ok = min(ratios) >= _MIN_STATIC_RATIO
+            ok = no_stribeck_curve(ratios) is None
         if ok and c.effect.KIND == "element":
             # the element must beat its own null (the sampled split form without it), refitted
             null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
@@ -932,21 +933,18 @@ def _unphysical_mode(e, T: float) -> str | None:
 def _unphysical(model: AugmentedAxisModel, name: str, data: Data) -> str | None:
     """Why the effect ``name`` of ``model`` is no longer the physical effect its name says (the tests of
     :func:`_choose` that need no refit), or None."""
-    e = next(e for e in model.elements if e.NAME == name)
+    e = model.element(name)
     if name == "resonance":
         return _unphysical_mode(e, data.T)
     if name == "friction_stribeck":
-        ratios = stribeck_static_ratios(model)
-        if min(ratios) < _MIN_STATIC_RATIO:
-            return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below "
-                    f"{_MIN_STATIC_RATIO}: no Stribeck curve")
+        return no_stribeck_curve(stribeck_static_ratios(model))
     return None
 
 
 def _without(model: AugmentedAxisModel, name: str) -> AugmentedAxisModel:
     """``model`` without the effect ``name`` as :func:`_choose` judged it: an element against its null
     (:func:`_null_of`), any other effect against the model without it."""
-    kind = next(e.KIND for e in model.elements if e.NAME == name)
+    kind = model.element(name).KIND
     return _null_of(model, name) if kind == "element" else augment(model, [e for e in model.elements
                                                                            if e.NAME != name])
 
@@ -962,7 +960,7 @@ def _unneeded(final: Stage, without: _Judged, name: str, data: Data, plan: FoldP
         return (f"the final model refitted without it predicts the held-out folds {w:.4g} um against {f:.4g} um "
                 f"with it: it no longer lowers that error by >= {opt.min_gain:.0%} and >= {opt.min_gain_um} um")
     if name == "resonance":
-        e = next(e for e in final.full_model.elements if e.NAME == name)
+        e = final.full_model.element(name)
         coh = motion_coherence(data.x - data.predict(without.model), data.xr, data.T, plan.active,
                                [e.frequency, e.antiresonance])
         if coh < _MIN_MODE_COHERENCE:
@@ -1060,7 +1058,7 @@ def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
     refit found ``v_s`` 0.30 mm/s, excesses -562 / +558 mm/s^2 against Coulomb levels +538 / -359 (ratios -0.04 and
     -0.56; ``benchmarks/ident_fuzz.py`` seed 1 case 22). A direction without Coulomb friction in the model (d = 0)
     gives +inf when the excess resists motion there, -inf when it drives it."""
-    st = next(e for e in model.elements if e.NAME == "friction_stribeck")
+    st = model.element("friction_stribeck")
     p = model.parameters
 
     def ratio(coulomb: float, excess: float, resisting: float) -> float:
@@ -1069,6 +1067,15 @@ def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
         return math.inf if excess * resisting >= 0 else -math.inf
 
     return ratio(p["d0"], st.excess_positive, 1.0), ratio(p["d1"], st.excess_negative, -1.0)
+
+
+def no_stribeck_curve(ratios: tuple[float, float]) -> str | None:
+    """Why a Stribeck term with static / Coulomb friction ``ratios`` (:func:`stribeck_static_ratios`, moving + and
+    moving -) is no Stribeck curve, or None: either ratio below :data:`_MIN_STATIC_RATIO` (or not a number)."""
+    if min(ratios) >= _MIN_STATIC_RATIO:
+        return None
+    return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below {_MIN_STATIC_RATIO}: "
+            "no Stribeck curve")
 
 
 def _worse_on_the_record(before: ReducedAxisModel, after: AugmentedAxisModel, data: Data,

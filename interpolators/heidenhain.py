@@ -430,15 +430,18 @@ class Machine:
         point[self.plane] = value
         return float(self.to_machine(point)[self.plane])
 
-    def lengths(self, where: Where) -> float:
+    def lengths(self, where: Where, blk: SourceBlock | None = None, *, what: str = "") -> float:
         """Factor of lengths in the working plane (1 without transformation) [-]; an error at
-        ``where`` when cycle 26 scales the plane's axes differently."""
+        ``where`` (at ``blk``'s code when given; naming ``what`` needs the factor: "``what`` under ...")
+        when cycle 26 scales the plane's axes differently."""
         if self.transform.identity:
             return 1.0
         try:
             return self.transform.length(self.plane)
         except TransformError as exc:
-            where.fail(exc.message, column=1, text=where.text, expected=exc.expected)
+            message = f"{what} under {exc.message}" if what else exc.message
+            column, text = (1, where.text) if blk is None else (blk.column, blk.code)
+            where.fail(message, column=column, text=text, expected=exc.expected)
 
     def active_position(self) -> np.ndarray:
         """The position in the active coordinate system [mm] that ``FN 18 SYSREAD ID270`` reads: the program

@@ -16,16 +16,17 @@ from interpolators._words import Where
 from interpolators.heidenhain_contours import ContourTrain, PilotDrill, RoughOut, SideFinish
 from interpolators.heidenhain_cycles import (
     THREAD_CYCLES,
+    AxisMove,
     DrillCycle,
     PatternCycle,
     back_boring_moves,
     hole_moves,
     scaled_cycle,
+    to_second_clearance,
 )
 from interpolators.heidenhain_paths import helical_arc
 from interpolators.heidenhain_surfaces import RuledSurface, SurfaceCycle, ruled_surface_moves, surface_moves
 from interpolators.heidenhain_targets import program_target
-from interpolators.heidenhain_transforms import TransformError
 from interpolators.heidenhain_words import SourceBlock
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
@@ -174,9 +175,7 @@ def _bore_milling(m: Machine, c: DrillCycle, surface: float, where: Where, blk: 
         back[axis] = bottom
         m.emit("line", back, Line(m.pos, back), c.feed, where, blk.number)
         m.used.update((p, q))
-    axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+    _out_of_hole(m, c, surface, where, blk)
 
 
 def _thread_milling(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
@@ -231,9 +230,7 @@ def _thread_milling(m: Machine, c: DrillCycle, surface: float, where: Where, blk
         axis_move(m, "line", surface + c.front_depth, c.approach_feed, where, blk)
         _circle_out_and_back(m, centre, c.front_offset, sense, c.sink_feed, where, blk)
     m.used.update((p, q, axis))
-    axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+    _out_of_hole(m, c, surface, where, blk)
 
 
 def _thread_helix(m: Machine, c: DrillCycle, centre: np.ndarray, surface: float, r: float, sense: float,
@@ -449,9 +446,7 @@ def _circular_pocket(m: Machine, c: DrillCycle, surface: float, where: Where, bl
         rings(0.0, c.finish_feed)
         _back_to_centre(m, centre, bottom - d * c.setup, where, blk)
     m.used.update(range(3))
-    axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+    _out_of_hole(m, c, surface, where, blk)
 
 
 def _rect_rings(m: Machine, c: DrillCycle, centre: np.ndarray, allowance: float, step: float, feed: float,
@@ -582,9 +577,16 @@ def _rectangular_stud(m: Machine, c: DrillCycle, surface: float, where: Where, b
                        feed, where, blk, ccw=not cw)
         half_circle(start_u, level, rounds[-1][1])
     m.used.update(range(3))
-    axis_move(m, "rapid", top, math.inf, where, blk)
-    if d * (surface - d * c.second_setup - top) < 0:
-        axis_move(m, "rapid", surface - d * c.second_setup, math.inf, where, blk)
+    _out_of_hole(m, c, surface, where, blk)
+
+
+def _out_of_hole(m: Machine, c: DrillCycle, surface: float, where: Where, blk: SourceBlock) -> None:
+    """The end of a cycle's run at a hole: at FMAX along the tool axis to the set-up clearance above ``surface``
+    [mm, machine], then to the 2nd set-up clearance when it is higher (:func:`interpolators.heidenhain_cycles.
+    to_second_clearance`)."""
+    d = -1.0 if c.depth < 0 else 1.0
+    for mv in (AxisMove("rapid", surface - d * c.setup), *to_second_clearance(c, surface=surface)):
+        axis_move(m, mv.kind, mv.level, mv.feed, where, blk)
 
 
 def at_level(point: np.ndarray, axis: int, level: float) -> np.ndarray:
@@ -665,11 +667,7 @@ def _pitch_circle_move(m: Machine, pat: PatternCycle, target: np.ndarray, where:
     """Cycle 220 Q365 = 1: from the tool's position along the pitch circle by ``pat.step`` to ``target``
     (the next position, at the tool's height), at rapid traverse (see :func:`pattern_cycle_run`)."""
     axis, p, q = m.plane, *PLANE_AXES[m.plane]
-    try:
-        m.transform.length(axis)
-    except TransformError as e:
-        where.fail(f"cycle 220 Q365=1 (arcs on the pitch circle) under {e.message}", column=blk.column,
-                   text=blk.code, expected=e.expected)
+    m.lengths(where, blk, what="cycle 220 Q365=1 (arcs on the pitch circle)")
     centre, _ = program_target(m, {"XYZ"[p]: pat.centre[0], "XYZ"[q]: pat.centre[1]}, m.pos)
     centre[axis] = m.pos[axis]
     if not np.array_equal(target, m.pos):

@@ -68,7 +68,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
            "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle", "REFUSED_CYCLES", "takes_point_angle",
-           "point_depth"]
+           "point_depth", "to_second_clearance"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -887,9 +887,7 @@ def back_boring_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
     out += [AxisMove("plane", below, offset=cycle.disengage)] if moved else []
     out.append(AxisMove(kind, top, feed))
     out += [AxisMove("plane", top)] if moved else []
-    if cycle.second_setup > cycle.setup:
-        out.append(AxisMove("rapid", surface + cycle.second_setup))
-    return out
+    return out + to_second_clearance(cycle, surface=surface)  # depth = -Q250 < 0: up is +
 
 
 def single_lip_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -950,9 +948,7 @@ def single_lip_moves(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
     if cycle.dwell_bottom > 0:
         out.append(AxisMove("dwell", bottom, 0.0, cycle.dwell_bottom))
     out.append(AxisMove("line", top, cycle.retract_feed) if cycle.retract_feed else AxisMove("rapid", top))
-    if cycle.second_setup > cycle.setup:
-        out.append(AxisMove("rapid", surface - d * cycle.second_setup))
-    return out
+    return out + to_second_clearance(cycle, surface=surface)
 
 
 def thread_milling_cycle(q: dict[int, float], *, feed_scale: float, scale: float, where: Where,
@@ -1398,6 +1394,17 @@ class AxisMove:
     offset: tuple[float, float] = (0.0, 0.0)
 
 
+def to_second_clearance(cycle: DrillCycle, *, surface: float) -> list[AxisMove]:
+    """The last move of a cycle at a hole, from the set-up clearance Q200 above ``surface`` [mm, machine]: at FMAX
+    to the 2nd set-up clearance Q204 when it is higher, else none (the cycle runs of the TNC 320 user's manual
+    for cycle programming end so, e.g. "BORE MILLING (Cycle 208)", "CIRCULAR POCKET (Cycle 252)": out at FMAX
+    to the set-up clearance and the 2nd one). The sign of the depth is the working direction."""
+    if not cycle.second_setup > cycle.setup:
+        return []
+    d = -1.0 if cycle.depth < 0 else 1.0
+    return [AxisMove("rapid", surface - d * cycle.second_setup)]
+
+
 def _infeeds(cycle: DrillCycle) -> int:
     """How many infeeds drill ``cycle``'s hole (plunges shrinking by the decrement)."""
     done, plunge, n = cycle.start_depth, cycle.plunge, 0
@@ -1503,6 +1510,4 @@ def hole_moves(cycle: DrillCycle, *, start: float, surface: float) -> list[AxisM
     out.append(AxisMove(retract_kind, top, retract_feed))
     if cycle.disengage != (0.0, 0.0):
         out.append(AxisMove("plane", top))
-    if cycle.number != 1 and cycle.second_setup > cycle.setup:
-        out.append(AxisMove("rapid", surface - d * cycle.second_setup))
-    return out
+    return out + (to_second_clearance(cycle, surface=surface) if cycle.number != 1 else [])

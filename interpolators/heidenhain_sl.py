@@ -315,14 +315,16 @@ def _rough_out_region(m: Machine, c: RoughOut, where: Where, blk: SourceBlock) -
                           ccw=c.ccw, number=c.number, where=where, blk=blk,
                           rounding=0.0 if c.coarse_tool else c.rounding)
     if c.coarse_tool:
+        # the tool of the TOOL CALL before the cycle call rests-machines what Q18's tool left
+        fine = f"{m.tool_called or 'the tool called'} ({m.tool_radius:g} mm), the rest-machining tool"
         coarse = m.tool_data(c.coarse_tool)
         if coarse is None or not coarse[1] > m.tool_radius:
-            where.fail(f"cycle 22: the coarse roughing tool Q18 = {c.coarse_tool} has no radius larger than this "
-                       f"tool's ({m.tool_radius:g} mm)", column=blk.column, text=blk.code,
+            where.fail(f"cycle 22: the coarse roughing tool Q18 = {c.coarse_tool} has no radius larger than that of "
+                       f"{fine}", column=blk.column, text=blk.code,
                        expected="Q18 a tool of TOOL DEF or the tool table, larger than the rest-machining tool")
         rings = rest_pieces(area, rings, coarse=coarse[1], radius=m.tool_radius, allowance=c.side_allowance)
         if not rings:
-            m.note(f"cycle 22: the coarse tool {c.coarse_tool} left nothing this tool reaches")
+            m.note(f"cycle 22: the coarse roughing tool Q18 = {c.coarse_tool} left nothing that {fine}, reaches")
             return
     d, bottom, surface, clear, above = _rough_out_heights(m, c, c.number, where, blk)
     m.used.update((*PLANE_AXES[axis], axis))

@@ -892,10 +892,17 @@ def _fagor_tool(w: Word, m: re.Match, st: State, notes: Notes) -> Word:
     return Word("T", float(tool), w.column, w.text)
 
 
-#: The G codes (10 x G) and M codes that read a P in rs274ngc (interp_check.cc check_other_codes: "P word with no
-#: G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ... to use it"; G74/G84 pass too; M62-M66 and M98 read
+#: LinuxCNC's drilling cycles that read P (the dwell at the bottom) and Q (the peck): rs274ngc interp_check.cc
+#: check_other_codes ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ... to use it",
+#: which lets G74 and G84 through too; "Q word with no G5, G6, G10, G64, G73, G76, G83, M19, M66, M67, M68 or
+#: user M code that uses it"); g-code.adoc: G81 "G81 (X- Y- Z-) R- L-", G83 "G83 (X- Y- Z-) R- L- Q-".
+LINUXCNC_CYCLE_WORDS = {"P": (740, 820, 840, 860, 880, 890), "Q": (730, 830)}
+
+
+#: The G codes (10 x G) and M codes that read a P in rs274ngc (interp_check.cc check_other_codes, above: the
+#: drilling cycles of :data:`LINUXCNC_CYCLE_WORDS` and G2 G3 G4 G10 G64 G5 G5.2 G6 G6.2 G76; M62-M66 and M98 read
 #: theirs, M100-M199 user M codes P and Q).
-_P_READERS_G = frozenset((20, 30, 40, 100, 640, 50, 52, 60, 62, 760, 740, 820, 840, 860, 880, 890))
+_P_READERS_G = frozenset((20, 30, 40, 100, 640, 50, 52, 60, 62, 760, *LINUXCNC_CYCLE_WORDS["P"]))
 _P_READERS_M = frozenset((62, 63, 64, 65, 66, 98, *range(100, 200)))
 
 
@@ -1123,13 +1130,6 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
         where.fail("word P needs G04 (dwell), G64 (path tolerance), G10, a drilling cycle or (linuxcnc) G2/G3",
                    column=w.column, text=w.text, expected="G04 P<time> or G64 P<tolerance>")
     _check_q_l(seen, gcodes, cycle, where)
-
-
-#: LinuxCNC's drilling cycles that read P (the dwell at the bottom) and Q (the peck): rs274ngc interp_check.cc
-#: check_other_codes ("P word with no G2 G3 G4 G10 G64 G5 G5.2 G6, G6.2, G76 G82 G86 G88 G89 ... to use it",
-#: which lets G74 and G84 through too; "Q word with no G5, G6, G10, G64, G73, G76, G83, M19, M66, M67, M68 or
-#: user M code that uses it"); g-code.adoc: G81 "G81 (X- Y- Z-) R- L-", G83 "G83 (X- Y- Z-) R- L- Q-".
-LINUXCNC_CYCLE_WORDS = {"P": (740, 820, 840, 860, 880, 890), "Q": (730, 830)}
 
 
 def _linuxcnc_cycle_p_q(seen, gcodes, code: int | None, where: Where, mcodes: list) -> None:

@@ -8,6 +8,8 @@ import io
 import re
 import sys
 
+from vcnc.core.text import ZIP_SIGNATURE
+
 HELP = "interpolate a program (ISO or Heidenhain) into setpoints sampled every Ts (CSV)"
 
 #: Samples ``vcnc interpolate`` computes without ``--max-seconds`` (5.6 h at Ts = 1 ms): a longer program is
@@ -103,7 +105,7 @@ HINT_MAX_BYTES = 4_000_000
 
 #: How the files vcnc itself reads and writes begin, for :func:`other_file_kind`: (start of the text, what it is).
 _OTHER_FILES = (
-    (b"PK\x03\x04", "a zip archive (an FMU?)"),
+    (ZIP_SIGNATURE, "a zip archive (an FMU?)"),
     (b"{", "a JSON file (a model file?)"),
     (b"# machine:", "a capture (CSV)"),
     (b"t,", "a capture or setpoints (CSV)"),

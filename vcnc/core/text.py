@@ -11,7 +11,11 @@ Windows code page (Windows-1252, e.g. the "Ø" and "°" of a comment). The rule,
 
 from __future__ import annotations
 
-__all__ = ["BinaryDataError", "decode_text"]
+__all__ = ["BinaryDataError", "decode_text", "ZIP_SIGNATURE"]
+
+#: How a ZIP archive begins: the signature of its first local file header, 0x04034b50 little-endian (PKWARE's
+#: APPNOTE.TXT 4.3.7). FMUs, NumPy's ``.npz`` and Office Open XML workbooks are ZIP archives: binary, never text.
+ZIP_SIGNATURE = b"PK\x03\x04"
 
 _BOMS = ((b"\xef\xbb\xbf", "utf-8-sig"), (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
 _PROBE = 4096  # bytes looked at for UTF-16 without a mark

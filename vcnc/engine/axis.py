@@ -178,6 +178,15 @@ class AxisDefinition:
         d = 0 if self.delay is None else self.delay.samples
         return discrete_closed_loop(self.controller, self.drive, sample_time, delay=d)
 
+    def sampled_loop(self, sample_time: float) -> tuple[control.TransferFunction, control.TransferFunction]:
+        """(G_track [mm/mm], G_dist [mm/V]) of the loop as it runs sampled at ``sample_time`` [s], for every law:
+        the controller's discrete law, the ZOH plant with the structural mode as the feedback sees it (the motor
+        side for a motor encoder, the table for a linear scale: :meth:`drives.StructuralMode.share`) and the
+        computational delay (:func:`controllers.discrete_closed_loop`)."""
+        d = 0 if self.delay is None else self.delay.samples
+        structure = None if self.resonance is None else self.resonance.share(self.feedback)
+        return discrete_closed_loop(self.controller, self.drive, sample_time, delay=d, structure=structure)
+
     # ------------------------------------------------------------------ kernel
     def pack(self, sample_time: float) -> tuple[np.ndarray, np.ndarray]:
         """(plant/options vector, law vector) for :func:`vcnc.engine.kernel.simulate_axis`."""

@@ -26,7 +26,7 @@ import numpy as np
 from vcnc.core.axes import AXIS_NAMES, ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, check_sampling
 from vcnc.core.errors import CaptureError
-from vcnc.core.text import BinaryDataError, decode_text
+from vcnc.core.text import ZIP_SIGNATURE, BinaryDataError, decode_text
 from vcnc.traces.diadem import header_naming
 from vcnc.traces.lag import subtract_following_error
 
@@ -90,7 +90,7 @@ def read_text(path: str | Path, src: str) -> str:
     try:
         return decode(raw, src)
     except CaptureError:
-        header = header_naming(Path(path)) if not raw.startswith(b"PK\x03\x04") else None
+        header = header_naming(Path(path)) if not raw.startswith(ZIP_SIGNATURE) else None
         if header is None:
             raise
         raise CaptureError(f"the binary data of the DIAdem header {header.name!r} beside it, which names its channels "
@@ -116,7 +116,7 @@ def _archive_reason(raw: bytes) -> str | None:
     writes arrays as ``NAME.npy`` members (a recording saved from Python, as anderssandstrom/ecmc_autotune's
     ``veltest_*.npz`` of t, cmd, vel, pos, torque), which vcnc reads once saved as delimited text; an Excel workbook
     (``xl/workbook.xml``, ECMA-376) is saved as CSV."""
-    if not raw.startswith(b"PK\x03\x04"):
+    if not raw.startswith(ZIP_SIGNATURE):
         return None
     try:
         with zipfile.ZipFile(io.BytesIO(raw)) as z:
