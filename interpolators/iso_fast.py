@@ -98,48 +98,15 @@ class PlainMoves:
             self.extra_offset = st.extra_offset().tolist()
         return self.ready
 
-    def move(self, words: list, line: int, text: str) -> bool:  # noqa: C901 - one pass over the words
+    def move(self, words: list, line: int, text: str) -> bool:
         """Run the block of ``words`` (line ``line``, source ``text``) if it is a plain move; False (nothing
         changed) if it is not."""
         if not (self.ready or self.ready is None and self._judge()):
             return False
-        motion = number = feed = None
-        axes: dict[int, float] = {}
-        centre: dict[int, float] = {}
-        extra: dict[int, float] = {}
-        extra_columns = self.extra_columns
-        fanuc = self.fanuc
-        for w in words:
-            letter = w.letter
-            if letter in _AXIS:
-                i = _AXIS[letter]
-                if i in axes or fanuc and "." not in w.text:
-                    return False
-                axes[i] = w.value
-            elif letter in _CENTRE:
-                i = _CENTRE[letter]
-                if i in centre or fanuc and "." not in w.text:
-                    return False
-                centre[i] = w.value
-            elif letter == "G":
-                if motion is not None or w.value not in _MOTION:
-                    return False
-                motion = _MOTION[w.value]
-            elif letter == "N":
-                if number is not None:
-                    return False
-                number = w
-            elif letter == "F":
-                if feed is not None or not w.value > 0:
-                    return False
-                feed = w.value
-            elif letter in extra_columns:
-                i = extra_columns[letter]
-                if i in extra or fanuc and "." not in w.text:
-                    return False
-                extra[i] = w.value
-            else:
-                return False
+        read = self._read(words)
+        if read is None:
+            return False
+        motion, number, feed, axes, centre, extra = read
         st = self.st
         if not axes and (not extra or centre):
             return False
@@ -204,6 +171,48 @@ class PlainMoves:
             st.extra = extra_target
         st.stopped = False  # a move since a program stop: positions read are the program's again
         return True
+
+    def _read(self, words: list) -> tuple | None:  # noqa: C901 - one pass over the words
+        """``(motion, N word, F, axes, centre, extra)`` of a block's words (axis, centre and extra-axis column ->
+        value), or None for a word or repeat the shortcut does not take."""
+        motion = number = feed = None
+        axes: dict[int, float] = {}
+        centre: dict[int, float] = {}
+        extra: dict[int, float] = {}
+        extra_columns = self.extra_columns
+        fanuc = self.fanuc
+        for w in words:
+            letter = w.letter
+            if letter in _AXIS:
+                i = _AXIS[letter]
+                if i in axes or fanuc and "." not in w.text:
+                    return None
+                axes[i] = w.value
+            elif letter in _CENTRE:
+                i = _CENTRE[letter]
+                if i in centre or fanuc and "." not in w.text:
+                    return None
+                centre[i] = w.value
+            elif letter == "G":
+                if motion is not None or w.value not in _MOTION:
+                    return None
+                motion = _MOTION[w.value]
+            elif letter == "N":
+                if number is not None:
+                    return None
+                number = w
+            elif letter == "F":
+                if feed is not None or not w.value > 0:
+                    return None
+                feed = w.value
+            elif letter in extra_columns:
+                i = extra_columns[letter]
+                if i in extra or fanuc and "." not in w.text:
+                    return None
+                extra[i] = w.value
+            else:
+                return None
+        return motion, number, feed, axes, centre, extra
 
     def _extra(self, words: dict[int, float], scale: float) -> tuple[np.ndarray, np.ndarray]:
         """The start and end positions ``(a, b, c, u, v, w)`` [deg, mm] of a move with the extra axis words
