@@ -49,6 +49,7 @@ from identification.reduced_model import ReducedAxisModel
 from identification.regressor import RegressorOptions, SufficientStatistics, regressor
 from identification.solve import solve_statistics
 from identification.substeps import SubstepReference
+from vcnc.core.metrics import widen
 
 log = logging.getLogger(__name__)
 
@@ -869,7 +870,7 @@ def _digital_regression(d: Data, delay: int, rows: np.ndarray,
     mad = 1.4826 * float(np.median(np.abs(res - np.median(res))))
     out = np.abs(res) > 5.0 * max(mad, 1e-12)
     if 0 < out.sum() < 0.2 * out.size:
-        out = np.convolve(out, np.ones(2 * delay + 41), mode="same") > 0
+        out = widen(out, delay + 20)
         th = solve_qr(A[~out], y[~out])
         A, y = A[~out], y[~out]
     b1, kd, a2, a3, ff, b0, d0, d1, c = th
@@ -964,7 +965,7 @@ def search_saturation(ctx: SearchContext) -> list[Candidate]:
     delays = [0] if delay is None else [delay] + [k for k in (delay - 1, delay + 1) if 0 <= k <= Delay.MAX]
     limits = [u0 * f for f in (0.8, 0.9, 1.0, 1.1, 1.25, 1.5)]
     # rows next to saturated ones see the smoothing window of the derivatives
-    keeps = [rows[~(np.convolve(~(demand < 0.85 * U), np.ones(2 * _SG_WINDOW + 1), mode="same") > 0)] for U in limits]
+    keeps = [rows[~widen(~(demand < 0.85 * U), _SG_WINDOW)] for U in limits]
     regs = {}
     for n in delays:  # one delay's equations in memory at a time (_split_form_equations)
         equations = _split_form_equations(d, n) if any(200 < k.size < rows.size for k in keeps) else None

@@ -21,7 +21,7 @@ import dataclasses
 import numpy as np
 
 from vcnc.core.errors import IdentificationError
-from vcnc.core.metrics import true_runs
+from vcnc.core.metrics import true_runs, widen
 
 __all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds", "settled_start", "starts_from_standstill",
            "SETTLED_SHARE", "RAMP_SHARE"]
@@ -73,9 +73,7 @@ def active_mask(reference: np.ndarray, measured: np.ndarray, sample_time: float,
         tiny = 1e-9 * max(float(np.ptp(xr)), 1.0)
         move |= np.abs(x - xr - med) > max(10.0 * mad, tiny)
     k = int(round(max(margin_s, 0.0) / sample_time))
-    if k > 0 and move.any():
-        move = np.convolve(move.astype(float), np.ones(2 * k + 1), mode="same") > 0.5
-    return move
+    return widen(move, k)
 
 
 #: Share of the largest reference step (and of the largest tracking error) below which a sample

@@ -76,6 +76,18 @@ def test_idle_stretches_are_trimmed_with_their_margin():
     assert moving[-1] + 200 <= b <= moving[-1] + 300, (b, moving[-1])
 
 
+def test_a_margin_longer_than_the_record_keeps_the_mask_as_long_as_the_record():
+    # ident_fuzz seed 51 case 34: 1528 samples at 0.25 ms, margin 0.2 s (800 samples each side); the mask came
+    # back 1601 long (np.convolve "same" takes the longer of its two inputs) and the diagnosis failed with an
+    # IndexError. Hand-written: 300 samples at 1 ms, one move in the middle, margin 0.2 s (401-sample window)
+    T = 1e-3
+    xr = np.concatenate([np.zeros(140), np.linspace(0.0, 1.0, 20), np.ones(140)])
+    act = active_mask(xr, xr, T, 0.2)
+    assert act.shape == xr.shape and act.all()
+    # the reference steps on samples 140..158 (the last linspace step ends at 159); 10 samples each side
+    assert motion_segments(active_mask(xr, xr, T, 0.01)) == [(140 - 10, 159 + 10)]
+
+
 def test_folds_contain_both_directions_and_cut_where_the_reference_rests_or_reverses():
     cap, _ = _capture(1e-3, False)
     xr = cap.reference[:, 0]
