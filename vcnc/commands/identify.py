@@ -351,7 +351,8 @@ def baseline_lines(capture, model, axis: str) -> list[str]:
             "error), " + (f"delayed by {k} samples ({base['pure_delay_s']:.4g} s) rms {pd:.4g} {u}" if k else
                           "and no whole-sample delay of it predicts better"))
     if naive > 0.0 and rms > 0.0:
-        line += f"; the model predicts {naive / rms:.3g} times better"
+        line += (f"; the model predicts {naive / rms:.3g} times better" if rms < naive else
+                 f"; the model predicts {rms / naive:.3g} times worse")
     if active and math.isfinite(held):
         frame = (" (the reference as the loop sees it, after the dead time and setpoint filter above)"
                  if getattr(model, "delay_s", 0.0) or getattr(model, "setpoint_filter_s", 0.0) else "")
