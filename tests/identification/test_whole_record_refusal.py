@@ -1,6 +1,6 @@
 """An effect that the held-out folds accept and the whole record refuses (diagnosis._worse_on_the_record).
 
-The SINUMERIK trace of session 28 in small: a reduced model with large Coulomb levels (d0, d1 = +-4000 mm/s^2,
+The SINUMERIK trace of session 28 in small (the refusal below held until identtrace34; see the first test): a reduced model with large Coulomb levels (d0, d1 = +-4000 mm/s^2,
 switched on the sign of the simulated velocity) whose axis rests 4 s before its first move, recorded at 1 ms. The
 truth adds a position-periodic load (1500, 800 mm/s^2, period 2 mm) and rests through the idle stretch (stiction
 holds it against the load there). The model of the load pushes the model at rest, its Coulomb levels switch on and
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from identification.augmented import augment
-from identification.diagnosis import diagnose_report, format_before_after, refusal_lines
+from identification.diagnosis import diagnose_report, refusal_lines
 from identification.effects import PositionPeriodic
 from identification.reduced_model import ReducedAxisModel
 from identification.synthetic import FADAL_PID_X, random_moves_reference
@@ -39,23 +39,29 @@ def _capture_and_model() -> tuple[Capture, ReducedAxisModel]:
     return cap, reduced
 
 
-def test_an_effect_that_moves_the_model_at_rest_is_refused_and_the_report_says_why():
+def test_the_load_refitted_from_the_current_loop_does_not_move_the_model_at_rest():
+    # refitted from the start the screen ranked first only, the load moved the model through the idle stretch (held
+    # out 92 % lower, all samples 15.11 -> 38.15 um) and was refused; refitted from every start
+    # (diagnosis.refit_candidate, identtrace34) it is the truth's load and the whole record's error falls too
     cap, reduced = _capture_and_model()
     rep = diagnose_report(cap, reduced, axis="x")
-    assert rep.model.effects == []
-    first = rep.rounds[0]
-    assert first["best"] == "position_periodic" and first["accepted"] is None
-    assert first["gain_pct"] == pytest.approx(92.2, abs=2.0)  # the held-out test alone would take it
-    before, after = first["worse_on_the_record_um"]["position_periodic"]
-    assert before == pytest.approx(15.11, rel=0.02)
-    assert after == pytest.approx(38.15, rel=0.05)
-    held = first["refitted"]["position_periodic"]["validation_rms_um"]
-    text = format_before_after(rep.model)
-    assert "diagnosis: no effect is kept; the reduced model stands" in text
-    assert "no effect lowers the held-out error significantly" not in text
-    assert (f"refused: position_periodic lowers the held-out error {first['current_validation_rms_um']:.4g} -> "
-            f"{held:.4g} um, but raises the RMS over all the record's samples {before:.4g} -> {after:.4g} um: it "
-            "moves the model where the axis rests (the idle stretches the held-out folds trim)") in text
+    assert [e["name"] for e in rep.model.effects] == ["position_periodic"]
+    p = rep.model.effects[0]["parameters"]
+    assert p["period_mm"] == pytest.approx(2.0, rel=1e-3)
+    assert p["coefficients_mm_s2"][0] == pytest.approx([1500.0, 800.0], rel=0.03)
+    record = rep.model.validation["record_rms_um"]
+    assert record[-1] < record[0]
+    assert not rep.rounds[0].get("worse_on_the_record_um")
+
+
+def test_an_effect_worse_on_the_whole_record_is_named():
+    # the first round of this module's record before identtrace34 (position_periodic refitted from one start only)
+    rounds = [{"refitted": {"position_periodic": {"validation_rms_um": 1.5, "fold_rms_um": [1.5] * 4}},
+               "current_validation_rms_um": 19.44, "worse_on_the_record_um": {"position_periodic": [15.11, 38.15]}}]
+    assert refusal_lines({"rounds": rounds}) == [
+        "refused: position_periodic lowers the held-out error 19.44 -> 1.5 um, but raises the RMS over all the "
+        "record's samples 15.11 -> 38.15 um: it moves the model where the axis rests (the idle stretches the held-out "
+        "folds trim)"]
 
 
 def test_an_effect_a_fold_contradicts_is_named_with_the_fold():
