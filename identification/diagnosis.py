@@ -1465,7 +1465,8 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
     """One line per effect that lowered the pooled held-out error and was refused, from ``validation['rounds']``:
     by a fold whose held-out error it raises (:func:`_contradicting_folds`; a TNCscope trace's 55 Hz time-periodic
     load, 2.13 -> 1.13 um pooled, fold 4 0.60 -> 0.79 um, while it was refitted from one start only: from the
-    current loop's, :func:`refit_candidate`, it is kept, 2.12 -> 0.68 um, fold 4 0.58 -> 0.56 um) or by the whole record (:func:`_worse_on_the_record`; a
+    current loop's, :func:`refit_candidate`, it is kept, 2.12 -> 0.68 um, fold 4 0.58 -> 0.56 um) or by the
+    whole record (:func:`_worse_on_the_record`; a
     SINUMERIK trace's position-periodic load, held out 7.27 -> 5.06 um, 3.4 -> 223 um over all samples). A report
     that said no effect lowers the held-out error hid that one did, and why it is not in the model (our reading)."""
     lines = []

@@ -1,6 +1,7 @@
 """An effect that the held-out folds accept and the whole record refuses (diagnosis._worse_on_the_record).
 
-The SINUMERIK trace of session 28 in small (the refusal below held until identtrace34; see the first test): a reduced model with large Coulomb levels (d0, d1 = +-4000 mm/s^2,
+The SINUMERIK trace of session 28 in small (refused until identtrace34: see the first test): a reduced model
+with large Coulomb levels (d0, d1 = +-4000 mm/s^2,
 switched on the sign of the simulated velocity) whose axis rests 4 s before its first move, recorded at 1 ms. The
 truth adds a position-periodic load (1500, 800 mm/s^2, period 2 mm) and rests through the idle stretch (stiction
 holds it against the load there). The model of the load pushes the model at rest, its Coulomb levels switch on and
