@@ -27,8 +27,8 @@ from benchmarks.gcode_corpus import corpus_dir, extra_axis_lines, without_remapp
 from interpolators.context import MachineContext, Tool
 from interpolators.iso import parse_iso
 from interpolators.tilted import Kinematics, RotaryAxis
-from tests.interpolators.block_digest import corpus_programs, program_digest
-from vcnc.errors import GCodeError
+from tests.interpolators.block_digest import corpus_programs
+from tests.interpolators.test_reader_fast import reading
 
 #: A tilts about X round (0, 0, -80), C turns about Z through (5, 0, 0) (as tests/interpolators/test_tcp5x.py).
 AC = Kinematics(axes=(RotaryAxis(name="a", pivot=(0.0, 0.0, -80.0), limits=(-120.0, 120.0)),
@@ -109,15 +109,6 @@ ODD_LINES = [
 #: On a machine with an A axis only: B0 is a note, B5 and U1 errors naming the axis.
 LACKING = ["G21 G90\nG1 X1. A10. B0. F100.\n", "G21 G90\nG1 X1. B5. F100.\n", "G21 G90\nG0 X1. U1.\n",
            "G20 G90\nG1 X1. A10. F100.\nA20.\nC0\n"]
-
-
-def reading(text: str, context: MachineContext, *, shortcuts: bool) -> list[str]:
-    """Everything a reading gives, bit for bit (or its error)."""
-    try:
-        prog = parse_iso(text, source="t.ngc", context=context, shortcuts=shortcuts)
-    except GCodeError as exc:
-        return [f"error: {exc}"]
-    return program_digest(prog)
 
 
 def assert_same(text: str, context: MachineContext) -> list[str]:
