@@ -321,7 +321,7 @@ def prediction_line(model, from_rest_um: float) -> str:
             f"{from_rest_um:.4g} {u}")
 
 
-def baseline_lines(capture, model, axis: str) -> list[str]:
+def baseline_lines(capture, model, axis: str, rest_um: float | None = None) -> list[str]:
     """The model against the two naive predictions of the capture (:func:`identification.dead_time.
     pure_delay_baseline`): the commanded position itself and the commanded position delayed by the best whole
     number of samples. Our reading (no source states it): a machine-tool engineer trusts a loop model when it
@@ -331,7 +331,8 @@ def baseline_lines(capture, model, axis: str) -> list[str]:
     207 um, held-out 218 um). Like is compared with like: the model's prediction of all the samples with the naive
     ones of all the samples, its held-out error (the diagnosis' active samples) with the naive ones of the active
     samples in the diagnosis' frame (``validation.naive_active``: the reference as the loop saw it); a hydraulic
-    rig's held-out 249 um was said to lose to a pure delay's 158 um, which covered its idle seconds too."""
+    rig's held-out 249 um was said to lose to a pure delay's 158 um, which covered its idle seconds too.
+    ``rest_um``: :func:`from_rest_rms_um` where the caller has it already."""
     from identification.dead_time import pure_delay_baseline
     from identification.diagnosis import before_after_rows
 
@@ -340,7 +341,7 @@ def baseline_lines(capture, model, axis: str) -> list[str]:
     u = axis_unit(axis, small=True)
     rows = before_after_rows(model) if model.validation else []
     # all the samples from rest, as the naive predictions (no fitted state at the first sample) and the table
-    rms = from_rest_rms_um(capture, model, axis)
+    rms = from_rest_rms_um(capture, model, axis) if rest_um is None else rest_um
     held = float(rows[-1]["validation_rms_um"] or math.nan) if rows else math.nan
     fe, pd, k = base["following_error_rms_um"], base["pure_delay_rms_um"], base["pure_delay_samples"]
     naive = min(fe, pd)
@@ -504,7 +505,8 @@ def run(args: argparse.Namespace) -> int:
         from identification.measured_drift import without_drift
 
         capture = without_drift(capture, axis, model.fit["drift"]["polynomial_mm"])
-    baseline = baseline_lines(capture, model, axis)
+    rest_um = from_rest_rms_um(capture, model, axis)  # a simulation of the record when a start state was fitted
+    baseline = baseline_lines(capture, model, axis, rest_um)
     rep = _report(capture, model, axis, baseline) if args.report else None
     if args.json:
         model.to_json(args.json)
@@ -520,7 +522,7 @@ def run(args: argparse.Namespace) -> int:
     )
     out.write(closed_loop_poles_line(model) + "\n")
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
-    out.write(prediction_line(model, from_rest_rms_um(capture, model, axis)) + "\n")
+    out.write(prediction_line(model, rest_um) + "\n")
     for line in delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model):
         out.write(line + "\n")
     valley = fit.get("solver", {}).get("identifiability")
