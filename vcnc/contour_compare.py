@@ -853,7 +853,7 @@ def _simulated_truth(truth: str | os.PathLike[str] | Machine, toolpath, *, feed:
     axes = tuple(sp.axes)
     n_runs = truth_runs if truth_runs is not None else (TRUTH_RUNS if _noisy(machine, axes) else 1)
     seeds = [int(seed) + k for k in range(int(n_runs))]
-    source = machine.source if machine.source and not machine.source.startswith("<") else None
+    source = machine.file
     return _Truth(setpoints=sp, axes=axes, path=sp.path, program=program, toolpath=tp_name, name=machine.name,
                   sample_time=machine.sample_time, positions=(_truth_run(machine, sp, s) for s in seeds),
                   seeds=seeds, notes=notes, servo_period_of=f"'sample_time' [s] of {source}" if source

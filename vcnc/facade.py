@@ -144,9 +144,8 @@ def _axis_section_hint(machine: Machine, axis: str) -> str:
     from vcnc.core.axes import ROTARY_NAMES
 
     unit = " in degrees (limits in deg/s, deg/s^2, deg/s^3)" if axis in ROTARY_NAMES else ""
-    source = machine.source or ""
-    if source and not source.startswith("<"):
-        return f"add an [axes.{axis}] section{unit} to {source}"
+    if machine.file:
+        return f"add an [axes.{axis}] section{unit} to {machine.file}"
     return f"write `vcnc machines --show {machine.name}` to a TOML file and add an [axes.{axis}] section{unit}"
 
 

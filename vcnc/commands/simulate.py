@@ -70,11 +70,6 @@ def check_outputs(args: argparse.Namespace) -> None:
     check_distinct_outputs((("-o", args.output), ("--json", args.json), ("--report", args.report)))
 
 
-def _from_file(machine) -> bool:
-    """True for a machine read from a file (its ``source`` a path, not ``<built-in>``)."""
-    return bool(machine.source) and not machine.source.startswith("<")
-
-
 def sampling_note(summary: dict, machine) -> str | None:
     """A warning naming the machine's ``sample_time`` when an axis' sampled loop is unstable at it
     (:meth:`vcnc.engine.machine.Machine.unstable_axes`): a servo period too coarse for the gains (a unit slip
@@ -85,7 +80,7 @@ def sampling_note(summary: dict, machine) -> str | None:
     the acceleration limits instead; the built-in machines are stable at theirs (the check imports python-control,
     2 s). A computation delay counts (fadal-ppi with a 2-sample delay: |z| = 1.008, the limit cycle that
     ``benchmarks/ident_fuzz.unstable_delay`` skips)."""
-    if not (_from_file(machine) or summary.get("saturated")):
+    if not (machine.file or summary.get("saturated")):
         return None
     unstable = machine.unstable_axes()
     if not unstable:
@@ -199,7 +194,7 @@ def _run(args: argparse.Namespace) -> int:
         writing = stack.enter_context(ThreadPoolExecutor(max_workers=1)).submit(capture.to_csv, cap_tmp)
         summary = summarize(capture, program)
         # a machine from a file was checked before the run (the same machine: the same answer)
-        later = None if _from_file(machine) else sampling_note(summary, machine)
+        later = None if machine.file else sampling_note(summary, machine)
         for line in (saturation_note(summary), later, feed_contour_line(summary)):
             if line:
                 print(f"{args.program}: {line}")

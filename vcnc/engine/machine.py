@@ -214,6 +214,11 @@ class Machine:
         self.source = source
         self.context = context
 
+    @property
+    def file(self) -> str | None:
+        """The machine file this machine was read from, or None (a built-in machine: ``source`` ``<built-in>``)."""
+        return self.source if self.source and not self.source.startswith("<") else None
+
     # ------------------------------------------------------------------ construction
     @classmethod
     def _from_text(cls, text: str, *, file: str, default_name: str) -> Machine:
