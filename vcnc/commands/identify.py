@@ -295,11 +295,7 @@ def from_rest_rms_um(capture, model, axis: str) -> float:
         return float(model.fit["rms_um"])
     import numpy as np
 
-    from identification.augmented import predict_record
-    from identification.loop_frame import offset_of
-
-    i = capture.axis_index(axis)
-    e = capture.measured[:, i] - offset_of(model.fit) - predict_record(model, capture.reference[:, i])
+    e = capture.measured[:, capture.axis_index(axis)] - predicted_record(capture, model, axis)
     return float(np.sqrt(np.mean(e * e))) * 1e3
 
 
@@ -376,18 +372,70 @@ def baseline_lines(capture, model, axis: str, rest_um: float | None = None) -> l
     return out
 
 
-def _report(capture, model, axis: str, baseline: list[str]):
+def fit_lines(model, rest_um: float) -> list[str]:
+    """The summary's lines on the fit, which the report's Fit section repeats word for word: the prediction of the
+    capture (:func:`prediction_line`), the reference's dead time and setpoint filter, drift, poles on their bounds or
+    not pinned by the record, and the record's operating range."""
+    fit = model.fit
+    lines = [prediction_line(model, rest_um)]
+    lines += delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model)
+    valley = fit.get("solver", {}).get("identifiability")
+    if valley and not valley["identifiable"]:
+        lines.append(weak_poles_line(model))
+    lines += [line for line in (pair_restart_line(model), pair_pinned_line(model)) if line]
+    if "excitation" in fit:
+        lines.append(excitation_line(model))
+    return lines
+
+
+def predicted_record(capture, model, axis: str):
+    """The model's prediction [mm] of the capture's measured channel ``axis`` simulated from rest, as the fit
+    predicted the record (sub-steps below 1 ms) and with the datum offset the fit removed (``fit['offset']``) put
+    back: the prediction :func:`from_rest_rms_um` measures, which the report plots."""
+    from identification.augmented import predict_record
+    from identification.loop_frame import offset_of
+
+    return predict_record(model, capture.reference[:, capture.axis_index(axis)]) + offset_of(model.fit)
+
+
+def prediction_rows(capture, model, axis: str, rest_um: float) -> list[list]:
+    """The report's table of the prediction of the capture (RMS and max [um, mdeg on a rotary axis]), in the terms
+    of the summary's :func:`prediction_line`: the fit's own number, and where the fit also fitted the state at the
+    first sample (``fit['initial_state']``) the prediction simulated from rest beside it (``rest_um``, the
+    summary's and the diagnosis table's 'all RMS'), which every later use of the model shares. The report showed
+    the start-state fit's number alone (an ODrive record: 77.85 mdeg, 3146 mdeg from rest)."""
+    import numpy as np
+
+    i = capture.axis_index(axis)
+    xr, x = capture.reference[:, i], capture.measured[:, i]
+    fit = model.fit
+    if fit.get("initial_state"):
+        rest_max = float(np.max(np.abs(x - predicted_record(capture, model, axis)))) * 1e3
+        rows = [["identified model, the state at its first sample fitted", fit["rms_um"], fit["max_um"]],
+                ["identified model simulated from rest (as vcnc simulate and vcnc compare predict)", rest_um,
+                 rest_max]]
+    else:
+        rows = [["identified model", fit["rms_um"], fit["max_um"]]]
+    if "equation_error" in fit:
+        rows.append(["equation-error solution", fit["equation_error"]["rms_um"], fit["equation_error"]["max_um"]])
+    rows.append(["tracking error itself", float(np.sqrt(np.mean((xr - x) ** 2)) * 1e3),
+                 float(np.max(np.abs(xr - x)) * 1e3)])
+    return rows
+
+
+def build_report(capture, model, axis: str, baseline: list[str], rest_um: float):
+    """The HTML report of ``vcnc identify --report`` (:class:`vcnc.report.Report`): the model, the fit in the
+    summary's words (:func:`fit_lines`, :func:`prediction_rows`), the figures and the diagnosis."""
     import numpy as np
     from matplotlib.figure import Figure
 
-    from identification.augmented import predict_record
     from vcnc.report import Report
 
     i = capture.axis_index(axis)
     t = capture.t - capture.t[0]
     xr = capture.reference[:, i]
     x = capture.measured[:, i]
-    xp = predict_record(model, xr)  # as the fit predicted the record (sub-steps below 1 ms): fit.rms_um's prediction
+    xp = predicted_record(capture, model, axis)  # from rest, offset included: the table's and the summary's
     rep = Report(f"vcnc identify: axis {axis} of {capture.source or 'capture'}")
     u = axis_unit(axis, small=True)  # um, or mdeg on a rotary axis
     rep.heading("Model parameters (Eq. 3.3)")
@@ -419,18 +467,9 @@ def _report(capture, model, axis: str, baseline: list[str]):
         caption="Poles and zeros as in Tables 3.3-3.5",
     )
     rep.heading("Fit")
-    for line in (delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model)
-                 + baseline):
+    for line in fit_lines(model, rest_um) + baseline:
         rep.text(line)
-    rep.table(
-        ["prediction of the capture", f"RMS [{u}]", f"max [{u}]"],
-        [
-            ["identified model", model.fit["rms_um"], model.fit["max_um"]],
-            ["equation-error solution", model.fit["equation_error"]["rms_um"], model.fit["equation_error"]["max_um"]],
-            ["tracking error itself", float(np.sqrt(np.mean((xr - x) ** 2)) * 1e3),
-             float(np.max(np.abs(xr - x)) * 1e3)],
-        ],
-    )
+    rep.table(["prediction of the capture", f"RMS [{u}]", f"max [{u}]"], prediction_rows(capture, model, axis, rest_um))
     fig = Figure(figsize=(10, 6))
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     ax1.plot(t, (xr - x) * 1e3, label="measured tracking error")
@@ -440,23 +479,23 @@ def _report(capture, model, axis: str, baseline: list[str]):
     ax2.plot(t, (x - xp) * 1e3, color="C3")
     ax2.set_ylabel(f"residual x - x_pred [{u}]")
     ax2.set_xlabel("time [s]")
-    rep.figure("tracking", fig, caption="Measured vs predicted tracking error, and the residual")
+    rep.figure("tracking", fig, caption="Measured vs predicted tracking error (the model simulated from rest, as the "
+                                        "table above), and the residual")
     fig = Figure(figsize=(10, 6))
     model.plot(fig.subplots(2, 2, sharex=True))
     rep.figure("frf", fig, caption="Tracking and disturbance FRFs of the identified model (cf. Fig. 3.5)")
     if model.validation:
-        from identification.diagnosis import before_after_rows, report_figure, samples_note
+        from identification.diagnosis import before_after_rows, format_before_after, report_figure
 
         rep.heading("Residual diagnosis: effects the reduced model lacks")
         rows = before_after_rows(model)
-        if rows:
-            keys = list(rows[0])
-            rep.table(keys, [[r.get(k) for k in keys] for r in rows],
-                      caption=f"RMS and max error [{u}] of the reduced model, each effect in turn, and the final "
-                              f"model; {samples_note(model)}")
+        keys = list(rows[0])
+        rep.table(keys, [[r.get(k) for k in keys] for r in rows],
+                  caption=f"RMS and max error [{u}] of the reduced model, each effect in turn, and the final model")
+        # the summary's lines after its table: which samples, the folds, refusals, warnings, the residual
+        for line in format_before_after(model).splitlines()[2 + len(rows):]:
+            rep.text(line.strip())
         axs = report_figure(capture, model, axis=axis)
-        import numpy as np
-
         rep.figure("residual", np.ravel(axs)[0].figure,
                    caption="Residual before and after the diagnosis: time, velocity, position, spectrum")
     rep.summary = {"model": model.to_dict()}
@@ -507,12 +546,12 @@ def run(args: argparse.Namespace) -> int:
         capture = without_drift(capture, axis, model.fit["drift"]["polynomial_mm"])
     rest_um = from_rest_rms_um(capture, model, axis)  # a simulation of the record when a start state was fitted
     baseline = baseline_lines(capture, model, axis, rest_um)
-    rep = _report(capture, model, axis, baseline) if args.report else None
+    rep = build_report(capture, model, axis, baseline, rest_um) if args.report else None
     if args.json:
         model.to_json(args.json)
     if rep is not None:
         rep.write(args.report)
-    p, poles, fit = model.parameters, model.poles, model.fit
+    p, poles = model.parameters, model.poles
     out = sys.stdout
     if "columns" in capture.meta:  # a delimited trace's mapping read from its header names
         out.write(f"{args.capture}: columns {capture.meta['columns']}\n")
@@ -522,18 +561,8 @@ def run(args: argparse.Namespace) -> int:
     )
     out.write(closed_loop_poles_line(model) + "\n")
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
-    out.write(prediction_line(model, rest_um) + "\n")
-    for line in delay_lines(model) + setpoint_filter_lines(model) + drift_lines(model) + bound_lines(model):
+    for line in fit_lines(model, rest_um):
         out.write(line + "\n")
-    valley = fit.get("solver", {}).get("identifiability")
-    if valley and not valley["identifiable"]:
-        out.write(weak_poles_line(model) + "\n")
-    if restart := pair_restart_line(model):
-        out.write(restart + "\n")
-    if unpinned := pair_pinned_line(model):
-        out.write(unpinned + "\n")
-    if "excitation" in fit:
-        out.write(excitation_line(model) + "\n")
     if model.validation:
         from identification.diagnosis import format_before_after
 
