@@ -83,3 +83,21 @@ def test_the_predicted_record_puts_back_the_removed_datum_offset():
     xp = predicted_record(cap, model, "x")
     assert np.allclose(xp - 2.5, model.simulate(cap.reference[:, 0]), atol=1e-12)
     assert abs(from_rest_rms_um(cap, model, "x") - from_rest_rms_um(_capture(), _started_model(), "x")) < 1e-9
+
+
+def test_the_report_heads_the_diagnosis_table_as_the_summary_and_names_rotary_units():
+    # a rotary axis: positions in deg, errors in mdeg, the disturbance parameters in deg/s^2 (they read mm/s^2)
+    t = np.arange(4000) * T
+    xr = 5.0 * np.sin(np.pi * t)  # deg, both ways
+    x = np.concatenate([np.zeros(5), xr[:-5]])  # five samples behind
+    cap = Capture(t=t, axes=("a",), reference=xr[:, None], measured=x[:, None], meta={"source": "test"})
+    validation = {"record_rms_um": [3146.0], "rms_before_um": 1050.0, "max_before_um": 3224.0,
+                  "identification_rms_before_um": 3166.0, "identification_max_before_um": 4003.0}
+    model = ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=T, fit=_started_model().fit,
+                             validation=validation)
+    rest = from_rest_rms_um(cap, model, "a")
+    page = build_report(cap, model, "a", baseline_lines(cap, model, "a", rest), rest).html()
+    assert "<td>deg/s^2</td>" in page and "mm/s^2" not in page
+    head = "".join(f"<th>{h}</th>" for h in ("model", "all RMS", "ident RMS", "ident max", "valid RMS", "valid max"))
+    assert head in page and "identification_rms_um" not in page
+    assert "<tr><td>reduced model</td><td>3146</td><td>3166</td><td>4003</td><td>1050</td><td>3224</td></tr>" in page

@@ -372,6 +372,13 @@ def baseline_lines(capture, model, axis: str, rest_um: float | None = None) -> l
     return out
 
 
+#: The diagnosis table's columns, headed as the summary heads them (:func:`identification.diagnosis.
+#: format_before_after`), and the keys of :func:`identification.diagnosis.before_after_rows` they show.
+DIAGNOSIS_COLUMNS = {"all RMS": "record_rms_um", "ident RMS": "identification_rms_um",
+                     "ident max": "identification_max_um", "valid RMS": "validation_rms_um",
+                     "valid max": "validation_max_um"}
+
+
 def fit_lines(model, rest_um: float) -> list[str]:
     """The summary's lines on the fit, which the report's Fit section repeats word for word: the prediction of the
     capture (:func:`prediction_line`), the reference's dead time and setpoint filter, drift, poles on their bounds or
@@ -441,7 +448,9 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
     rep.heading("Model parameters (Eq. 3.3)")
     from identification.reduced_model import PARAMETER_UNITS
 
-    rep.table(["parameter", "value", "unit"], [[k, v, PARAMETER_UNITS[k]] for k, v in model.parameters.items()])
+    # d0, d1 in the axis' unit: deg/s^2 on a rotary axis, as the model file's positions
+    rep.table(["parameter", "value", "unit"], [[k, v, PARAMETER_UNITS[k].replace("mm", axis_unit(axis))]
+                                               for k, v in model.parameters.items()])
     rep.table(
         ["pole variable", "value"],
         [["omega_n [Hz]", model.poles.get("omega_n_hz")], ["zeta [-]", model.poles.get("zeta")],
@@ -489,8 +498,8 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
 
         rep.heading("Residual diagnosis: effects the reduced model lacks")
         rows = before_after_rows(model)
-        keys = list(rows[0])
-        rep.table(keys, [[r.get(k) for k in keys] for r in rows],
+        rep.table(["model", *DIAGNOSIS_COLUMNS], [[r["label"], *(r.get(k) for k in DIAGNOSIS_COLUMNS.values())]
+                                                  for r in rows],
                   caption=f"RMS and max error [{u}] of the reduced model, each effect in turn, and the final model")
         # the summary's lines after its table: which samples, the folds, refusals, warnings, the residual
         for line in format_before_after(model).splitlines()[2 + len(rows):]:
