@@ -2,7 +2,8 @@
 is mapped by ``--columns`` but whose unit nobody states (nicolazande/camber-control's LinA logs: ms stamps stepping
 by 10), an electro-hydraulic actuator's experiment export (ivliev123/Electro-Hydraulic-Actuator:
 ``EXP_Time;EXP_PosRef;EXP_PosFb;...``) and a Universal Robots joint log without a header (swiatecki/ProjectMoose:
-robot time in s, six actual joint angles, ..., six target angles, in rad). Each file is a few lines written here
+robot time in s, six actual joint angles, ..., six target angles, in rad), and a halscope log with channels not
+enabled (luminize/machinekit-motion-components). Each file is a few lines written here
 after the layout, not the export itself.
 """
 
@@ -81,3 +82,17 @@ def test_a_robot_joint_log_without_a_header_asks_for_its_columns_and_reads_in_ra
     assert cap.axes == ("a",) and cap.sample_time == pytest.approx(0.008)
     assert cap.t[-1] - cap.t[0] == pytest.approx(0.032)
     np.testing.assert_allclose(cap.measured[:, 0], np.degrees(q))
+
+
+def test_halscopes_unused_channels_are_no_repeated_name(tmp_path):
+    """A LinuxCNC 2.8 halscope log (label value pairs) of a motion planner's positions alone, beside channels not
+    enabled, which halscope labels '(null)' (luminize/machinekit-motion-components' log): refused for what it
+    lacks, a measured position, not because '(null)' repeats."""
+    f = tmp_path / "halscope.log"
+    row = ("interpolator.1.0.curr-pos {p:+.14f} interpolator.1.0.curr-vel +0.00000000000000 jplanner.0.curr-pos "
+           "{p:+.14f} (null) +0.00000000000000 (null) +0.00000000000000 \n")
+    f.write_text("Sampling period is 1000000 nSec \n\n" + "".join(row.format(p=0.001 * k) for k in range(6)))
+    with pytest.raises(CaptureError) as err:
+        read_capture(f)
+    msg = str(err.value)
+    assert "repeats a name" not in msg and "a position trace needs a commanded and a measured position" in msg

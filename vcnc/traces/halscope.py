@@ -74,6 +74,9 @@ _FERROR = re.compile(r"^(?:joint|axis)\.(?P<n>\d+)\.f-error$")
 #: How LinuxCNC signs a joint's following error, and where it says so.
 LAG_CONVENTION = ("pos-cmd - pos-fb (LinuxCNC src/emc/motion/control.c: joint->ferror = joint->pos_cmd - "
                   "joint->pos_fb)")
+#: The label halscope (LinuxCNC <= 2.8) prints for a channel not enabled (``label[chan_num]`` of an unset
+#: channel, printed with ``%s``).
+_UNUSED = "(null)"
 _SIGNAL = re.compile(r"^(?P<axis>[xyzabcuvw])-?pos-(?P<role>cmd|fb)$", re.I)
 
 
@@ -254,7 +257,8 @@ def _joint_pairs(labels: list[str], axes: Sequence[str] | None, src: str) -> tup
             others = [n for n in labels if "pos" in n.lower() and n not in alone]
             raise CaptureError(f"{alone[0]} has no -fb pin: give --columns x_ref={alone[0]},x=FEEDBACK; channels "
                                f"found: {labels}; other position channels: {others}", file=src)
-        named, why = channels_from_names(labels, "channel")
+        # halscope labels the channels not enabled '(null)' (module docstring): no names, and no repeated one
+        named, why = channels_from_names([n for n in labels if n != _UNUSED], "channel")
         if named is not None and not any(k.endswith(LAG_SUFFIX) for k in named):
             return named, mapping_note("channel", named)
         raise CaptureError("no joint.N.motor-pos-cmd / joint.N.motor-pos-fb pair (nor <axis>-pos-cmd / -fb "
