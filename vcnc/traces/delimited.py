@@ -763,9 +763,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                                      TIME_UNITS[units["t"]], src)
         stated.update(rounded)
     time_known = time_stated or stamped or sample_time is not None
-    if "t" in columns:
-        _check_guessed_time(t, columns["t"], time_known, src, hline,
-                            how="read from its name" if guessed else "mapped by --columns")
+    _check_guessed_time(t, columns, time_known, src, hline, guessed=guessed)
 
     def scaled(k: str) -> np.ndarray:
         with np.errstate(over="ignore"):
@@ -1032,16 +1030,20 @@ def _sample_step_hint(header: list[str] | None, data: np.ndarray) -> str:
             "with --time-unit ms|us|s")
 
 
-def _check_guessed_time(t: np.ndarray, name: str, stated: bool, src: str, line: int | None, *, how: str) -> None:
+def _check_guessed_time(t: np.ndarray, columns: Mapping[str, str], stated: bool, src: str, line: int | None, *,
+                        guessed: bool) -> None:
     """A time column whose unit neither the file nor ``--time-unit`` states is taken in seconds, unless its
     step is 0.1 or more: no drive trace is sampled that slowly (servo loops close every 0.05-10 ms; a
     logging PC every few ms), so such a column counts ms, samples or something else (our reading). This holds for a
-    column read from its name and for one mapped by ``--columns``, which says which column holds the time, not its
-    unit (a drive logger's headerless rows with ``--columns t=1,..``: ms stamps stepping by 10 were read as a 10 s
-    sampling, a 1001-sample record of 2.8 hours, realtrace11). ``how`` says which of the two it was."""
+    column read from its name (``guessed``) and for one mapped by ``--columns``, which says which column holds the
+    time, not its unit (a drive logger's headerless rows with ``--columns t=1,..``: ms stamps stepping by 10 were
+    read as a 10 s sampling, a 1001-sample record of 2.8 hours, realtrace11). No time column: nothing to check."""
+    if "t" not in columns:
+        return
     step = float(np.median(np.diff(t)))
     if not stated and step >= 0.1:
-        raise CaptureError(f"the time column {name!r} ({how}) steps by {step:.6g} and the file does not "
+        how = "read from its name" if guessed else "mapped by --columns"
+        raise CaptureError(f"the time column {columns['t']!r} ({how}) steps by {step:.6g} and the file does not "
                            "state its unit: seconds would be a sampling far too slow for a drive trace", file=src,
                            line=line, expected="--time-unit ms|us|s, or --sample-time S when it counts samples")
 
