@@ -1177,9 +1177,9 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
         _tilt_cycle(rest, m, where, col, blk)
         return
     if number == 7:
-        if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
-            where.fail("cycle 7 with a datum table row (#n) is not supported (no datum table in the machine context)",
-                       column=col, text=rest.strip(), expected="CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
+        if rest.strip().startswith("#"):
+            _datum_table_shift(rest, m, where, col)
+            return
         words = block_words(rest, 0, where, m, column0=col)
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
@@ -1367,6 +1367,30 @@ def _preset_row(n: int) -> str | None:
     """The work offset that stands in for row ``n`` >= 1 of the preset table (:func:`_preset_cycle`: G54 = 1 ..
     G59.3 = 9); None beyond them."""
     return WORK_OFFSETS[n - 1] if n <= len(WORK_OFFSETS) else None
+
+
+def _datum_table_shift(rest: str, m: Machine, where: Where, column: int) -> None:
+    """``CYCL DEF 7.1 #5`` (or ``#Q5``): the datum shift to row 5 of the datum table, its X, Y and Z
+    (:attr:`MachineContext.datum_table`, in mm whatever the program's unit). TNC 640 cycle programming manual,
+    cycle 7 DATUM SHIFT: with datum tables the cycle takes the number of a datum from the table; TNC7 user's
+    manual 81762x-17, "Datum table *.d": its X, Y, Z "have the effect of a shift in the workpiece coordinate
+    system W-CS" and a datum table must be active to use it, so a row the context's table lacks, or a context
+    without a table, is an error naming the row (a TNC without the row stops there too)."""
+    text = rest.strip()
+    found = re.fullmatch(r"#\s*(\d+|Q[LR]?\d+)", text, re.I)
+    if found is None:
+        where.fail(f"cycle 7: malformed datum table row {text!r}", column=column, text=text,
+                   expected="#n or #Qn, the row of the datum table")
+    name = found.group(1)
+    row = int(name) if name[0].isdigit() else _whole_number(name, m, where, column, what="datum table row")
+    value = m.context.datum_table.get(row)
+    if value is None:
+        held = (f"the machine context's datum table has rows {', '.join(map(str, sorted(m.context.datum_table)))}"
+                if m.context.datum_table else "the machine context has no datum table")
+        where.fail(f"cycle 7: row {row} of the datum table is not known ({held})", column=column, text=text,
+                   expected="a datum table with that row (vcnc interpolate --datum-table FILE.D), or "
+                            "CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
+    _datum_shift({axis: value[i] / m.scale for i, axis in enumerate("XYZ")}, m)
 
 
 def _datum_shift(values: dict[str, float], m: Machine) -> None:

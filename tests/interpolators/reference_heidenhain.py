@@ -959,7 +959,11 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     """``CYCL DEF n.k ...`` (and the SolidWorks spelling ``CYCLE DEF``)."""
     m = re.match(r"CYCLE? DEF\s*(\d+)(?:\.(\d+))?\s*(.*)$", text)
     number, sub, rest = int(m.group(1)), int(m.group(2) or 0), m.group(3)
-    if number == 7 and sub > 0:
+    if number == 7 and sub > 0 and rest.strip().startswith("#"):  # a row of the datum table: its X, Y, Z [mm]
+        t.shifted = t.tilt is not None
+        row = rest.strip()[1:].strip()
+        t.shift[:] = t.ctx.datum_table[int(_val(row, t.q))]
+    elif number == 7 and sub > 0:
         w = _words(rest, t.q)
         t.shifted = t.tilt is not None
         for i, a in enumerate("XYZ"):
