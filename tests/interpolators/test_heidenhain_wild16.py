@@ -109,3 +109,15 @@ def test_datum_table_on_the_command_line(tmp_path, capsys):
     assert blocks.read_text().splitlines()[1].split(",")[3:6] == ["100.5", "20", "0"]
     assert main(["interpolate", str(program), "-o", str(tmp_path / "t.csv")]) == 2
     assert "p.h:3:16: cycle 7: row 1 of the datum table" in capsys.readouterr().err
+
+
+def test_c_arc_starting_on_its_centre_names_the_circle_centre_cc():
+    # the corpus' 0184_CIRSTUD.h (aamorim1913/AptPostProcessor): 'CC X+0 Y+0', the tool at X0 Y0, then 'C DR+'. A C
+    # arc runs about CC from where the tool stands, so it has radius 0 there and the TNC stops; vcnc refused it
+    # with the ISO wording "expected a centre offset I/J/K != 0", which a Klartext program has no words for
+    with pytest.raises(GCodeError, match=r"t\.h:5:1: C arc of radius zero: the tool stands on the circle centre CC "
+                                         r"\(got 'C DR\+'\); expected a CC away from the start point"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 L X+0 Y+0 Z+5 R0 FMAX\n2 CC X+0 Y+0\n3 L Z+0 F100\nC DR+\n"
+                         "6 END PGM T MM\n", source="t.h", context=CONTEXT)
+    prog = checked("1 L X+10 Y+0 Z+5 R0 FMAX\n2 CC X+0 Y+0\n3 C DR+ F100")  # away from CC: the full circle runs
+    assert [b.kind for b in prog.blocks] == ["rapid", "arc"] and ends(prog)[-1] == [10.0, 0.0, 5.0]
