@@ -121,3 +121,17 @@ def test_c_arc_starting_on_its_centre_names_the_circle_centre_cc():
                          "6 END PGM T MM\n", source="t.h", context=CONTEXT)
     prog = checked("1 L X+10 Y+0 Z+5 R0 FMAX\n2 CC X+0 Y+0\n3 C DR+ F100")  # away from CC: the full circle runs
     assert [b.kind for b in prog.blocks] == ["rapid", "arc"] and ends(prog)[-1] == [10.0, 0.0, 5.0]
+
+
+def test_datum_table_in_a_machine_file(tmp_path):
+    # [program] datum_table = "ZEROSHIFT.D", relative to the machine file, as tool_table is
+    from vcnc.engine.machine import builtin_machine_text, load_machine
+
+    (tmp_path / "ZEROSHIFT.D").write_text("BEGIN ZEROSHIFT.D MM\nD    X           Y           Z\n"
+                                          "3    +1          +2          +3\n[END]\n")
+    machine = tmp_path / "m.toml"
+    machine.write_text(builtin_machine_text("fadal-pid") + '\n[program]\ndatum_table = "ZEROSHIFT.D"\n')
+    assert load_machine(machine).context.datum_table[3].tolist() == [1.0, 2.0, 3.0]
+    machine.write_text(builtin_machine_text("fadal-pid") + '\n[program]\ndatum_table = "MISSING.D"\n')
+    with pytest.raises(InputError, match=r"m\.toml:\d+: .*MISSING\.D: cannot read datum table"):
+        load_machine(machine)
