@@ -104,6 +104,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CYCL DEF 7/9/32/1/2/4/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
+    CYCL DEF 7.1 #5, TRANS DATUM TABLE TABLINE 5
+                                    datum shift to row 5 of the datum table (context.datum_table)
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
     PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
     CYCL DEF 8/10/11/26, TRANS ..   mirror image, rotation, scaling about the datum (arcs and RL/RR
@@ -1178,7 +1180,11 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
         return
     if number == 7:
         if rest.strip().startswith("#"):
-            _datum_table_shift(rest, m, where, col)
+            found = re.fullmatch(r"\s*#\s*(\d+|Q[LR]?\d+)\s*", rest, re.I)
+            if found is None:
+                where.fail(f"cycle 7: malformed datum table row {rest.strip()!r}", column=col, text=rest.strip(),
+                           expected="#n or #Qn, the row of the datum table")
+            _datum_table_shift(found.group(1), m, where, col, "cycle 7", rest.strip())
             return
         words = block_words(rest, 0, where, m, column0=col)
         for w in words:
@@ -1369,27 +1375,22 @@ def _preset_row(n: int) -> str | None:
     return WORK_OFFSETS[n - 1] if n <= len(WORK_OFFSETS) else None
 
 
-def _datum_table_shift(rest: str, m: Machine, where: Where, column: int) -> None:
-    """``CYCL DEF 7.1 #5`` (or ``#Q5``): the datum shift to row 5 of the datum table, its X, Y and Z
-    (:attr:`MachineContext.datum_table`, in mm whatever the program's unit). TNC 640 cycle programming manual,
-    cycle 7 DATUM SHIFT: with datum tables the cycle takes the number of a datum from the table; TNC7 user's
-    manual 81762x-17, "Datum table *.d": its X, Y, Z "have the effect of a shift in the workpiece coordinate
-    system W-CS" and a datum table must be active to use it, so a row the context's table lacks, or a context
-    without a table, is an error naming the row (a TNC without the row stops there too)."""
-    text = rest.strip()
-    found = re.fullmatch(r"#\s*(\d+|Q[LR]?\d+)", text, re.I)
-    if found is None:
-        where.fail(f"cycle 7: malformed datum table row {text!r}", column=column, text=text,
-                   expected="#n or #Qn, the row of the datum table")
-    name = found.group(1)
+def _datum_table_shift(name: str, m: Machine, where: Where, column: int, what: str, text: str) -> None:
+    """The datum shift to the row ``name`` (a number or a Q parameter) of the datum table, its X, Y and Z
+    (:attr:`MachineContext.datum_table`, in mm whatever the program's unit): ``CYCL DEF 7.1 #5`` (TNC 640 cycle
+    programming manual, cycle 7 DATUM SHIFT: with datum tables the cycle takes the number of a datum from the
+    table) and ``TRANS DATUM TABLE TABLINE 5`` (TNC 640 user's manual, "TRANS DATUM"). TNC7 user's manual
+    81762x-17, "Datum table *.d": its X, Y, Z "have the effect of a shift in the workpiece coordinate system
+    W-CS", and a datum table must be active to use it, so a row the context's table lacks, or a context without a
+    table, is an error naming the row (a TNC without the row stops there too)."""
     row = int(name) if name[0].isdigit() else _whole_number(name, m, where, column, what="datum table row")
     value = m.context.datum_table.get(row)
     if value is None:
         held = (f"the machine context's datum table has rows {', '.join(map(str, sorted(m.context.datum_table)))}"
                 if m.context.datum_table else "the machine context has no datum table")
-        where.fail(f"cycle 7: row {row} of the datum table is not known ({held})", column=column, text=text,
-                   expected="a datum table with that row (vcnc interpolate --datum-table FILE.D), or "
-                            "CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
+        where.fail(f"{what}: row {row} of the datum table is not known ({held})", column=column, text=text,
+                   expected="a datum table with that row (vcnc interpolate --datum-table FILE.D, or the machine "
+                            "file's [program] datum_table)")
     _datum_shift({axis: value[i] / m.scale for i, axis in enumerate("XYZ")}, m)
 
 
@@ -1575,9 +1576,22 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: Machine, w
            extra=extra)
 
 
+#: ``TRANS DATUM TABLE TABLINE 5`` (``TABLINE Q5``), optionally with the table's file ``TABLE "TNC:\\ZS.D"``.
+_TRANS_TABLE_RE = re.compile(r'\s*DATUM\s+TABLE\s+(?:TABLE\s*("[^"]*")\s*)?TABLINE\s*(\d+|Q[LR]?\d+)\s*$', re.I)
+
+
 def _trans(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TRANS DATUM|MIRROR|ROTATION|SCALE``: the transformations of cycles 7, 8, 10, 11."""
     col = blk.column + pos
+    table = _TRANS_TABLE_RE.match(blk.code, pos)
+    if table is not None:
+        if table.group(1) is not None:
+            where.fail(f"TRANS DATUM TABLE with its own table {table.group(1)!r}", column=col,
+                       text=blk.code[pos:].strip(),
+                       expected="TRANS DATUM TABLE TABLINE n of the machine context's datum table (vcnc interpolate "
+                                "--datum-table FILE.D, or the machine file's [program] datum_table)")
+        _datum_table_shift(table.group(2), m, where, col, "TRANS DATUM TABLE", blk.code[pos:].strip())
+        return
     t, shift = trans_block(blk.code[pos:], m.transform, where, m.params, column0=col, scale=m.scale)
     if shift is not None:
         if not shift:

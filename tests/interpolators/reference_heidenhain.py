@@ -1262,6 +1262,8 @@ def _trans(t: _Tnc, up: str) -> None:
             t.rot = 0.0
         else:
             t.scl = 1.0
+    elif kind == "DATUM" and rest.startswith("TABLE"):  # TRANS DATUM TABLE TABLINE n: row n of the datum table
+        _cycle_def(t, 0, "CYCL DEF 7.1 #" + rest.split("TABLINE")[1].strip())
     elif kind == "DATUM":
         _cycle_def(t, 0, "CYCL DEF 7.1 " + rest)
     else:

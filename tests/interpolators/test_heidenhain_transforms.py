@@ -141,7 +141,7 @@ def test_tool_def_alone_preselects_and_tool_call_by_name():
     ("PLANE VECTOR BX+1 BY+0 BZ+0 NX+0 NY+0 NZ+1 STAY", "PLANE VECTOR"),
     ("FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS", "FUNCTION TCPM (TCPM, tool centre point management) needs"),
     ("L X+0 Y+0 R0 FMAX M128", "M128 (TCPM"),
-    ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM without an axis value"),
+    ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM TABLE: row 3 of the datum table is not known"),
     ("CYCL DEF 8.0 MIRROR IMAGE\nCYCL DEF 8.1 Z", "MIRROR IMAGE of the tool axis Z"),
     ("CYCL DEF 11.0 SCALING\nCYCL DEF 11.1 SCL 0", "SCL must be > 0"),
     ("CYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 45", "cycle 10 ROTATION without ROT"),

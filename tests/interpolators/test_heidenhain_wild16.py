@@ -56,6 +56,19 @@ def test_datum_table_row_from_a_q_parameter_and_in_inch():
     assert ends(inch) == [[125.9, 20.0, -5.0]]
 
 
+def test_trans_datum_table_tabline_selects_a_row_as_cycle_7_does():
+    # TNC 640 user's manual, "TRANS DATUM": 'TRANS DATUM TABLE TABLINE 1' shifts to row 1 of the active datum table,
+    # as 'CYCL DEF 7.1 #1' does (TABLINE Q7 from a Q parameter); it was refused as 'TRANS DATUM without an axis
+    # value'. Row 1 is 100.5/20/-5, row 2 300/0/0.
+    prog = checked("1 L X+0 Y+0 Z+5 R0 FMAX\n2 TRANS DATUM TABLE TABLINE 1\n3 L X+10 Y+10 FMAX\n4 Q7 = 2\n"
+                   "5 TRANS DATUM TABLE TABLINEQ7\n6 L X+0 Y+0 Z+5 FMAX\n7 TRANS DATUM RESET\n8 L X+0 Y+0 FMAX")
+    assert ends(prog) == [[0.0, 0.0, 5.0], [110.5, 30.0, 5.0], [300.0, 0.0, 5.0], [0.0, 0.0, 5.0]]
+    # a table file of its own in the block: vcnc reads the context's table only, and says so
+    with pytest.raises(GCodeError, match=r"t\.h:2:\d+: TRANS DATUM TABLE with its own table '\"TNC:\\\\ZS\.D\"'"):
+        parse_heidenhain('0 BEGIN PGM T MM\n1 TRANS DATUM TABLE TABLE "TNC:\\ZS.D" TABLINE 1\n2 END PGM T MM\n',
+                         source="t.h", context=CONTEXT)
+
+
 @pytest.mark.parametrize(("context", "row", "words"), [
     (MachineContext(), "#1", r"row 1 of the datum table is not known \(the machine context has no datum table\)"),
     (CONTEXT, "#7", r"row 7 of the datum table is not known \(the machine context's datum table has rows 0, 1, 2\)"),
