@@ -122,6 +122,9 @@ def test_datum_table_on_the_command_line(tmp_path, capsys):
     assert blocks.read_text().splitlines()[1].split(",")[3:6] == ["100.5", "20", "0"]
     assert main(["interpolate", str(program), "-o", str(tmp_path / "t.csv")]) == 2
     assert "p.h:3:16: cycle 7: row 1 of the datum table" in capsys.readouterr().err
+    # the table is an input the outputs must not replace
+    assert main(["interpolate", str(program), "-o", str(table), "--datum-table", str(table)]) == 2
+    assert "it is the input" in capsys.readouterr().err and table.read_text().startswith("BEGIN ZS.D MM")
 
 
 def test_c_arc_starting_on_its_centre_names_the_circle_centre_cc():
