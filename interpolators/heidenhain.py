@@ -305,6 +305,8 @@ class Machine:
         self.preset: str | None = "G54"
         # preset table rows a touch probe cycle wrote (interpolators.heidenhain_probing): work offset -> value [mm]
         self.presets: dict[str | None, np.ndarray] = {}
+        # the datum table (context.datum_table) with the rows a touch probe cycle wrote (Q303=0): row -> X, Y, Z [mm]
+        self.datum_rows: dict[int, np.ndarray] = dict(context.datum_table)
         self.transform = Transform()
         self.comp = "R0"
         self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
@@ -1351,8 +1353,10 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
     zero moves by it and PLANE RESET finds the part where the probe put it (our reading: the manual's page on
     probing in a tilted plane was not found); Q305=n, Q303=1: row n of the preset table (the work offsets, as
     cycle 247 numbers them)
-    holds the datum, active once cycle 247 selects it; Q303=0 (or -1): row n of the datum table, which vcnc
-    does not model (noted)."""
+    holds the datum, active once cycle 247 selects it; Q303=0: row n of the datum table ("Write determined datum
+    in the active datum table. The reference system is the active workpiece coordinate system", iTNC 530 cycle
+    manual 15.6, Q303), the shift from the preset that puts the probed point at ``origin_to``, active once
+    ``CYCL DEF 7.1 #n`` selects it; Q303=-1 (entered by the TNC in old programs, "do not use"): noted."""
     delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
     if row == 0 and m.tilt is not None:  # the datum set in the tilted plane, the preset kept untilted
         machine = m.to_machine(delta) - m.to_machine(np.zeros(3))
@@ -1361,6 +1365,9 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
         return
     if row == 0:
         m.presets[m.preset] = m.preset_value() + delta
+        return
+    if table == 0:
+        m.datum_rows[row] = m.shift + delta
         return
     if table != 1 or _preset_row(row) is None:
         m.note(f"TCH PROBE {number}: the datum written to row {row} of the "
@@ -1384,10 +1391,10 @@ def _datum_table_shift(name: str, m: Machine, where: Where, column: int, what: s
     W-CS", and a datum table must be active to use it, so a row the context's table lacks, or a context without a
     table, is an error naming the row (a TNC without the row stops there too)."""
     row = int(name) if name[0].isdigit() else _whole_number(name, m, where, column, what="datum table row")
-    value = m.context.datum_table.get(row)
+    value = m.datum_rows.get(row)
     if value is None:
-        held = (f"the machine context's datum table has rows {', '.join(map(str, sorted(m.context.datum_table)))}"
-                if m.context.datum_table else "the machine context has no datum table")
+        held = (f"the datum table has rows {', '.join(map(str, sorted(m.datum_rows)))}"
+                if m.datum_rows else "the machine context has no datum table")
         where.fail(f"{what}: row {row} of the datum table is not known ({held})", column=column, text=text,
                    expected="a datum table with that row (vcnc interpolate --datum-table FILE.D, or the machine "
                             "file's [program] datum_table)")

@@ -69,9 +69,22 @@ def test_trans_datum_table_tabline_selects_a_row_as_cycle_7_does():
                          source="t.h", context=CONTEXT)
 
 
+def test_probed_datum_written_to_the_datum_table_is_the_row_cycle_7_selects():
+    # 'TCH PROBE 417 ... Q305=+0 ;NR. IN TABELLE ... Q303=+1 ;MESSWERT-UEBERGABE' in the set's shop program writes the
+    # preset; Q303=0 writes row Q305 of the datum table instead ("Write determined datum in the active datum table.
+    # The reference system is the active workpiece coordinate system", iTNC 530 cycle manual 15.6, Q303), which
+    # vcnc noted and dropped. The D40 hole about 50/30 (the nominal workpiece) with Q331=+10 Q332=+0: row 3 is the
+    # shift 40/30/0 that puts the centre at X+10 Y+0; it takes effect with 'CYCL DEF 7.1 #3', not before.
+    prog = checked("1 TOOL CALL 100 Z S50\n2 L X+50 Y+30 Z+55 R0 FMAX\n3 TCH PROBE 412 DATUM INSIDE CIRCLE Q321=+50 "
+                   "Q322=+30 Q262=+40 Q325=+0 Q247=+90 Q261=-3 Q320=+2 Q260=+5 Q301=+1 Q305=+3 Q331=+10 Q332=+0 "
+                   "Q303=+0 Q423=4 Q365=+1\n4 L X+0 Y+0 Z+5 FMAX\n5 CYCL DEF 7.0 DATUM SHIFT\n6 CYCL DEF 7.1 #3\n"
+                   "7 L X+10 Y+0 Z+5 FMAX", MachineContext())
+    assert [e for e, b in zip(ends(prog), prog.blocks) if b.line in (5, 8)] == [[0.0, 0.0, 5.0], [50.0, 30.0, 5.0]]
+
+
 @pytest.mark.parametrize(("context", "row", "words"), [
     (MachineContext(), "#1", r"row 1 of the datum table is not known \(the machine context has no datum table\)"),
-    (CONTEXT, "#7", r"row 7 of the datum table is not known \(the machine context's datum table has rows 0, 1, 2\)"),
+    (CONTEXT, "#7", r"row 7 of the datum table is not known \(the datum table has rows 0, 1, 2\)"),
     (CONTEXT, "#-1", r"malformed datum table row '#-1'"),
 ])
 def test_datum_table_row_the_table_lacks_is_an_error_naming_it(context, row, words):
