@@ -30,7 +30,8 @@ from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "TouchProbe", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT",
            "INTERPOLATION_CONTEXT",
-           "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code",
+           "read_tool_table", "read_tnc_tool_table", "read_datum_table", "tnc_table_rows", "EXTENDED_OFFSETS",
+           "extended_offset", "work_offset_code",
            "FADAL_FIXTURES", "TOOL_OFFSET_MEMORIES"]
 
 #: Fanuc tool compensation memory types (:attr:`MachineContext.tool_offset_memory`).
@@ -352,6 +353,11 @@ class MachineContext:
         :mod:`interpolators.tilted`); None (the default): a tilt is an error naming the function.
     touch_probe : TouchProbe
         The workpiece touch probe's table row (Heidenhain ``TCH PROBE`` cycles).
+    datum_table : mapping of int to ndarray (3,)
+        The Heidenhain datum table (a ``.D`` file, :func:`read_datum_table`): row ``D`` to its X, Y, Z
+        columns [mm], the shift ``CYCL DEF 7.1 #D`` selects (from the preset, in the workpiece coordinates:
+        TNC7 user's manual 81762x-17, "Datum table *.d"). Empty (the default): the context has no datum
+        table, and selecting a row is an error naming it.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -365,6 +371,7 @@ class MachineContext:
     tool_offset_memory: str = "C"
     kinematics: Kinematics | None = None
     touch_probe: TouchProbe = dataclasses.field(default_factory=TouchProbe)
+    datum_table: Mapping[int, np.ndarray] = dataclasses.field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.linear_units not in ("mm", "inch"):
@@ -388,6 +395,12 @@ class MachineContext:
                 raise InputError(f"tool table entry {number!r} must be a Tool with number {number!r}")
             tools[int(number)] = tool
         object.__setattr__(self, "tools", MappingProxyType(tools))
+        rows = {}
+        for row, value in dict(self.datum_table).items():
+            if not isinstance(row, int) or row < 0:
+                raise InputError(f"datum table row {row!r} must be a whole number >= 0")
+            rows[row] = _xyz(value, f"datum table row {row}")
+        object.__setattr__(self, "datum_table", MappingProxyType(rows))
         object.__setattr__(self, "home", _xyz(self.home, "home"))
         object.__setattr__(self, "reference2", _xyz(self.reference2, "reference2"))
         bad = [a for a in self.extra_axes if a not in EXTRA_NAMES]
@@ -491,6 +504,21 @@ _TNC_TABLE_BEGIN = re.compile(r"\s*BEGIN\s+\S*\s*\.T\s+(MM|INCH)\b", re.I)
 _TNC_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)$")
 
 
+def tnc_table_rows(lines: list[str]) -> list[tuple[int, dict[str, str]]]:
+    """The rows of a Heidenhain table file (TOOL.T, a datum table .D): text with fixed column widths, a
+    ``BEGIN`` line, a header line whose column names start where their columns start, one line per row, and
+    ``[END]``. Each row as its 1-based line number and its fields by column name (stripped text)."""
+    header = lines[1].rstrip()
+    starts = [m.start() for m in re.finditer(r"\S+", header)]
+    names = header.split()
+    rows = []
+    for lineno, raw in enumerate(lines[2:], start=3):
+        if not raw.strip() or raw.strip().upper() == "[END]":
+            continue
+        rows.append((lineno, {name: raw[a:b].strip() for name, a, b in zip(names, starts, starts[1:] + [len(raw)])}))
+    return rows
+
+
 def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
     """Read a Heidenhain tool table TOOL.T (iTNC 530, TNC 320/620/640, TNC7).
 
@@ -513,19 +541,13 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
     if len(lines) < 2 or not re.match(r"\s*T\s", lines[1]):
         raise InputError(f"{path}:2: Heidenhain tool table without its header line; expected the column names "
                          "T NAME L R ... after the BEGIN line")
-    header = lines[1].rstrip()
-    starts = [m.start() for m in re.finditer(r"\S+", header)]
-    names = header.split()
+    names = lines[1].split()
     missing = [c for c in ("T", "L", "R") if c not in names]
     if missing:
         raise InputError(f"{path}:2: Heidenhain tool table header without column {missing[0]}; expected "
                          "T NAME L R ... (the TNC's TOOL.T)")
     tools: dict[int, Tool] = {}
-    for lineno, raw in enumerate(lines[2:], start=3):
-        if not raw.strip() or raw.strip().upper() == "[END]":
-            continue
-        fields = {name: raw[a:b].strip() for name, a, b in zip(names, starts, starts[1:] + [len(raw)])}
-
+    for lineno, fields in tnc_table_rows(lines):
         def number(col: str, *, lineno: int = lineno, fields: dict = fields) -> float:
             text = fields.get(col, "")
             if not text:
@@ -549,3 +571,45 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
             raise InputError(f"{path}:{lineno}: {exc.message}; expected the TOOL.T columns under the header's "
                              "names") from None
     return tools
+
+
+_TNC_DATUM_BEGIN = re.compile(r"\s*BEGIN\s+\S*\.D\s+(MM|INCH)\b", re.I)
+
+
+def read_datum_table(path: str) -> dict[int, np.ndarray]:
+    """Read a Heidenhain datum table (a ``.D`` file: ``BEGIN ZEROSHIFT.D MM``, a header ``D X Y Z ...``, one
+    line per row, ``[END]``; the fixed widths of :func:`tnc_table_rows`) into :attr:`MachineContext.datum_table`.
+
+    Following the TNC7 user's manual "Datum table *.d" (HEIDENHAIN 81762x-17): ``D`` the row number, ``X``, ``Y``,
+    ``Z`` the datum, "a shift in the workpiece coordinate system W-CS" [mm, or inch in an INCH table, converted
+    to mm]; an empty field is 0. The columns A, B, C, U, V, W (offsets of those axes in the machine coordinates)
+    and DOC are read past.
+
+    Raises
+    ------
+    InputError
+        Unreadable file, no BEGIN ... .D line or no header with D, or a malformed number (file and line named).
+    """
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            lines = fh.read().splitlines()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read datum table: {exc.strerror or exc}") from None
+    begin = _TNC_DATUM_BEGIN.match(lines[0]) if lines else None
+    if begin is None:
+        raise InputError(f"{path}:1: not a Heidenhain datum table; expected a first line BEGIN <name>.D MM (or INCH)")
+    if len(lines) < 2 or "D" not in lines[1].split():
+        raise InputError(f"{path}:2: Heidenhain datum table without its header line; expected the column names "
+                         "D X Y Z ... after the BEGIN line")
+    scale = 25.4 if begin.group(1).upper() == "INCH" else 1.0
+    rows: dict[int, np.ndarray] = {}
+    for lineno, fields in tnc_table_rows(lines):
+        if not re.fullmatch(r"\d+", fields["D"]):
+            raise InputError(f"{path}:{lineno}: row number {fields['D']!r} is not a whole number; "
+                             "expected D as 0, 1, 2 ...")
+        bad = [c for c in "XYZ" if fields.get(c) and not _TNC_NUMBER.match(fields[c])]
+        if bad:
+            raise InputError(f"{path}:{lineno}: column {bad[0]} holds {fields[bad[0]]!r}, not a number; expected "
+                             "the columns under the header's names (fixed widths)")
+        rows[int(fields["D"])] = np.array([float(fields.get(c) or 0.0) * scale for c in "XYZ"])
+    return rows
