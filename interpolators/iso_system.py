@@ -14,6 +14,7 @@ LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.ht
 ``#5220``                 coordinate system number 1-9 (G54 .. G59.3)
 ``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [machine units, deg], ``#5241``.. G55, every 20
                           up to ``#5381``-``#5390`` G59.3
+``#5399``                 the result of the last M66 wait on input, 0 before one (:mod:`interpolators.iso_mcodes`)
 ``#5400``                 tool in the spindle (0 when none); ``#5401``-``#5409`` its stored offsets (Z:
                           length), ``#5410`` its diameter [machine units]
 ``#5420``-``#5428``       current position in the active coordinate system with all offsets, program
@@ -167,6 +168,8 @@ class ReaderState(Protocol):
     modal_calls: ModalCalls | None  # Fanuc G66/G66.1 in force
     parts_counters: dict[int, float]  # Fanuc/Haas #3901, #3902 as the program set them
     parts_read: bool  # the program read a parts counter
+    input_result: float | None  # LinuxCNC #5399 (iso_mcodes, M66)
+    input_unknown: str
     tcp: int  # tool centre point control in force (iso_tcp), 0 off
 
     @property
@@ -337,6 +340,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _work_offset(n, st), ""
     if 5400 <= n <= 5410:
         return _tool(n, st), ""
+    if n == 5399 and not fanuc:
+        return st.input_result, st.input_unknown
     return None, ""
 
 

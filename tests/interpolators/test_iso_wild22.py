@@ -1,0 +1,77 @@
+"""Readings settled by the wild22 set of public programs (/tmp/wild22/set and /tmp/wild22/callers: Probe Basic's
+LinuxCNC subroutines and example programs (kcjengr/probe_basic), a maker space's VCarve programs and LinuxCNC
+probing subroutines (fortcollinscreatorhub/cnc), ConversationalGCode's generated pockets, a Carvera 4-axis wrapped
+finishing program, Escriba's and a school computer project's engraving files, Okuma OSP user tasks, student Haas
+programs). The snippets are written for these tests after those programs."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
+
+LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"])
+
+#: Probe Basic's tool changer macros (configs/probe_basic/subroutines/retractatc.ngc, clamptool.ngc, m24.ngc): wait
+#: for a sensor with a timeout, abort when #5399 says the wait timed out, then move on.
+RETRACT_ATC = ("G21 G90\no<retract> sub\nM64 P1\nM66 P0 L3 Q4 ; check carousel in position sensor\n"
+               "o100 if [#5399 LT 0]\n(abort, Failed to send carousel home)\no100 endif\nG0 X10\n"
+               "o<retract> endsub\no<retract> call\nG0 Y5\nM2\n")
+
+
+def _x_of(text: str, **changes) -> float:
+    """The X the program's last move ends at, read under LinuxCNC (``changes``: of its dialect)."""
+    ctx = MachineContext(dialect=dataclasses.replace(DIALECTS["linuxcnc"], **changes))
+    return float(parse_program(text, context=ctx).blocks[-1].target[0])
+
+
+def test_the_result_of_a_wait_on_input_is_the_awaited_level():
+    # LinuxCNC m-code.adoc "M66 Wait on Input": the input's value goes to #5399, -1 after the Q timeout; vcnc's
+    # machine has no inputs, the wait ends with the event it waits for (1 after L1 RISE / L3 HIGH, 0 after L2 FALL /
+    # L4 LOW) and L0 reads an input nothing drives (0, as LinuxCNC reads an unconnected motion.digital-in pin).
+    # Before: "parameter #5399: this system parameter (machine state above #5000) is not modelled"
+    prog = parse_program(RETRACT_ATC, context=LINUXCNC)
+    assert prog.blocks[-1].target.tolist() == pytest.approx([10.0, 5.0, 0.0])
+    assert any(n.startswith("M66 wait on input: the input taken as answering at once") for n in prog.notes)
+    for mode, level in (("L1 Q2", 1.0), ("L2 Q2", 0.0), ("L3 Q2", 1.0), ("L4 Q2", 0.0), ("L0", 0.0), ("", 0.0)):
+        assert _x_of(f"G21\nM66 P3 {mode}\nG0 X[5 + #5399]\nM2\n") == pytest.approx(5.0 + level), mode
+    assert _x_of("G21\nM66 E0 L0\nG0 X[5 + #5399]\nM2\n") == pytest.approx(5.0)
+    # before any M66 #5399 reads 0: LinuxCNC's parameters start at 0 and only M66 writes it (rs274 -g prints
+    # STRAIGHT_TRAVERSE(5.0000, ...) for "G21 / G0 X[#5399+5]")
+    assert _x_of("G21\nG0 X[5 + #5399]\nM2\n") == pytest.approx(5.0)
+
+
+@pytest.mark.parametrize("m66, column, message", [
+    ("M66 P0 E0", 8, r"both a digital \(P\) and an analog \(E\) input \(LinuxCNC: \"Invalid to select both"),
+    ("M66 L0", 1, r"no input to wait on \(LinuxCNC: \"Need to have either a valid P or a valid E word with M66\"\)"),
+    ("M66 P-1", 5, r"no input to wait on"),
+    ("M66 E1 L3 Q1", 8, r"an analog input is read at once \(LinuxCNC: \"Can't select analog input with wait type"),
+    ("M66 P0 L3", 8, r"a wait \(L3\) needs a timeout Q > 0 \[s\] \(LinuxCNC: \"Zero timeout with wait type"),
+    ("M66 P0 L1 Q0", 8, r"a wait \(L1\) needs a timeout Q > 0"),
+    ("M66 P0 L-1 Q1", 8, r"wait mode L must be a whole number >= 0 \(LinuxCNC: \"Negative l word used\""),
+])
+def test_a_wait_on_input_linuxcnc_refuses(m66, column, message):
+    # rs274 -g refuses each of these lines with the message quoted (interp_convert.cc / interp_check.cc, M66);
+    # before, vcnc ran them all as a note
+    with pytest.raises(GCodeError, match=rf":2:{column}: {m66}: {message}"):
+        parse_program(f"G21\n{m66}\nG0 X1\nM2\n", context=LINUXCNC)
+
+
+def test_an_undocumented_wait_mode_leaves_the_result_unknown():
+    # m-code.adoc defines L0-L4 only; rs274 runs "M66 P0 L5 Q1", so vcnc does too, but what #5399 then holds is
+    # the machine's: reading it is an error naming the M66
+    parse_program("G21\nM66 P0 L5 Q1\nG0 X1\nM2\n", context=LINUXCNC)
+    with pytest.raises(GCodeError, match=r":3:5: parameter #5399: the result of M66 P0 L5 Q1 at line 2, whose wait "
+                                         r"mode L5 is none of LinuxCNC's L0-L4"):
+        parse_program("G21\nM66 P0 L5 Q1\nG0 X#5399\nM2\n", context=LINUXCNC)
+
+
+def test_fanuc_reads_no_linuxcnc_wait_result():
+    # #5399 is LinuxCNC's; on a Fanuc control M66 is a machine maker's code and #5399 a system variable vcnc does
+    # not model
+    with pytest.raises(GCodeError, match=r"parameter #5399"):
+        parse_program("G21\nM66\nG0 X#5399\nM30\n", context=MachineContext(dialect=DIALECTS["fanuc"]))
