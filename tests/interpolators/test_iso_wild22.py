@@ -75,3 +75,34 @@ def test_fanuc_reads_no_linuxcnc_wait_result():
     # not model
     with pytest.raises(GCodeError, match=r"parameter #5399"):
         parse_program("G21\nM66\nG0 X#5399\nM30\n", context=MachineContext(dialect=DIALECTS["fanuc"]))
+
+
+HAAS = MachineContext(dialect=DIALECTS["haas"])
+
+#: Haas mill operator's manual 96-8000 (1999), "Macros", "Conditional Expressions": "N50 [#100 LT 10] M99 P10 ;
+#: ... the branch occurs only when #100 is less than 10, otherwise processing continues with the next program
+#: line" (the M99 conditional construct "is unique to the HAAS control"); a loop written so.
+HAAS_CONDITIONAL_M99 = "%\nO1\n#100 = 5\nN10 #100 = #100 - 1\nG0 X#100\nN50 [#100 GT 1] M99 P10\nG0 Y1\nM30\n%\n"
+
+
+def test_haas_conditional_m99_branches_while_its_condition_holds():
+    # before: "'[#100 GT 1]' in brackets where a word should start"
+    prog = parse_program(HAAS_CONDITIONAL_M99, context=HAAS)
+    assert [b.target[:2].tolist() for b in prog.blocks] == [[4, 0], [3, 0], [2, 0], [1, 0], [1, 1]]
+    # Fanuc has no such construct (the Haas manual: "unique to the HAAS control")
+    with pytest.raises(GCodeError, match=r":6:5: '\[#100 GT 1\]' in brackets where a word should start"):
+        parse_program(HAAS_CONDITIONAL_M99, context=MachineContext(dialect=DIALECTS["fanuc"]))
+
+
+@pytest.mark.parametrize("dialect", ["haas", "fanuc"])
+def test_m99_p_in_the_main_program_branches_within_it(dialect):
+    # Haas (same section): "N50 M99 P10 ; branches to line N10" of the current program; in a main program, our
+    # reading for Fanuc too. Before: "word P needs G04 (dwell), G64 ...". A branch that never ends is an endless
+    # loop, named
+    text = "%\nO1\n#1 = 3\nN10 #1 = #1 - 1\nG0 X#1\nIF [#1 LE 0] GOTO 30\nM99 P10\nN30 G0 Y1\nM30\n%\n"
+    prog = parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]))
+    assert [b.target[:2].tolist() for b in prog.blocks] == [[2, 0], [1, 0], [0, 0], [0, 1]]
+    with pytest.raises(GCodeError, match=r":4:1: M99 P10 has sent execution back more than \d+ times: an endless"):
+        parse_program("%\nO1\nN10 G0 X1\nM99 P10\nM30\n%\n", context=MachineContext(dialect=DIALECTS[dialect]))
+    with pytest.raises(GCodeError, match=r":3:5: M99 P20: no block N20 in this program"):
+        parse_program("%\nO1\nM99 P20\nM30\n%\n", context=MachineContext(dialect=DIALECTS[dialect]))
