@@ -667,7 +667,6 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     kinks = [plain[k] and plain[k + 1] for k in range(len(segments) - 1)]  # not beside a merged curve
     corner_of = {b: k for k, (sg, b) in enumerate(zip(segments, blocks)) if plain[k]}
     blk = program.blocks
-    corner_value = [b.extra_target for b in blk]
 
     def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
         r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3),
@@ -703,7 +702,7 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         for i, k in enumerate(corners):
             if isinstance(segments[k], Arc) or isinstance(segments[k + 1], Arc):  # beside an arc: along the arc
                 along[i] = _arc_corner_positions(points[i], segments[k], segments[k + 1])
-        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
+        ratio = excess(*args, np.array([blk[blocks[k]].extra_target for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
             spl, offsets = hermite_axes(*_with_cut_arcs(args, cut, blk))  # one spline for the chain's blends
             pieces = [sg for sg, _ in made] + [sg for sg, _ in cut]
