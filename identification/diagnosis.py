@@ -1327,6 +1327,11 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
             "summary": e.summary(),
             "evidence": plain(s.evidence),
         })
+        # a parameter the record does not pin (a period the travel covers once) is kept for the simulation and
+        # reported as such, never as a measured number
+        if unpinned := e.unpinned(travel=data.span, duration=data.n * T):
+            rec["unpinned"] = unpinned
+            rec["summary"] = f"{e.summary()}; not pinned by the record: {', '.join(unpinned)}"
         records.append(rec)
     fit = dict(model.fit)
     fit["reduced_model"] = {"rms_um": stages[0].identification_rms_um, "max_um": stages[0].identification_max_um,
@@ -1517,6 +1522,18 @@ def dropped_lines(validation: dict, unit: str = "um") -> list[str]:
     return lines
 
 
+def unpinned_lines(model: ReducedAxisModel) -> list[str]:
+    """One line per parameter of a named effect that the record does not pin (the effect record's ``unpinned``,
+    :meth:`identification.effects.Effect.unpinned`): which, its fitted value, and why."""
+    lines = []
+    for e in model.effects or []:
+        for key, why in (e.get("unpinned") or {}).items():
+            value = (e.get("parameters") or {}).get(key)
+            shown = f" {value:.4g}" if isinstance(value, (int, float)) else ""
+            lines.append(f"not pinned: {e['name']} {key}{shown} is one of many values that fit: {why}")
+    return lines
+
+
 def format_before_after(model: ReducedAxisModel) -> str:
     """Text table of :func:`before_after_rows` for the command line (errors in um, mdeg on a rotary axis)."""
     rows = before_after_rows(model)
@@ -1543,6 +1560,7 @@ def format_before_after(model: ReducedAxisModel) -> str:
         lines.append("diagnosis: no effect is kept; the reduced model stands" if refused else
                      "diagnosis: no effect lowers the held-out error significantly; the reduced model stands")
     lines.extend(refused)
+    lines.extend(unpinned_lines(model))
     for fo in v.get("folds") or []:
         w = fo.get("window_s") or [math.nan, math.nan]
         lines.append(f"  fold {w[0]:8.3f}..{w[1]:8.3f} s ({fo.get('active_samples')} active samples): held-out RMS "
