@@ -5,7 +5,8 @@ Each program below is read twice, with the shortcut (``parse_iso``'s default) an
 every block (end points and feeds by their bytes, the segment's geometry), the notes, the messages and the
 axes, or the same error with the same message. The programs are hand-written, one per modal state the
 shortcut models (units, G90/G91, G90.1/G91.1, the planes, offsets, tool length, path mode) or declines
-(inverse time, feed per revolution, cutter compensation, rotation, scaling, mirroring, polar coordinates,
+(inverse time -- taken since g93fast35, where these lines without their own F are the general path's error --,
+feed per revolution, cutter compensation, rotation, scaling, mirroring, polar coordinates,
 canned cycles, corner rounding, axis words after G80, Fanuc numbers without a decimal point, arcs it would
 refuse): a shortcut that took a block it does not model would give a different block or no error. For the
 declined states the test also checks that the state changes what the plain lines after it mean (so that the
