@@ -68,6 +68,8 @@ PROGRAMS = {
     "G93 again after G94": "G21 G90 G94 F500.\nG1 X1. Y1.\nG93 G1 X2. F10.\nG1 X3. Y2. A5. F20.\nG94 G1 X4. F400.\n"
                            "G93 X5. F4.\nG94 F300.\nG1 X6.\n",
     "G94 twice": "G21 G90 F500.\nG93 G1 X1. F2.\nG94 G1 X2. F300.\nG94 G1 X3.\n",
+    # LinuxCNC's note on a G1 alone reads the modal feed, which a G93 F leaves as it was
+    "a G1 alone after a G93 move": "G21 G90\nG93 G1 X1. F2.\nG1\nG94 F300.\nG1 X2.\n",
 }
 
 #: Programs the general path refuses (the same error and line both ways) or reads with a note.
@@ -90,6 +92,8 @@ ERRORS = {
     "G93 with a cycle after": "G21 G90 G93 G98\nG1 X1. F2.\nG81 X5. Y5. Z-2. R1. F100.\n",
     "G93.0 and G94.0": "G21 G90\nG93.0 G1 X1. F2.\nG94.0 G1 X2. F300.\n",
     "G93 twice on one line": "G21 G90 F500.\nG93 G93 G1 X1. F2.\n",
+    # the message names the F0 only while no F > 0 came after it (a G93 F too)
+    "F0, G93 moves, G94 without F": "G21 G90\nF0\nG93 G1 X1. F2.\nG94\nG1 X2.\n",
 }
 
 
@@ -99,7 +103,7 @@ def test_inverse_time_gives_the_general_blocks(name, dialect):
     context = FIVE_AXIS.with_dialect(dialect)
     got = assert_same(PROGRAMS[name] + "M2\n", context)
     assert not got[0].startswith("error"), got[0]
-    assert len(got) > 3
+    assert len(got) >= 3  # the header and two blocks at least
 
 
 @pytest.mark.parametrize("dialect", DIALECTS)
@@ -120,6 +124,17 @@ def test_the_errors_name_the_line_and_the_missing_feed(name):
     assert got[0].startswith(f"error: t.ngc:{line}:"), got[0]
     assert "inverse time (G93) without an F word" in got[0] or "F > 0 [1/min]" in got[0] \
         or "G94 after G93 resets the feed" in got[0], got[0]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_the_modal_feed_read_back_after_g93_moves(dialect):
+    """Fanuc/Haas ``#4109`` (the modal F, :mod:`interpolators.iso_system`) after G93 moves: the F of a G93 block is
+    its time, not the modal feed, so the G94 feed before G93 is read back as the general path keeps it."""
+    text = "G21 G90 G94 F300.\nG1 X1.\nG93 G1 X2. A5. F2.\nG1 X3. F4.\n#100=#4109\nG94 F#100\nG1 X4.\nM30\n"
+    got = assert_same(text, FIVE_AXIS.with_dialect(dialect))
+    assert not got[0].startswith("error"), got[0]
+    last = parse_iso(text, context=FIVE_AXIS.with_dialect(dialect)).blocks[-1]
+    assert last.feed == pytest.approx(300.0 / 60.0)
 
 
 def test_inverse_time_moves_are_taken_by_the_shortcut(monkeypatch):
