@@ -1,6 +1,6 @@
 """The ISO reader's shortcut for plain moves: the bulk of a CAM program, run without the general machinery.
 
-Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] [G93|G94] X.. Y.. Z.. [A.. B.. C.. U.. V.. W..] [I.. J.. K..]
+Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] [G93|G94] X.. Y.. Z.. [A.. B.. C.. U.. V.. W..] [I.. J.. K..|R..]
 [F..]``: a move in the modal state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a
 block itself and appends the same :class:`interpolators.program.Block` the general executor
 (:mod:`interpolators.iso`, ``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and
@@ -22,6 +22,12 @@ path's ``_modes`` takes it (LinuxCNC interp_convert.cc ``convert_feed_mode``): G
 so the next feed move needs an F. A feed move without an F under G93 (rs274ngc: "F word missing with inverse time
 g1 move" / "arc move"; Haas: "each non-rapid motion block must have its own feedrate"), F0 and two feed-mode words
 go the general way, which words the error.
+
+An arc by its radius R (LinuxCNC G-code reference, "Radius Format Arc": R > 0 at most a half circle, R < 0 more; the
+Fanuc and Haas manuals alike) is made by the general path's :func:`interpolators.arcs.arc_from_radius` with its
+dialect's tolerance (:func:`interpolators.arcs.radius_arc_tolerance`), R scaled by G20, and keeps no programmed
+centre; R beside I J K, on a G0/G1, a full circle by R, an R shorter than half the chord, and under Fanuc an R
+without a decimal point go the general way.
 
 It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, a word of an
 axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, a Fanuc ``,R``/``,C`` ...), a
@@ -50,7 +56,13 @@ import math
 import numpy as np
 
 from interpolators._words import INCH
-from interpolators.arcs import ArcWordError, arc_from_center, center_arc_tolerance
+from interpolators.arcs import (
+    ArcWordError,
+    arc_from_center,
+    arc_from_radius,
+    center_arc_tolerance,
+    radius_arc_tolerance,
+)
 from interpolators.iso_axes import EXTRA_LETTERS
 from interpolators.iso_motion import move_feed
 from interpolators.program import Block
@@ -117,9 +129,9 @@ class PlainMoves:
         read = self._read(words)
         if read is None:
             return False
-        motion, number, feed, axes, centre, extra, mode = read
+        motion, number, feed, axes, centre, extra, mode, radius = read
         st = self.st
-        if not axes and (not extra or centre):
+        if not axes and (not extra or centre or radius is not None):
             return False
         if st.motion not in (None, 0, 10, 20, 30):
             return False
@@ -144,7 +156,7 @@ class PlainMoves:
         new_feed = None if feed is None else feed * scale / 60.0
         path_feed = (None if cleared else st.feed) if feed is None else new_feed
         if motion == 0:
-            if centre:
+            if centre or radius is not None:
                 return False
             path_feed = _INF
         elif inverse:
@@ -152,13 +164,14 @@ class PlainMoves:
                 return False
         elif path_feed is None:
             return False
-        elif motion == 10 and centre:
+        elif motion == 10 and (centre or radius is not None):
             return False
         if motion <= 10:
             target.setflags(write=False)
             seg = Line.from_points(pos, target)
         else:
-            seg = self._arc(motion, axes, centre, target, scale)
+            seg = self._arc(motion, axes, centre, target, scale) if radius is None else \
+                self._radius_arc(motion, axes, centre, target, radius * scale)
             if seg is None:
                 return False
             target = seg.end
@@ -199,10 +212,10 @@ class PlainMoves:
         return True
 
     def _read(self, words: list) -> tuple | None:  # noqa: C901 - one pass over the words
-        """``(motion, N word, F, axes, centre, extra, feed mode)`` of a block's words (axis, centre and extra-axis
-        column -> value; the feed mode True for a G93 word, False for G94, None without), or None for a word or
-        repeat the shortcut does not take."""
-        motion = number = feed = mode = None
+        """``(motion, N word, F, axes, centre, extra, feed mode, R)`` of a block's words (axis, centre and
+        extra-axis column -> value; the feed mode True for a G93 word, False for G94, None without), or None for a
+        word or repeat the shortcut does not take."""
+        motion = number = feed = mode = radius = None
         axes: dict[int, float] = {}
         centre: dict[int, float] = {}
         extra: dict[int, float] = {}
@@ -235,6 +248,10 @@ class PlainMoves:
                 if feed is not None or not w.value > 0:
                     return None
                 feed = w.value
+            elif letter == "R":
+                if radius is not None or fanuc and "." not in w.text:
+                    return None
+                radius = w.value
             elif letter in extra_columns:
                 i = extra_columns[letter]
                 if i in extra or fanuc and "." not in w.text:
@@ -242,7 +259,7 @@ class PlainMoves:
                 extra[i] = w.value
             else:
                 return None
-        return motion, number, feed, axes, centre, extra, mode
+        return motion, number, feed, axes, centre, extra, mode, radius
 
     def _extra(self, words: dict[int, float], scale: float) -> tuple[np.ndarray, np.ndarray]:
         """The start and end positions ``(a, b, c, u, v, w)`` [deg, mm] of a move with the extra axis words
@@ -284,6 +301,23 @@ class PlainMoves:
         except ArcWordError:
             return None
         self.centre = center
+        return arc
+
+    def _radius_arc(self, motion: int, axes: dict[int, float], centre: dict[int, float], target: np.ndarray,
+                    radius: float):
+        """The arc of radius ``radius`` [mm] (negative: more than a half circle) as the general path makes it
+        (:func:`interpolators.iso_arcs.read_arc`), or None where that path would refuse it (I/J/K beside R, a full
+        circle, R too short for the chord, grbl's arc without an end-point word in its plane)."""
+        st = self.st
+        p, q = PLANE_AXES[st.plane]
+        if centre or self.grbl and p not in axes and q not in axes:
+            return None
+        try:
+            arc = arc_from_radius(st.pos, target, radius, ccw=motion == 30, plane=st.plane,
+                                  tolerance=radius_arc_tolerance(st.context.dialect.arc_rule))
+        except ArcWordError:
+            return None
+        self.centre = None  # the general path keeps no programmed centre of an R arc
         return arc
 
 

@@ -65,6 +65,8 @@ PROGRAMS = {
     "G94 back on its own line": "G21 G90\n" + G93_MOVES + "G94\nG1 X5. F300.\nX6.\nG0 Z10.\nG1 X7. A5.\n",
     "G94 back on a rapid": "G21 G90\n" + G93_MOVES + "G94 G0 Z10.\nG1 X5. F300.\nX6. Y2.\n",
     "G94 back on a feed move": "G21 G90\n" + G93_MOVES + "G94 G1 X5. F300.\nX6. Y2.\n",
+    "R arcs": "G21 G90 G93\nG0 X0. Y0.\nG2 X10. Y0. R5. A20. F3.\nG3 X18. Y0. R-5. F2.\n"
+              "G2 X28. Y0. Z-1. R5.01 C30. F1.5\nG20 G3 X1.5 Y0. R.2 F4.\n",
     "G93 again after G94": "G21 G90 G94 F500.\nG1 X1. Y1.\nG93 G1 X2. F10.\nG1 X3. Y2. A5. F20.\nG94 G1 X4. F400.\n"
                            "G93 X5. F4.\nG94 F300.\nG1 X6.\n",
     "G94 twice": "G21 G90 F500.\nG93 G1 X1. F2.\nG94 G1 X2. F300.\nG94 G1 X3.\n",
