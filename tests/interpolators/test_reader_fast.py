@@ -186,12 +186,14 @@ def test_radius_arcs_are_taken_by_the_shortcut(monkeypatch):
         raise AssertionError("the general path ran a plain R arc")
 
     monkeypatch.setattr(iso, "motion_block", refused)
-    text = "G21 G17 G90\nG0 X0. Y0. Z0.\nG1 X0. F300.\nG2 X10. Y0. R5.\nG3 X18. Y0. R-5.\nX28. Y0. Z-1. R5.01\nM2\n"
+    text = "G21 G17 G90\nG0 X0. Y0. Z0.\nG1 X0. F300.\nG2 X10. Y0. R5.\nG3 X18. Y0. R-5.\nX28. Y0. Z-1. R5.01\n" \
+           "G20\nG2 X1.5 Y0. R.25\nM2\n"
     prog = parse_iso(text, context=CONTEXT)
-    half, long_way, helix = prog.blocks[2:]
+    half, long_way, helix, inch = prog.blocks[2:]
     assert half.segment.radius == pytest.approx(5.0) and half.length == pytest.approx(5 * math.pi)
     assert long_way.length == pytest.approx(5.0 * (2 * math.pi - 2 * math.asin(0.8)))  # chord 8 of R5, long way
     assert helix.segment.radius == pytest.approx(5.01) and helix.target[2] == -1.0
+    assert inch.segment.radius == pytest.approx(0.25 * 25.4)  # R in inch under G20
 
 
 def test_fanuc_numbers_without_a_decimal_point_in_increments():
