@@ -21,6 +21,7 @@ ways too.
 
 from __future__ import annotations
 
+import math
 import random
 
 import numpy as np
@@ -137,6 +138,27 @@ def test_the_modal_feed_read_back_after_g93_moves(dialect):
     assert not got[0].startswith("error"), got[0]
     last = parse_iso(text, context=FIVE_AXIS.with_dialect(dialect)).blocks[-1]
     assert last.feed == pytest.approx(300.0 / 60.0)
+
+
+@pytest.mark.parametrize("shortcuts", [True, False])
+def test_fanuc_inverse_time_arcs_take_f_as_feed_over_radius(shortcuts):
+    """FANUC Series 16/18-MC operator's manual (B-62764EN), "Inverse time feed (G93)": for circular interpolation
+    "FRN = feedrate / arc radius" (not 1/time): a half circle of R10 at F2 runs at 20 mm/min and takes pi/2 min; a
+    helix keeps R x F in its plane. LinuxCNC and Haas take 1/F minutes for every block (the arc at 62.83 mm/min, 30 s;
+    rs274 prints SET_FEED_RATE(62.8319) and (127.2453) for these two arcs)."""
+    text = "G21 G90 G0 X0. Y0. Z0.\nG93\nG2 X20. Y0. I10. J0. F2.\nG3 X0. Y0. Z-5. I-10. J0. F4.\n" \
+           "G2 X20. Y0. R10. F2.\nM30\n"
+    fanuc = parse_iso(text, context=FIVE_AXIS.with_dialect("fanuc"), shortcuts=shortcuts).blocks[1:]
+    arc = fanuc[0]
+    assert arc.feed * 60.0 == pytest.approx(20.0) and arc.length / arc.feed == pytest.approx(30 * math.pi)
+    helix = fanuc[1]
+    assert helix.length / helix.feed == pytest.approx(15 * math.pi)  # pi / 4 min: R x F = 40 mm/min in the plane
+    assert fanuc[2].feed == fanuc[0].feed  # by R as by I J
+    for dialect in ("linuxcnc", "haas"):
+        arc, helix, by_r = parse_iso(text, context=FIVE_AXIS.with_dialect(dialect), shortcuts=shortcuts).blocks[1:]
+        assert arc.feed * 60.0 == pytest.approx(62.8319, abs=1e-4) and helix.feed * 60.0 == pytest.approx(127.2453,
+                                                                                                            abs=1e-4)
+        assert by_r.length / by_r.feed == pytest.approx(30.0)
 
 
 def test_inverse_time_moves_are_taken_by_the_shortcut(monkeypatch):
