@@ -174,13 +174,23 @@ def _chains(program: Program) -> list[_Chain]:
             continue
         if seg is None or seg.length <= 0:
             continue  # zero-length moves take no time
-        if cur is None or cur.extra:
+        if cur is None or cur.extra or _rapid_feed_stop(program, cur, b.kind == "rapid"):
             cur = _Chain(items)
             chains.append(cur)
         cur.add(seg, i, b.feed, b.kind == "rapid", _tolerance(b))
         if b.exact_stop:
             cur = None
     return chains
+
+
+def _rapid_feed_stop(program: Program, cur: _Chain, rapid: bool) -> bool:
+    """Whether the move after the chain ``cur`` (a rapid or not) starts a chain of its own because the control stops
+    where a rapid meets a feed move (``Program.rapid_feed_stop``, the dialect's
+    :attr:`interpolators.context.Dialect.rapid_feed_stop`: LinuxCNC's ``handleModeChange``, Fanuc's and Haas' G00
+    with its in-position check; grbl and the TNC pass that junction at speed, bounded as any other). Whatever the
+    path mode: under G64 the chain ends there at rest, as under G61. The chains of the axes beyond X, Y, Z stop there
+    under every control (:func:`_extra_block`)."""
+    return program.rapid_feed_stop and cur.items.rapid[cur.hi - 1] != rapid
 
 
 def _feeds_after_rapid(chains: list[_Chain], cur: _Chain) -> _Chain | None:
