@@ -201,7 +201,9 @@ def _feeds_after_rapid(chains: list[_Chain], cur: _Chain) -> _Chain | None:
     starting A after ``G0 .. G1 ..`` (an approach, a plunge, the contour's first lines) stopped where A started,
     whatever its rate step, and only such a junction inside the chain passed at speed (a ramp of A,
     :func:`_ramped_extra`, or its blend). The junction of the rapid and the first feed move is now a stop instead:
-    the feed move's speed is its bound there, and the rapid decelerates to it either way."""
+    the feed move's speed is its bound there, and the rapid decelerates to it either way. Under a control that stops
+    at every such junction (:func:`_rapid_feed_stop`) ``cur`` holds rapids only or feed moves only, and the split
+    is the chain's end already."""
     rapid = cur.rapid
     if not any(rapid):
         return cur
