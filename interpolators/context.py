@@ -259,6 +259,30 @@ class Dialect:
         G1 with zero feed rate") and grbl (error 22). When set, it applies under every dialect (a note says
         so, and that LinuxCNC and grbl refuse the move); it never replaces an F0, a G95 feed per revolution
         or the F a G94 after G93 needs.
+    rapid_feed_stop : bool
+        Whether the control stops where a rapid (G00, FMAX) meets a feed move (G01, G02, G03), either way,
+        whatever the path mode: True on LinuxCNC, Fanuc, Haas and Fadal, False on grbl and the TNC, whose
+        look-ahead passes that junction at speed as any other (:func:`interpolators.interpolate.interpolate`).
+        Sources: LinuxCNC ``src/emc/tp/tp.c`` ``handleModeChange`` (older ``tpCheckCanonType``): where one of two
+        consecutive moves is a traverse and the other not, "Blending disabled: can't blend between rapid and feed
+        motions", the first ends in ``TC_TERM_COND_STOP``. FANUC Series 30i/31i/32i-MA user's manual B-63944EN/02,
+        4.1 "Positioning (G00)": "In the positioning mode actuated by G00, the tool is accelerated to a
+        predetermined speed at the start of a block and is decelerated at the end of a block. Execution proceeds to
+        the next block after confirming the in-position"
+        (http://www.cncmanuals.com/fanuc/773/30i-300i-300is-ma-31i-310i-310is-ma-a5-32i-320i-320is-ma-common-to-lathe-machining-center-users-manual/page/82;
+        a stop after the rapid; our reading of "accelerated ... at the start of a block": the rapid starts from rest
+        after a feed move too, the cutting mode G64 passing only the end of a cutting block at speed, 0i-PC
+        B-64154EN/01 Table 5.4). Haas mill operator's manual, G00: "The machine waits until all motions are complete
+        before starting the next command", Setting 57 changing "how closely the machine waits for a precise stop
+        before and after a rapid move" (https://scribd.com/document/534599821/G00). Fadal reads Fanuc's Format 2
+        (our reading: its rapids stop as Fanuc's). grbl ``grbl/planner.c`` ``plan_buffer_line``: every block's entry
+        speed is bounded by the junction deviation alone (only a system motion, homing or parking, starts at rest),
+        the rapid flag setting only its nominal speed (``plan_compute_profile_nominal_speed``). HEIDENHAIN: no TNC
+        manual we found names a stop at an FMAX block's end; an ``L ... FMAX`` block is a straight line at the rapid
+        rate within the look-ahead and cycle 32's tolerance as any other (the TNC 425/415 B/407 user's manual rounds
+        an FMAX block's corner with M112: "L X+123.723 Y+25.491 R0 FMAX M124 T0.01",
+        https://azmanual.top/manuals/797829/heidenhain-tnc-407-280-580-user-manual.html?page=167); our reading: it
+        is blended.
     """
 
     name: str = "linuxcnc"
@@ -271,6 +295,7 @@ class Dialect:
     subroutine_path: tuple[str, ...] = ()
     user_m_path: tuple[str, ...] = ()
     initial_feed: float | None = None
+    rapid_feed_stop: bool = True
 
     def __post_init__(self) -> None:
         if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
@@ -294,11 +319,11 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
     "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True),
     "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True),
-    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl"),
+    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl", rapid_feed_stop=False),
     # Fadal VMC (interpolators.iso_fadal): Format 2 (Fanuc-like) with Fadal's own words; units and path mode
     # are machine settings there (G20/G21 only check them), vcnc's defaults (mm, continuous path) apply
     "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True),
-    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s"),
+    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s", rapid_feed_stop=False),
 })
 
 

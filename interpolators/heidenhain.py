@@ -156,7 +156,7 @@ from pathlib import Path
 import numpy as np
 
 from interpolators._words import INCH, Where, program_text
-from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.context import DEFAULT_CONTEXT, DIALECTS, WORK_OFFSETS, MachineContext
 from interpolators.heidenhain_compensation import finish_compensation
 from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
@@ -616,7 +616,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         m.blocks = fill_extra(m.blocks)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
     axes = program_axes(m.used, m.blocks)
-    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
+    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes,
+                   rapid_feed_stop=DIALECTS["heidenhain"].rapid_feed_stop)
 
 
 def _check_contour_closed(m: Machine) -> None:

@@ -474,7 +474,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if st.extra_used:
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
-                   messages=tuple(messages))
+                   messages=tuple(messages), rapid_feed_stop=dialect.rapid_feed_stop)
 
 
 def _enter_level(st: State, level: int, lowest: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
