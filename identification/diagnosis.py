@@ -1126,6 +1126,11 @@ def _worse_on_the_record(before: ReducedAxisModel, after: AugmentedAxisModel, da
 
 #: Means of the Coulomb levels tried across the bracket of :func:`coulomb_mean_at_rest` [-].
 _MEAN_GRID = 17
+#: Relative change of the whole-record RMS below which :func:`coulomb_mean_at_rest` leaves the mean where it was [-]:
+#: a record that does not see the mean (a model that never rests exactly, its RMS flat to 1e-14 over the mean) must
+#: not have it moved by rounding (fadal-pid with a 2-sample delay, test_diagnosis.py: a refitted delay's mean moved
+#: 4611 -> 27761 mm/s^2 at the same RMS, and the saturation of the next round was no longer found).
+_MEAN_TOL = 1e-3
 #: Times the bracket of :func:`coulomb_mean_at_rest` is widened (x4 each) while its best mean lies on its edge [-].
 _MEAN_WIDENINGS = 6
 
@@ -1157,8 +1162,9 @@ def coulomb_mean_at_rest(after: ReducedAxisModel, before: ReducedAxisModel, data
     The whole-record RMS over the mean is a V about the mean that holds the model (test_whole_record_refusal.py):
     :data:`_MEAN_GRID` means across ``before``'s mean +- twice the largest Coulomb level of either model (the bracket
     widened x4 while the best lies on its edge, at most :data:`_MEAN_WIDENINGS` times), then a bounded Brent search
-    between the best one's neighbours. The bracket depends on the refit's levels only through its width; where the
-    cost is flat (a model that never moves at rest), the refit's own mean is kept unless another predicts better.
+    between the best one's neighbours. The bracket depends on the refit's levels only through its width. The refit's
+    own mean is kept unless another predicts the whole record better by :data:`_MEAN_TOL`: where the record does not
+    see the mean (a model that never rests exactly), rounding must not move it.
     """
     everywhere = np.ones(data.n, bool)
 
@@ -1173,6 +1179,8 @@ def coulomb_mean_at_rest(after: ReducedAxisModel, before: ReducedAxisModel, data
         means = np.linspace(centre - width, centre + width, _MEAN_GRID)
         costs = np.array([cost(m) for m in means])
         k = int(np.argmin(costs))
+        if not np.max(costs) - costs[k] > _MEAN_TOL * costs[k]:
+            return after  # the record does not see the mean (a model that never rests): it stays where it was
         if 0 < k < _MEAN_GRID - 1:
             break
         width *= 4.0
@@ -1180,7 +1188,7 @@ def coulomb_mean_at_rest(after: ReducedAxisModel, before: ReducedAxisModel, data
     res = scipy.optimize.minimize_scalar(cost, bounds=(lo, hi), method="bounded",
                                          options={"xatol": 1e-4 * (hi - lo)})
     best, best_cost = (float(res.x), float(res.fun)) if res.fun < costs[k] else (float(means[k]), float(costs[k]))
-    if not best_cost < cost(own):
+    if not best_cost < (1.0 - _MEAN_TOL) * cost(own):
         return after
     return with_coulomb_mean(after, best)
 
