@@ -11,10 +11,11 @@ samples at 1 ms) was refined from the equation error's solution to p 4.61 Hz bes
 ended with, the refinement is also started at
 :data:`PAIR_STARTS` pair frequencies spread evenly (log) over that valley and the pair found so far, each with the
 damping :data:`PAIR_START_ZETA` (the equation error solved with the pair held there gives the other parameters),
-each refined on the record's first :data:`START_WINDOW` samples and the best of them on the whole record, and the
-fit that predicts the record best is kept. Fits with poles that differ by more than :data:`DISTINCT_POLES` and
-predictions within :data:`TIED_RMS` of the best say the record does not pin the pair: ``fit.output_error.pair_starts``
-records them (``pinned``), and ``vcnc identify`` says so rather than print one pair as if it were measured.
+each refined briefly on the record's first :data:`START_WINDOW` samples and the best of them fully on the whole
+record, and the fit that predicts the record best is kept. Fits with poles that differ by more than
+:data:`DISTINCT_POLES` and predictions within :data:`TIED_RMS` of the best say the record does not pin the pair:
+``fit.output_error.pair_starts`` records them (``pinned``), and ``vcnc identify`` says so rather than print one pair
+as if it were measured.
 """
 
 from __future__ import annotations
@@ -39,15 +40,19 @@ __all__ = ["PAIR_STARTS", "PAIR_START_ZETA", "TIED_RMS", "DISTINCT_POLES", "pair
 #: Pair frequencies the refinement is started from, log-spaced over the equation error's valley and the pair
 #: refined so far [-].
 PAIR_STARTS = 8
-#: The starts are refined on at most this many of the record's first samples (from rest), and only the start that
-#: then predicts the whole record best is refined on all of it [-]. The starts run whenever the valley does not pin
-#: the pair, whatever damping the refinement ended with: a gate on zeta >= 1 (three real poles standing in for a
-#: damped pair, the wrong basin of fadal-ppi on corpus program 0136: whole 9.77 Hz / 1.29, first 15 s 5.97 Hz /
-#: 1.03, 8 s 57.6 Hz / 1.19) had its edge where such refinements end (session 34: 0.999 on one platform, the starts
-#: skipped; 1.001 on another, run). Refined on the whole record, the starts had cost a long record dearly: the
-#: thesis' PID x axis (``FADAL_PID_X``) on 601,126 samples at 125 us spent 1043 s of 1636 s wall in them (two loaded
-#: cores); the window bounds them by PAIR_STARTS refinements of START_WINDOW samples and one of the record.
+#: The starts are refined on at most this many of the record's first samples (from rest) [-], each with at most
+#: START_NFEV residual evaluations, and only the start that then predicts the whole record best is refined on all of
+#: it, fully. The starts run whenever the valley does not pin the pair, whatever damping the refinement ended with: a
+#: gate on zeta >= 1 (three real poles standing in for a damped pair, the wrong basin of fadal-ppi on corpus program
+#: 0136: whole 9.77 Hz / 1.29, first 15 s 5.97 Hz / 1.03, 8 s 57.6 Hz / 1.19) had its edge where such refinements
+#: end (session 34: 0.999 on one platform, the starts skipped; 1.001 on another, run). Refined fully on the whole
+#: record, the starts had cost a long record dearly: the thesis' PID x axis (``FADAL_PID_X``) on 601,126 samples at
+#: 125 us spent 1043 s of 1636 s wall in them (two loaded cores); the window and the budget bound them by
+#: PAIR_STARTS x START_NFEV simulations of START_WINDOW samples and one refinement of the record.
 START_WINDOW = 20_000
+#: Residual evaluations (simulations) of each start's refinement on the window [-]: enough to leave the start's
+#: basin undecided no longer, not to converge (the best start is refined fully).
+START_NFEV = 80
 #: Damping ratio of those starts [-]: a complex pair, as a tuned position loop's; a start at zeta 1 stays near 1
 #: (fadal-ppi on 0136: 36 Hz / 1.0 ends at 38.9 Hz / 0.99 and 0.528 um, 36 Hz / 0.71 at 0.490 um).
 PAIR_START_ZETA = 0.7
@@ -91,7 +96,8 @@ def _refined_starts(stats: SufficientStatistics, starts: np.ndarray, xr: np.ndar
             start = solve_statistics(stats, bounds=held, method="exact")
         except IdentificationError:
             continue
-        oe = refine_output_error(start.parameters, start.poles, xr, x, T, bounds=b, coarse=True, keep=keep)
+        oe = refine_output_error(start.parameters, start.poles, xr, x, T, bounds=b, coarse=True, keep=keep,
+                                 max_nfev=START_NFEV)
         fit["output_error"]["nfev"] += oe["nfev"]
         out.append((float(wn), oe))
     return out
@@ -100,9 +106,9 @@ def _refined_starts(stats: SufficientStatistics, starts: np.ndarray, xr: np.ndar
 def _candidate_fits(stats: SufficientStatistics, starts: np.ndarray, xr: np.ndarray, x: np.ndarray, T: float,
                     b: PoleBounds, fit: dict) -> tuple[list[tuple[dict, dict, np.ndarray]], list[float]]:
     """The starts' fits as ``(parameters, poles, error over the whole record [mm])`` with the start frequency of each:
-    refined on the record's first :data:`START_WINDOW` samples, and the one of them predicting the whole record best
-    refined on all of it (appended, with its start's frequency); on a record no longer than START_WINDOW, each
-    refined on the whole record."""
+    refined by :data:`START_NFEV` evaluations on the record's first :data:`START_WINDOW` samples (all of a shorter
+    record), and the one of them predicting the whole record best refined fully on all of it (appended, with its
+    start's frequency)."""
     keep = slice(0, START_WINDOW) if x.size > START_WINDOW else None
     fits, origin = [], []
     for wn, oe in _refined_starts(stats, starts, xr, x, T, b, fit, keep):
@@ -110,7 +116,7 @@ def _candidate_fits(stats: SufficientStatistics, starts: np.ndarray, xr: np.ndar
         if np.all(np.isfinite(e)):
             fits.append((oe["parameters"], oe["poles"], e))
             origin.append(wn)
-    if keep is None or not fits:
+    if not fits:
         return fits, origin
     k = int(np.argmin([float(e @ e) for _, _, e in fits]))
     oe = refine_output_error(fits[k][0], fits[k][1], xr, x, T, bounds=b, coarse=True)
@@ -129,9 +135,9 @@ def pair_starts(stats: SufficientStatistics, params: dict, poles: dict, err: np.
 
     ``fit.output_error.pair_starts`` = ``{"omega_n_hz": [the starts], "zeta": PAIR_START_ZETA, "window": samples
     the starts were refined on, "fits": [[omega_n_hz, zeta, p_hz, rms_um], ...] (the fit so far first, then one per
-    start, each RMS over the whole record; on a record longer than START_WINDOW, the best start refined on the whole
-    record last), "kept": the index of the fit kept, "pinned": no fit with distinct poles predicts within TIED_RMS
-    of the best, "tied": {"omega_n_hz", "zeta", "p_hz": [lo, hi] over the fits within it}}``.
+    start, each RMS over the whole record, the best start refined fully on the whole record last), "kept": the index
+    of the fit kept, "pinned": no fit with distinct poles predicts within TIED_RMS of the best, "tied": {"omega_n_hz",
+    "zeta", "p_hz": [lo, hi] over the fits within it}}``.
     """
     valley = fit.get("solver", {}).get("identifiability")
     if not valley or valley["identifiable"] or b.zeta[0] > PAIR_START_ZETA or b.zeta[1] < PAIR_START_ZETA:

@@ -53,6 +53,7 @@ def test_the_starts_run_on_either_side_of_zeta_1(monkeypatch):
         assert rec["fits"][rec["kept"]][3] == min(rms)
         assert float(np.sqrt(np.mean(kept[2] ** 2))) * 1e3 == pytest.approx(min(rms))
         assert rec["window"] == x.size  # a short record: each start refined on all of it
+        assert len(rec["fits"]) == 1 + ps.PAIR_STARTS + 1  # the fit so far, the starts, the best refined fully
         recs.append(rec)
     assert recs[0]["omega_n_hz"] == recs[1]["omega_n_hz"] and len(recs[0]["omega_n_hz"]) == ps.PAIR_STARTS
     assert recs[0]["fits"][1:] == recs[1]["fits"][1:]  # the starts do not depend on the damping ended with
@@ -67,7 +68,7 @@ def test_a_pinned_valley_runs_no_start():
 
 def test_a_long_record_refines_its_starts_on_its_first_samples(monkeypatch):
     """A record longer than START_WINDOW: each start refined on its first START_WINDOW samples, each fit's RMS over
-    the whole record, and the best of them refined on the whole record last."""
+    the whole record, and the best of them refined fully on the whole record last."""
     st, params, poles, err, xr, x, b, valley = _record()
     window = x.size // 3
     monkeypatch.setattr(ps, "START_WINDOW", window)
