@@ -110,14 +110,15 @@ def _data(cap: Capture, idle: int) -> Data:
 
 @pytest.mark.parametrize("load", ["position", "time"])
 def test_the_coulomb_mean_at_rest_does_not_depend_on_where_the_refit_left_it(load):
-    """The model judged on the whole record is the same whatever the joint refit's Coulomb mean: the three means of
-    session 34's lottery (-6731, 0, +18654 mm/s^2) all come back to one mean and one whole-record RMS.
+    """The model judged on the whole record predicts it alike whatever the joint refit's Coulomb mean: from the three
+    means of session 34's lottery (-6731, 0, +18654 mm/s^2) to one whole-record RMS within 0.1 %.
 
     position: the scenario above, its model with the load of the truth; the mean cancels the load at the rest
     position (+800 mm/s^2) and the whole record falls below the reduced model's 15.1 um, accepted whatever the mean.
     time: the same axis at rest 12 s before its moves, the truth with a 4 Hz load of 1500 mm/s^2 that stiction holds
     at rest; its model oscillates at rest whatever the mean (a mean cannot cancel a periodic force): 19.63 um over
-    all samples against the reduced model's 13.78, refused whatever the mean."""
+    all samples against the reduced model's 13.78, refused whatever the mean (from 0 the mean stays: -412 mm/s^2
+    predicts 0.05 % better)."""
     if load == "position":
         cap, reduced = _capture_and_model()
         idle, effect = int(4.0 / T), PositionPeriodic(period=2.0, coefficients=((1500.0, 800.0),))
@@ -131,11 +132,12 @@ def test_the_coulomb_mean_at_rest_does_not_depend_on_where_the_refit_left_it(loa
                for mean in (-6731.0, 0.0, 18654.0)]
     means = [0.5 * (m.parameters["d0"] + m.parameters["d1"]) for m in settled]
     rms = [_rms_um(m.simulate(xr) - x) for m in settled]
-    assert max(means) - min(means) < 50.0  # of a Coulomb level of 4000 mm/s^2
-    assert max(rms) - min(rms) < 1e-3 * min(rms)
+    # the whole record judged alike, whatever the refit's mean (a mean is moved only for a 0.1 % better prediction)
+    assert max(rms) <= 1.001 * min(rms)
     for m in settled:
         assert m.parameters["d0"] - m.parameters["d1"] == pytest.approx(8000.0)  # the difference kept
     if load == "position":
+        assert max(means) - min(means) < 50.0  # of a Coulomb level of 4000 mm/s^2
         assert means[0] == pytest.approx(-800.0, abs=100.0)
         assert rms[0] < 0.2 * before
     else:
