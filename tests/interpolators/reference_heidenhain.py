@@ -2216,14 +2216,17 @@ def _pattern_def(up: str, q: dict) -> list[dict]:
     """PATTERN DEF's positions in the order written: POSn (X Y Z as words), and the generated forms ROWn (X Y
     start, D apart NUM times along the angle ROT), CIRCn (NUM points on the circle X Y D from START, a full turn
     shared out) and PITCHCIRCn (the same, STEP apart, or from START to END) as the reader reads them (TNC 640
-    cycle programming manual, "PATTERN DEF", its dialog); PAT and FRAME are not modelled."""
+    cycle programming manual, "PATTERN DEF", its dialog); PATn a grid NUMX x NUMY (DX, DY apart; ROTX turns its
+    row direction, ROTY its column direction, ROT all, about X/Y) and FRAMEn its outline, row by row in meander
+    (the order of cycle 221 CARTESIAN PATTERN)."""
     out: list[dict] = []
     for kind, inner in re.findall(r"(POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\(([^)]*)\)", up):
         if kind == "POS":
             out.append(_words(inner, q))
             continue
         if kind in ("PAT", "FRAME"):
-            raise ReferenceError(f"PATTERN DEF {kind}")
+            out += _grid(kind, inner, q)
+            continue
         v = {k: _val(x, q) for k, x in re.findall(r"(NUM|START|STEP|END|ROT|D|X|Y|Z)\s*([-+]?\s*(?:Q\d+|[\d.]+))",
                                                    inner)}
         n, z = int(v["NUM"]), v.get("Z", 0.0)
@@ -2236,6 +2239,28 @@ def _pattern_def(up: str, q: dict) -> list[dict]:
             pts = [complex(v["X"], v["Y"]) + cmath.rect(v["D"] / 2, math.radians(first + k * step))
                    for k in range(n)]
         out += [{"X": c.real, "Y": c.imag, "Z": z} for c in pts]
+    return out
+
+
+def _grid(kind: str, inner: str, q: dict) -> list[dict]:
+    """PATTERN DEF PATn / FRAMEn: the grid's points (FRAME: those on its outline), rows in meander."""
+    v = {k: _val(x, q) for k, x in re.findall(r"(NUMX|NUMY|ROTX|ROTY|ROT|DX|DY|X|Y|Z)\s*([-+]?\s*(?:Q\d+|[\d.]+))",
+                                               inner)}
+    nx, ny = int(v["NUMX"]), int(v["NUMY"])
+    turn = cmath.exp(1j * math.radians(v.get("ROT", 0.0)))
+    along = v["DX"] * cmath.exp(1j * math.radians(v.get("ROTX", 0.0)))
+    across = v["DY"] * 1j * cmath.exp(1j * math.radians(v.get("ROTY", 0.0)))
+    out = []
+    for row in range(ny):
+        cols = list(range(nx))
+        if row % 2:
+            cols.reverse()
+        edge_row = row in (0, ny - 1)
+        for col in cols:
+            if kind == "FRAME" and not edge_row and 0 < col < nx - 1:
+                continue
+            c = complex(v["X"], v["Y"]) + turn * (col * along + row * across)
+            out.append({"X": c.real, "Y": c.imag, "Z": v.get("Z", 0.0)})
     return out
 
 
