@@ -290,6 +290,7 @@ class _Tnc:
         self.program: tuple | None = None  # the running program's (blocks, labels)
         self.contour = ""  # cycle 14: the contour's first label
         self.contours: tuple[str, ...] = ()  # cycle 14: all its labels
+        self.islands: set[str] = set()  # CONTOUR DEF: the labels written as islands In
         self.loose = 0.0  # after an SL region cycle: how far the tool's plane position may be from self.pos [mm]
         self.data: dict = {}  # cycle 20's Q1 .. Q9
         self.tilt: np.ndarray | None = None  # PLANE / cycle 19: the working plane's rotation (columns X, Y, Z)
@@ -992,7 +993,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 14:
         if sub == 1:
             t.contours = tuple(re.findall(r"\d+", rest))
-            t.contour = t.contours[0]
+            t.contour, t.islands = t.contours[0], set()
     elif number in (20, 21, 22, 23, 24, 25):
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
                   for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -1478,6 +1479,8 @@ def _sl_region_cycle(t: _Tnc, line: int, p: dict) -> None:
         raise ReferenceError("SL cycle under a transformation")
     first, pts = t.contour, []
     for label in t.contours:
+        if label in t.islands:  # CONTOUR DEF's islands lie within the pockets
+            continue
         t.contour = label
         elements, _ = _contour_elements(t)
         for _, kind, a, b, c in elements:
@@ -2212,6 +2215,19 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _contour_def(t: _Tnc, up: str) -> None:
+    """CONTOUR DEF (the simple contour formula): Pn = LBL m a pocket, In = LBL m an island, ordered by n; a depth
+    DPn / DIn of 0 is cycle 20's Q1 (another depth is not modelled)."""
+    subs = sorted((int(n), role, label.strip('"').upper())
+                  for role, n, label in re.findall(r"(?<![A-Z])([PI])(\d+)\s*=\s*LBL\s*(\"[^\"]+\"|\w+)", up))
+    for _, depth in re.findall(r"D([PI]\d+)\s*=\s*([-+]?\s*(?:Q\d+|[\d.]+))", up):
+        if _val(depth.replace(" ", ""), t.q) != 0:
+            raise ReferenceError("CONTOUR DEF with a depth of its own")
+    t.contours = tuple(label for _, _, label in subs)
+    t.contour = t.contours[0]
+    t.islands = {label for _, role, label in subs if role == "I"}
+
+
 def _pattern_def(up: str, q: dict) -> list[dict]:
     """PATTERN DEF's positions in the order written: POSn (X Y Z as words), and the generated forms ROWn (X Y
     start, D apart NUM times along the angle ROT), CIRCn (NUM points on the circle X Y D from START, a full turn
@@ -2887,6 +2903,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _touch_probe(t, line, up)
         elif up.startswith("PATTERN DEF"):
             t.pattern = _pattern_def(up, t.q)
+        elif up.startswith("CONTOUR DEF"):
+            _contour_def(t, up)
         elif up.startswith("CYCL CALL PAT"):
             t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
             _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")
