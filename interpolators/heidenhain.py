@@ -23,7 +23,8 @@ s in machine coordinates. One module per concern:
   and :mod:`interpolators.heidenhain_compensation` (``RL`` / ``RR`` runs);
 * :mod:`interpolators.heidenhain_cycle_calls`: ``M99``, ``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``; the
   moves of the cycles they run: :mod:`interpolators.heidenhain_cycle_moves` (drilling .. studs, slots, the
-  surfaces 230-233, the patterns 220/221) and :mod:`interpolators.heidenhain_sl` (the SL cycles 21-25).
+  surfaces 230-233, the patterns 220/221) and :mod:`interpolators.heidenhain_sl` (the SL cycles 21-25, their
+  contours by cycle 14 or by ``CONTOUR DEF``, :mod:`interpolators.heidenhain_contour_def`).
 
 This module keeps the machine state (:class:`Machine`), the program flow and the blocks' dispatch, tools,
 ``CYCL DEF``, presets, touch probe blocks and the tilted plane.
@@ -107,7 +108,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CYCL DEF 7.1 #5, TRANS DATUM TABLE TABLINE 5
                                     datum shift to row 5 of the datum table (context.datum_table)
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
-    PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
+    PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT; also ROW1, CIRC1, PITCHCIRC1 and the
+                                    grids PAT1 / FRAME1 (NUMX x NUMY points, row by row in meander)
     CYCL DEF 8/10/11/26, TRANS ..   mirror image, rotation, scaling about the datum (arcs and RL/RR
                                     follow a mirror); CYCL DEF 19 / PLANE with angles 0, PLANE RESET:
                                     no motion (without context.kinematics)

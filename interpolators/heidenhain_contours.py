@@ -8,7 +8,9 @@ programming, the same cycles.
 ``CYCL DEF 14.0 CONTOUR`` 14.1 ``CONTOUR LABEL 1 /2 /3``: the labels whose subprograms are the
                           contours (one label: the pocket; several: each a pocket or an island
                           by its direction and RL/RR, superimposed), DEF-active
-                          (:func:`contour_labels`, :func:`superimposed_region`)
+                          (:func:`contour_labels`, :func:`superimposed_region`); or ``CONTOUR DEF
+                          P1 = LBL 1 I2 = LBL 2``, each label's role written
+                          (:mod:`interpolators.heidenhain_contour_def`)
 ``CYCL DEF 20``           CONTOUR DATA Q1 depth, Q2 path overlap, Q3 side allowance, Q4 floor
                           allowance, Q5 surface, Q6 set-up clearance, Q7 clearance height, Q8
                           inside rounding radius, Q9 sense of rotation (:func:`contour_data`)

@@ -62,7 +62,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   55x-04, "Executing touch probe cycles", the cycles' sections; :func:`_touch_probe`): the touch points where the data
   put the surface, the datum moved so the probed centre / coordinate gets Q331/Q332 / Q405 / Q333 (Q305=0), or row
   Q305 of the presets; the results (measured = nominal, deviations 0, Q180 = 1).
-- ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
+- ``CYCL DEF 14`` (the contour's first label) or ``CONTOUR DEF`` (its subcontours by number, the islands ``In``
+  apart, :func:`_contour_def`), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
 
