@@ -11,7 +11,11 @@ the search index we could use: the words here are those of the dialog as the TNC
 
 What this module reads: :func:`contour_def`, the labels in the order of their numbers and their roles. The
 regions are :func:`interpolators.heidenhain_contours.superimposed_region`'s: the union of the pockets less the
-union of the islands. Not run, each with an error naming it: a subcontour in another program (``P1 = "FILE"``,
+union of the islands, as cycle 14 superimposes its contours (TNC 426/430 user's manual, "Overlapping contours");
+our reading, whatever the order: a pocket drawn inside an island stays uncut (a formula read from left to right,
+P1 less I2, then with P3, would cut it; the manual's own pages on this are not in the index).
+
+Not run, each with an error naming it: a subcontour in another program (``P1 = "FILE"``,
 ``SEL CONTOUR`` and the contour formula file with ``DECLARE CONTOUR`` and ``QC1 = ..``), and a depth DP/DI other
 than 0 (the SL cycles here machine the whole region to one depth, cycle 20's Q1).
 """

@@ -1290,6 +1290,9 @@ def _form_words(kind: str, text: str, start: int, where: Where, params: QParamet
         if not 1 <= words[key] <= MAX_PATTERN_POSITIONS or words[key] != int(words[key]):
             where.fail(f"PATTERN DEF {kind} with {key}{words[key]:g}", column=column0 + start, text=inside,
                        expected=f"{key} a whole number from 1 to {MAX_PATTERN_POSITIONS}")
+    if {"NUMX", "NUMY"} <= words.keys() and words["NUMX"] * words["NUMY"] > MAX_PATTERN_POSITIONS:
+        where.fail(f"PATTERN DEF {kind} with NUMX{words['NUMX']:g} x NUMY{words['NUMY']:g} points",
+                   column=column0 + start, text=inside, expected=f"at most {MAX_PATTERN_POSITIONS} points")
     if {"STEP", "END"} <= words.keys():
         where.fail("PATTERN DEF PITCHCIRC with both STEP and END", column=column0 + start, text=inside,
                    expected="STEP (the stepping angle) or END (the end angle)")

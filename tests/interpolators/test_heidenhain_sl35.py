@@ -64,6 +64,7 @@ def test_pattern_def_pat_rotx_roty_turn_the_rows_and_columns_alone_and_q_paramet
     ("PAT1 (X+0 Y+0 DX+5 DY+5 NUMX0 NUMY2)", "NUMX0"),
     ("FRAME1 (X+0 Y+0 DX+5 DY+5 NUMX2 NUMY2.5)", "NUMY2.5"),
     ("PAT1 (X+0 Y+0 DX+5 DY+5 NUMX2 NUMY2 D+3)", "word 'D\\+3'"),
+    ("PAT1 (X+0 Y+0 DX+5 DY+5 NUMX1000 NUMY1000)", "NUMX1000 x NUMY1000 points"),  # checked before they are made
 ])
 def test_pattern_def_pat_and_frame_name_what_is_wrong(form, match):
     with pytest.raises(GCodeError, match=match):
