@@ -724,17 +724,16 @@ def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, 
 
 def _region_of_roles(contours: list[tuple[list[Block], str]], roles: tuple[str, ...], *, plane: int, where: Where,
                      column: int) -> Region:
-    """:func:`superimposed_region` of contours whose roles ``"P"`` / ``"I"`` are written (``CONTOUR DEF``)."""
+    """:func:`superimposed_region` of contours whose roles ``"P"`` / ``"I"`` are written (``CONTOUR DEF``; at least
+    one ``"P"``: the SL cycles check it first)."""
     pockets, islands = [], []
     for k, ((path, _), role) in enumerate(zip(contours, roles, strict=True)):
         polygon = _samples(path, plane)
         if np.hypot(*(polygon[-1] - polygon[0])) > 1e-6 or abs(_signed_area(polygon)) <= 1e-9:
-            where.fail(f"SL cycle: subcontour {role}{k + 1} of CONTOUR DEF is not closed or encloses no area",
+            kind = "a pocket" if role == "P" else "an island"
+            where.fail(f"SL cycle: subcontour {k + 1} of CONTOUR DEF ({kind}) is not closed or encloses no area",
                        column=column, text=where.text, expected="closed contours (each its last point its first)")
         (pockets if role == "P" else islands).append(contour_edges(path, plane))
-    if not pockets:
-        where.fail("SL cycle: CONTOUR DEF names islands only", column=column, text=where.text,
-                   expected="at least one pocket Pn = LBL m")
     return region(pockets, islands)
 
 
