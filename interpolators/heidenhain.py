@@ -23,7 +23,8 @@ s in machine coordinates. One module per concern:
   and :mod:`interpolators.heidenhain_compensation` (``RL`` / ``RR`` runs);
 * :mod:`interpolators.heidenhain_cycle_calls`: ``M99``, ``CYCL CALL``, ``CYCL CALL PAT``, ``CYCL CALL POS``; the
   moves of the cycles they run: :mod:`interpolators.heidenhain_cycle_moves` (drilling .. studs, slots, the
-  surfaces 230-233, the patterns 220/221) and :mod:`interpolators.heidenhain_sl` (the SL cycles 21-25).
+  surfaces 230-233, the patterns 220/221) and :mod:`interpolators.heidenhain_sl` (the SL cycles 21-25, their
+  contours by cycle 14 or by ``CONTOUR DEF``, :mod:`interpolators.heidenhain_contour_def`).
 
 This module keeps the machine state (:class:`Machine`), the program flow and the blocks' dispatch, tools,
 ``CYCL DEF``, presets, touch probe blocks and the tilted plane.
@@ -107,7 +108,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CYCL DEF 7.1 #5, TRANS DATUM TABLE TABLINE 5
                                     datum shift to row 5 of the datum table (context.datum_table)
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
-    PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
+    PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT; also ROW1, CIRC1, PITCHCIRC1 and the
+                                    grids PAT1 / FRAME1 (NUMX x NUMY points, row by row in meander)
     CYCL DEF 8/10/11/26, TRANS ..   mirror image, rotation, scaling about the datum (arcs and RL/RR
                                     follow a mirror); CYCL DEF 19 / PLANE with angles 0, PLANE RESET:
                                     no motion (without context.kinematics)
@@ -158,6 +160,7 @@ import numpy as np
 from interpolators._words import INCH, Where, program_text
 from interpolators.context import DEFAULT_CONTEXT, DIALECTS, WORK_OFFSETS, MachineContext
 from interpolators.heidenhain_compensation import finish_compensation
+from interpolators.heidenhain_contour_def import contour_def
 from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
     ROUGHING_CYCLES,
@@ -240,7 +243,7 @@ __all__ = ["parse_heidenhain", "looks_like_heidenhain", "Machine"]
 _KEYWORD_RE = re.compile(
     r"(BEGIN\s+PGM|END\s+PGM|BLK\s+FORM|TOOL\s+CALL|TOOL\s+DEF|CYCLE?\s+DEF|CYCL\s+CALL|CALL\s+LBL|CALL\s+PGM"
     r"|CALL\s+SELECTED\s+PGM|SEL\s+PGM|TCH\s*PROBE|PLANE|FUNCTION|TRANS|SPL|DECLARE\s+STRING|QS\d+\s*="
-    r"|LBL|FPOL|FSELECT|FCT|FLT|FC|FL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
+    r"|LBL|FPOL|FSELECT|FCT|FLT|FC|FL|FN\s*\d+\s*:|Q[LR]?\d+\s*=|STOP|APPR|DEP|PATTERN\s+DEF|CONTOUR\s+DEF|RND|CHF|CC|CR|CTP|CT|CP|C|LP|LN|L|M)(?:(?<=[:=])|(?![A-Z]))",
     re.I,
 )
 _BLANKS_RE = re.compile(r"\s+")
@@ -319,7 +322,8 @@ class Machine:
         # the 200-series definition the cycle was built from: its number, Q parameters, the cycle built and the
         # tool's radius and point angle then (refresh_cycle rebuilds it when a call finds one of them changed)
         self.cycle_source: tuple[int, dict[int, float], DrillCycle, tuple[float, float]] | None = None
-        self.contour: tuple[str, ...] = ()  # cycle 14: the labels of the contour
+        self.contour: tuple[str, ...] = ()  # cycle 14 or CONTOUR DEF: the labels of the contour
+        self.contour_roles: tuple[str, ...] = ()  # CONTOUR DEF: "P" / "I" of each label; cycle 14: () (by RL/RR)
         self.contour_data: dict[int, float] | None = None  # cycle 20: its Q1 .. Q9
         self.cycle_items: dict[int, float | dict[str, float]] = {}
         self.incomplete_cycle: int | None = None  # an old cycle whose CYCL DEF n.0 came, its last line not yet
@@ -920,11 +924,16 @@ _ERROR_BLOCK = re.compile(r"ERROR\s*=", re.I)
 
 #: Blocks of the TNC's language that vcnc does not run, by their first word (TNC 640 user's manual).
 _KNOWN_UNSUPPORTED = {
-    "SEL": "SEL TABLE / SEL CONTOUR (tables and contour programs)",
+    "SEL": "SEL TABLE / SEL CONTOUR (tables, and the contour formula file with DECLARE CONTOUR and QC1 = ..; "
+           "CONTOUR DEF P1 = LBL 1 I2 = LBL 2 .. names contours vcnc runs)",
     "SQL": "SQL (table access)",
     "PRESET": "PRESET (the preset table's functions; CYCL DEF 247 selects a preset)",
-    "CONTOUR": "CONTOUR DEF (the SL cycles' contour formula of pockets P and islands I; CYCL DEF 14 CONTOUR "
-               "GEOMETRY names contours vcnc runs)",
+    "CONTOUR": "this CONTOUR block (CONTOUR DEF P1 = LBL 1 I2 = LBL 2 .. and CYCL DEF 14 CONTOUR GEOMETRY name "
+               "contours vcnc runs)",
+    "DECLARE": "this DECLARE block (DECLARE CONTOUR of the contour formula file of SEL CONTOUR; DECLARE STRING and "
+               "CONTOUR DEF P1 = LBL 1 I2 = LBL 2 .. are run)",
+    "QC": "a contour formula QCn = .. (of the contour formula file of SEL CONTOUR; CONTOUR DEF P1 = LBL 1 "
+          "I2 = LBL 2 .. names contours vcnc runs)",
 }
 
 
@@ -954,6 +963,13 @@ def _cycle_def_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Whe
 
 def _pattern_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     m.pattern = pattern_positions(blk.code[pos:], where, m.params, column0=blk.column + pos)
+
+
+def _contour_def(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
+    """``CONTOUR DEF P1 = LBL 1 I2 = LBL 2 ..`` (:mod:`interpolators.heidenhain_contour_def`): the SL cycles'
+    contour, as cycle 14 gives it, with each label's role written."""
+    d = contour_def(blk.code[pos:], where, m.params, column0=blk.column + pos)
+    m.contour, m.contour_roles = d.labels, d.roles
 
 
 def _cycle_call_block(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> bool:
@@ -1250,7 +1266,7 @@ def _sl_cycle_def(number: int, sub: int | None, rest: str, m: Machine, where: Wh
     are DEF-active, 21-24 (pilot drilling, rough-out, floor and side finishing) and 25 CONTOUR TRAIN called."""
     if number == 14:
         if sub == 1:
-            m.contour = contour_labels(rest, where, col)
+            m.contour, m.contour_roles = contour_labels(rest, where, col), ()
         return
     q = q_assignments(rest, where, m.params, column0=col, auto_feed=m.auto_feed)
     if number == 20:
@@ -1692,6 +1708,7 @@ _HANDLERS = {
     "CYCL DEF": _cycle_def_block,
     "CYCLE DEF": _cycle_def_block,
     "PATTERN DEF": _pattern_def,
+    "CONTOUR DEF": _contour_def,
     "CYCL CALL": _cycle_call_block,
     "APPR": approach_depart,
     "DEP": approach_depart,

@@ -8,7 +8,9 @@ programming, the same cycles.
 ``CYCL DEF 14.0 CONTOUR`` 14.1 ``CONTOUR LABEL 1 /2 /3``: the labels whose subprograms are the
                           contours (one label: the pocket; several: each a pocket or an island
                           by its direction and RL/RR, superimposed), DEF-active
-                          (:func:`contour_labels`, :func:`superimposed_region`)
+                          (:func:`contour_labels`, :func:`superimposed_region`); or ``CONTOUR DEF
+                          P1 = LBL 1 I2 = LBL 2``, each label's role written
+                          (:mod:`interpolators.heidenhain_contour_def`)
 ``CYCL DEF 20``           CONTOUR DATA Q1 depth, Q2 path overlap, Q3 side allowance, Q4 floor
                           allowance, Q5 surface, Q6 set-up clearance, Q7 clearance height, Q8
                           inside rounding radius, Q9 sense of rotation (:func:`contour_data`)
@@ -690,13 +692,17 @@ def contour_edges(path: list[Block], plane: int) -> list[Edge]:
 
 
 def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, where: Where,
-                        column: int) -> Region:
+                        column: int, roles: tuple[str, ...] = ()) -> Region:
     """The region cycle 14's contours enclose: each closed contour (its blocks after the starting point, and its
     ``RL``/``RR``/``R0``) is a pocket or an island by the TNC's rule (TNC 426/430 user's manual, "SL Cycles":
     the TNC recognizes a pocket when the tool path lies inside the contour, e.g. clockwise with RR, and an island
     when it lies outside, e.g. clockwise with RL); the first contour written with R0 is a pocket. Overlapping
     pockets and islands combine: the union of the pockets less the union of the islands ("Overlapping
-    contours")."""
+    contours"). ``roles`` (``CONTOUR DEF``'s ``"P"`` / ``"I"``, one per contour,
+    :mod:`interpolators.heidenhain_contour_def`): each contour's role as written, its direction and RL/RR
+    not asked."""
+    if roles:
+        return _region_of_roles(contours, roles, plane=plane, where=where, column=column)
     pockets, islands = [], []
     for k, (path, side) in enumerate(contours):
         polygon = _samples(path, plane)
@@ -713,6 +719,21 @@ def superimposed_region(contours: list[tuple[list[Block], str]], *, plane: int, 
     if not pockets:
         where.fail("SL cycle: cycle 14's contours are all islands", column=column, text=where.text,
                    expected="at least one pocket (a contour the tool runs inside of with its RL/RR)")
+    return region(pockets, islands)
+
+
+def _region_of_roles(contours: list[tuple[list[Block], str]], roles: tuple[str, ...], *, plane: int, where: Where,
+                     column: int) -> Region:
+    """:func:`superimposed_region` of contours whose roles ``"P"`` / ``"I"`` are written (``CONTOUR DEF``; at least
+    one ``"P"``: the SL cycles check it first)."""
+    pockets, islands = [], []
+    for k, ((path, _), role) in enumerate(zip(contours, roles, strict=True)):
+        polygon = _samples(path, plane)
+        if np.hypot(*(polygon[-1] - polygon[0])) > 1e-6 or abs(_signed_area(polygon)) <= 1e-9:
+            kind = "a pocket" if role == "P" else "an island"
+            where.fail(f"SL cycle: subcontour {k + 1} of CONTOUR DEF ({kind}) is not closed or encloses no area",
+                       column=column, text=where.text, expected="closed contours (each its last point its first)")
+        (pockets if role == "P" else islands).append(contour_edges(path, plane))
     return region(pockets, islands)
 
 

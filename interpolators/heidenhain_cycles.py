@@ -68,7 +68,7 @@ __all__ = ["CYCLE_RE", "DrillCycle", "AxisMove", "MACHINING_CYCLES", "PATTERN_CY
            "pecking_cycle", "drill_cycle", "thread_milling_cycle", "back_boring_cycle", "back_boring_moves",
            "circular_pocket_cycle", "single_lip_cycle", "single_lip_moves", "scaled_cycle", "pattern_positions",
            "hole_moves", "SAME_MOVES", "finishing_cycle", "old_slot_cycle", "REFUSED_CYCLES", "takes_point_angle",
-           "point_depth", "to_second_clearance"]
+           "point_depth", "to_second_clearance", "grid_order"]
 
 #: ``CYCL DEF 7.1 X+0`` (also the ``CYCLE DEF`` some posts write): number, sub-number, rest.
 CYCLE_RE = re.compile(r"CYCLE?\s+DEF\s*(\d+)(?:\.(\d+))?(?![\d.])\s*(.*)$", re.I)
@@ -1243,10 +1243,9 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
                        expected=f"at most {MAX_PATTERN_POSITIONS} positions (cycle 220's Q241 input range)")
         a = math.radians(q.get(224, 0.0))
         pts = []
-        for j in range(rows):
-            for i in (range(cols) if j % 2 == 0 else reversed(range(cols))):
-                u, v = i * q[237], j * q[238]
-                pts.append((q[225] + u * math.cos(a) - v * math.sin(a), q[226] + u * math.sin(a) + v * math.cos(a)))
+        for i, j in grid_order(cols, rows):
+            u, v = i * q[237], j * q[238]
+            pts.append((q[225] + u * math.cos(a) - v * math.sin(a), q[226] + u * math.sin(a) + v * math.cos(a)))
     arc = number == 220 and q.get(365, 0.0) != 0.0 and n > 1
     return PatternCycle(number=number, points=tuple((x * scale, y * scale) for x, y in pts), setup=abs(q[200]) * scale,
                         surface=q[203] * scale, second_setup=q[204] * scale, high=q.get(301, 0.0) != 0.0,
@@ -1254,19 +1253,22 @@ def pattern_cycle(number: int, q: dict[int, float], *, scale: float, where: Wher
 
 
 _POS_RE = re.compile(r"\s*POS(\d+)\s*\(([^)]*)\)", re.I)
-_FORM_RE = re.compile(r"\s*(ROW|CIRC|PITCHCIRC)(\d+)\s*\(([^)]*)\)", re.I)
+_FORM_RE = re.compile(r"\s*(ROW|CIRC|PITCHCIRC|PAT|FRAME)(\d+)\s*\(([^)]*)\)", re.I)
 #: A form the reader reads whose parenthesis is left open (``ROW1 (X+0 Y+0 D+10 NUM2``).
-_OPEN_FORM_RE = re.compile(r"\s*(POS|ROW|CIRC|PITCHCIRC)(\d+)\s*\([^)]*$", re.I)
-_FORM_KEY_RE = re.compile(r"\s*(NUM|START|STEP|END|ROT|D|X|Y|Z)(?![A-Z])", re.I)
+_OPEN_FORM_RE = re.compile(r"\s*(POS|ROW|CIRC|PITCHCIRC|PAT|FRAME)(\d+)\s*\([^)]*$", re.I)
+_FORM_KEY_RE = re.compile(r"\s*(NUMX|NUMY|NUM|START|STEP|END|ROTX|ROTY|ROT|DX|DY|D|X|Y|Z)(?![A-Z])", re.I)
 #: The words of each generated pattern form, and those it must have.
 _FORM_WORDS = {"ROW": ({"X", "Y", "D", "NUM", "ROT", "Z"}, {"X", "Y", "D", "NUM"}),
                "CIRC": ({"X", "Y", "D", "START", "NUM", "Z"}, {"X", "Y", "D", "NUM"}),
-               "PITCHCIRC": ({"X", "Y", "D", "START", "STEP", "END", "NUM", "Z"}, {"X", "Y", "D", "NUM"})}
+               "PITCHCIRC": ({"X", "Y", "D", "START", "STEP", "END", "NUM", "Z"}, {"X", "Y", "D", "NUM"}),
+               "PAT": ({"X", "Y", "DX", "DY", "NUMX", "NUMY", "ROT", "ROTX", "ROTY", "Z"},
+                       {"X", "Y", "DX", "DY", "NUMX", "NUMY"})}
+_FORM_WORDS["FRAME"] = _FORM_WORDS["PAT"]
 
 
 def _form_words(kind: str, text: str, start: int, where: Where, params: QParameters,
                 column0: int) -> dict[str, float]:
-    """The words of one ROW / CIRC / PITCHCIRC form, ``text[start:]`` its inside, values evaluated."""
+    """The words of one ROW / CIRC / PITCHCIRC / PAT / FRAME form, ``text[start:]`` its inside, values evaluated."""
     allowed, needed = _FORM_WORDS[kind]
     words: dict[str, float] = {}
     pos = start
@@ -1284,17 +1286,52 @@ def _form_words(kind: str, text: str, start: int, where: Where, params: QParamet
     if missing:
         where.fail(f"PATTERN DEF {kind} without {', '.join(missing)}", column=column0 + start, text=inside,
                    expected=f"{kind}n ({' '.join(sorted(needed))} ...)")
-    if not 1 <= words["NUM"] <= MAX_PATTERN_POSITIONS or words["NUM"] != int(words["NUM"]):
-        where.fail(f"PATTERN DEF {kind} with NUM{words['NUM']:g}", column=column0 + start, text=inside,
-                   expected=f"NUM a whole number from 1 to {MAX_PATTERN_POSITIONS}")
+    for key in sorted({"NUM", "NUMX", "NUMY"} & words.keys()):
+        if not 1 <= words[key] <= MAX_PATTERN_POSITIONS or words[key] != int(words[key]):
+            where.fail(f"PATTERN DEF {kind} with {key}{words[key]:g}", column=column0 + start, text=inside,
+                       expected=f"{key} a whole number from 1 to {MAX_PATTERN_POSITIONS}")
+    if {"NUMX", "NUMY"} <= words.keys() and words["NUMX"] * words["NUMY"] > MAX_PATTERN_POSITIONS:
+        where.fail(f"PATTERN DEF {kind} with NUMX{words['NUMX']:g} x NUMY{words['NUMY']:g} points",
+                   column=column0 + start, text=inside, expected=f"at most {MAX_PATTERN_POSITIONS} points")
     if {"STEP", "END"} <= words.keys():
         where.fail("PATTERN DEF PITCHCIRC with both STEP and END", column=column0 + start, text=inside,
                    expected="STEP (the stepping angle) or END (the end angle)")
     return words
 
 
+def grid_order(columns: int, rows: int, *, frame: bool = False) -> list[tuple[int, int]]:
+    """The (column, row) indices of a ``columns`` x ``rows`` grid in the order a TNC machines them: row by row
+    in meander, the first row in the positive direction of the reference axis, the next back, and so on, as
+    the TNC 320 user's manual for cycle programming describes cycle 221 CARTESIAN PATTERN ("CARTESIAN PATTERN
+    (Cycle 221)", p. 180-181: to the last point of the first line, then to the last point of the second line,
+    then back along it in the negative reference-axis direction). ``frame``: only the points on the grid's
+    outline (the first and last row and column), in the same order."""
+    out = []
+    for j in range(rows):
+        for i in (range(columns) if j % 2 == 0 else reversed(range(columns))):
+            if not frame or i in (0, columns - 1) or j in (0, rows - 1):
+                out.append((i, j))
+    return out
+
+
+def _grid_points(kind: str, w: dict[str, float]) -> list[dict[str, float]]:
+    """The positions of ``PAT`` (a grid) or ``FRAME`` (its outline) in program units (see
+    :func:`pattern_positions`)."""
+    cols, rows, z = int(w["NUMX"]), int(w["NUMY"]), w.get("Z", 0.0)
+    rot, rx, ry = (math.radians(w.get(k, 0.0)) for k in ("ROT", "ROTX", "ROTY"))
+    out = []
+    for i, j in grid_order(cols, rows, frame=kind == "FRAME"):
+        u = i * w["DX"] * math.cos(rx) - j * w["DY"] * math.sin(ry)
+        v = i * w["DX"] * math.sin(rx) + j * w["DY"] * math.cos(ry)
+        out.append({"X": w["X"] + u * math.cos(rot) - v * math.sin(rot),
+                    "Y": w["Y"] + u * math.sin(rot) + v * math.cos(rot), "Z": z})
+    return out
+
+
 def _form_points(kind: str, w: dict[str, float]) -> list[dict[str, float]]:
     """The positions of a generated pattern form, in program units (see :func:`pattern_positions`)."""
+    if kind in ("PAT", "FRAME"):
+        return _grid_points(kind, w)
     count, z = int(w["NUM"]), w.get("Z", 0.0)
     if kind == "ROW":
         a = math.radians(w.get("ROT", 0.0))
@@ -1324,12 +1361,19 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
     ``CIRC1 (X+25 Y+33 D80 START+45 NUM8 Z+0)`` NUM positions on the circle of diameter D about X/Y, the first at
     the polar angle START, then 360/NUM apart counter-clockwise; ``PITCHCIRC1 (X+25 Y+33 D80 START+45 STEP+30
     NUM8 Z+0)`` the same with the stepping angle STEP (its sign the direction), or with the end angle ``END``
-    instead (the steps (END - START) / (NUM - 1)). ``Z`` is the surface there, as in POS. The positions are
-    machined in the order the forms are written, each from its first position on.
+    instead (the steps (END - START) / (NUM - 1)). ``Z`` is the surface there, as in POS.
+    ``PAT1 (X+25 Y+33.5 DX+8 DY+10 NUMX5 NUMY4 ROT+0 ROTX+0 ROTY+0 Z+0)`` ("Defining a point pattern") a grid of
+    NUMX points DX apart along the reference axis times NUMY rows DY apart along the minor axis from the starting
+    point X/Y; ``FRAME1 (...)`` with the same words ("Defining a frame") the points of that grid on its outline
+    only. ROTX turns the reference axis of the grid and ROTY its minor axis, each alone (the dialog's "rotational
+    position of the reference / minor axis", which the manual says distorts the pattern), ROT the whole pattern,
+    all about the starting point [degrees]. The order of a grid's points is not stated on the pages we could
+    read: our reading takes the meander of cycle 221 CARTESIAN PATTERN, the same grid as a cycle
+    (:func:`grid_order`). The positions are machined in the order the forms are written, each from its first
+    position on.
 
     Returns one dict per position with the words as written (``"X"``, ``"IY"``, ``"Z"`` ...) in
-    program units. The forms PAT and FRAME (rows of rows, their machining order not found) are errors, and so
-    are a NUM or a list of more than :data:`MAX_PATTERN_POSITIONS` positions.
+    program units. A NUM (NUMX, NUMY) or a list of more than :data:`MAX_PATTERN_POSITIONS` positions is an error.
     """
     out: list[dict[str, float]] = []
     pos, listed = 0, 0
@@ -1343,8 +1387,8 @@ def pattern_positions(rest: str, where: Where, params: QParameters, *, column0: 
                 what = (f"PATTERN DEF {open_form.group(1).upper()}{open_form.group(2)} without its closing ')'"
                         if open_form else f"pattern {tok!r} is not supported")
                 where.fail(what, column=column0 + pos + len(rest[pos:]) - len(rest[pos:].lstrip()), text=tok,
-                           expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...) or "
-                                    "PITCHCIRC1 (...)")
+                           expected="PATTERN DEF POS1 (X.. Y.. Z..) POS2 (...), ROW1 (...), CIRC1 (...), "
+                                    "PITCHCIRC1 (...), PAT1 (...) or FRAME1 (...)")
             kind = f.group(1).upper()
             out += _form_points(kind, _form_words(kind, rest[: f.end(3)], f.start(3), where, params, column0))
             if len(out) > MAX_PATTERN_POSITIONS:

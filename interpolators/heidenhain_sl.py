@@ -107,8 +107,12 @@ def _sl_contour(m: Machine, label: str, feed: float, where: Where, blk: SourceBl
 def _sl_checks(m: Machine, number: int, where: Where, blk: SourceBlock) -> str:
     """The contour label of an SL cycle call, after the checks all of them share."""
     if not m.contour:
-        where.fail(f"cycle {number} without a contour (CYCL DEF 14)", column=blk.column, text=blk.code,
-                   expected="CYCL DEF 14.0 CONTOUR / 14.1 CONTOUR LABEL n before the cycle call")
+        where.fail(f"cycle {number} without a contour (CYCL DEF 14 or CONTOUR DEF)", column=blk.column,
+                   text=blk.code, expected="CYCL DEF 14.0 CONTOUR / 14.1 CONTOUR LABEL n, or CONTOUR DEF P1 = LBL n, "
+                                           "before the cycle call")
+    if m.contour_roles and "P" not in m.contour_roles:
+        where.fail(f"cycle {number}: CONTOUR DEF names islands only", column=blk.column, text=blk.code,
+                   expected="at least one pocket Pn = LBL m in CONTOUR DEF")
     if not m.transform.identity or m.comp != "R0":
         where.fail(f"cycle {number} under a coordinate transformation (cycles 8, 10, 11, 26) or with RL/RR active "
                    "is not supported", column=blk.column, text=blk.code,
@@ -207,7 +211,7 @@ def _sl_region(m: Machine, feed: float, where: Where, blk: SourceBlock) -> Regio
     """The region of cycle 14's contours (:func:`interpolators.heidenhain_contours.superimposed_region`)."""
     contours = [_sl_contour(m, label, feed, where, blk) for label in m.contour]
     return superimposed_region([(path[1:], side) for path, side in contours], plane=m.plane, where=where,
-                               column=blk.column)
+                               column=blk.column, roles=m.contour_roles)
 
 
 def _region_rings(m: Machine, area: Region, *, first: float, step: float, ccw: bool, number: int, where: Where,

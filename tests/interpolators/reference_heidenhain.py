@@ -62,7 +62,8 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   55x-04, "Executing touch probe cycles", the cycles' sections; :func:`_touch_probe`): the touch points where the data
   put the surface, the datum moved so the probed centre / coordinate gets Q331/Q332 / Q405 / Q333 (Q305=0), or row
   Q305 of the presets; the results (measured = nominal, deviations 0, Q180 = 1).
-- ``CYCL DEF 14`` (the contour's first label), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
+- ``CYCL DEF 14`` (the contour's first label) or ``CONTOUR DEF`` (its subcontours by number, the islands ``In``
+  apart, :func:`_contour_def`), ``CYCL DEF 25`` CONTOUR TRAIN (:func:`_contour_train`),
   ``CYCL DEF 20`` + ``22`` ROUGH-OUT of one pocket of straight edges (:func:`_rough_out`).
 """
 
@@ -290,6 +291,7 @@ class _Tnc:
         self.program: tuple | None = None  # the running program's (blocks, labels)
         self.contour = ""  # cycle 14: the contour's first label
         self.contours: tuple[str, ...] = ()  # cycle 14: all its labels
+        self.islands: set[str] = set()  # CONTOUR DEF: the labels written as islands In
         self.loose = 0.0  # after an SL region cycle: how far the tool's plane position may be from self.pos [mm]
         self.data: dict = {}  # cycle 20's Q1 .. Q9
         self.tilt: np.ndarray | None = None  # PLANE / cycle 19: the working plane's rotation (columns X, Y, Z)
@@ -992,7 +994,7 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     elif number == 14:
         if sub == 1:
             t.contours = tuple(re.findall(r"\d+", rest))
-            t.contour = t.contours[0]
+            t.contour, t.islands = t.contours[0], set()
     elif number in (20, 21, 22, 23, 24, 25):
         params = {k: math.inf if v.upper() in ("MAX", "FMAX") else _val(v.replace(" ", ""), t.q)
                   for k, v in re.findall(r"(Q\d+)\s*=\s*([-+]?\s*[\w.]+)", rest)}
@@ -1478,6 +1480,8 @@ def _sl_region_cycle(t: _Tnc, line: int, p: dict) -> None:
         raise ReferenceError("SL cycle under a transformation")
     first, pts = t.contour, []
     for label in t.contours:
+        if label in t.islands:  # CONTOUR DEF's islands lie within the pockets
+            continue
         t.contour = label
         elements, _ = _contour_elements(t)
         for _, kind, a, b, c in elements:
@@ -2212,18 +2216,34 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     _move_z(t, line, "rapid", surface - sgn * max(second, setup), optional=True)
 
 
+def _contour_def(t: _Tnc, up: str) -> None:
+    """CONTOUR DEF (the simple contour formula): Pn = LBL m a pocket, In = LBL m an island, ordered by n; a depth
+    DPn / DIn of 0 is cycle 20's Q1 (another depth is not modelled)."""
+    subs = sorted((int(n), role, label.strip('"').upper())
+                  for role, n, label in re.findall(r"(?<![A-Z])([PI])(\d+)\s*=\s*LBL\s*(\"[^\"]+\"|\w+)", up))
+    for _, depth in re.findall(r"D([PI]\d+)\s*=\s*([-+]?\s*(?:Q\d+|[\d.]+))", up):
+        if _val(depth.replace(" ", ""), t.q) != 0:
+            raise ReferenceError("CONTOUR DEF with a depth of its own")
+    t.contours = tuple(label for _, _, label in subs)
+    t.contour = t.contours[0]
+    t.islands = {label for _, role, label in subs if role == "I"}
+
+
 def _pattern_def(up: str, q: dict) -> list[dict]:
     """PATTERN DEF's positions in the order written: POSn (X Y Z as words), and the generated forms ROWn (X Y
     start, D apart NUM times along the angle ROT), CIRCn (NUM points on the circle X Y D from START, a full turn
     shared out) and PITCHCIRCn (the same, STEP apart, or from START to END) as the reader reads them (TNC 640
-    cycle programming manual, "PATTERN DEF", its dialog); PAT and FRAME are not modelled."""
+    cycle programming manual, "PATTERN DEF", its dialog); PATn a grid NUMX x NUMY (DX, DY apart; ROTX turns its
+    row direction, ROTY its column direction, ROT all, about X/Y) and FRAMEn its outline, row by row in meander
+    (the order of cycle 221 CARTESIAN PATTERN)."""
     out: list[dict] = []
     for kind, inner in re.findall(r"(POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\(([^)]*)\)", up):
         if kind == "POS":
             out.append(_words(inner, q))
             continue
         if kind in ("PAT", "FRAME"):
-            raise ReferenceError(f"PATTERN DEF {kind}")
+            out += _grid(kind, inner, q)
+            continue
         v = {k: _val(x, q) for k, x in re.findall(r"(NUM|START|STEP|END|ROT|D|X|Y|Z)\s*([-+]?\s*(?:Q\d+|[\d.]+))",
                                                    inner)}
         n, z = int(v["NUM"]), v.get("Z", 0.0)
@@ -2236,6 +2256,28 @@ def _pattern_def(up: str, q: dict) -> list[dict]:
             pts = [complex(v["X"], v["Y"]) + cmath.rect(v["D"] / 2, math.radians(first + k * step))
                    for k in range(n)]
         out += [{"X": c.real, "Y": c.imag, "Z": z} for c in pts]
+    return out
+
+
+def _grid(kind: str, inner: str, q: dict) -> list[dict]:
+    """PATTERN DEF PATn / FRAMEn: the grid's points (FRAME: those on its outline), rows in meander."""
+    v = {k: _val(x, q) for k, x in re.findall(r"(NUMX|NUMY|ROTX|ROTY|ROT|DX|DY|X|Y|Z)\s*([-+]?\s*(?:Q\d+|[\d.]+))",
+                                               inner)}
+    nx, ny = int(v["NUMX"]), int(v["NUMY"])
+    turn = cmath.exp(1j * math.radians(v.get("ROT", 0.0)))
+    along = v["DX"] * cmath.exp(1j * math.radians(v.get("ROTX", 0.0)))
+    across = v["DY"] * 1j * cmath.exp(1j * math.radians(v.get("ROTY", 0.0)))
+    out = []
+    for row in range(ny):
+        cols = list(range(nx))
+        if row % 2:
+            cols.reverse()
+        edge_row = row in (0, ny - 1)
+        for col in cols:
+            if kind == "FRAME" and not edge_row and 0 < col < nx - 1:
+                continue
+            c = complex(v["X"], v["Y"]) + turn * (col * along + row * across)
+            out.append({"X": c.real, "Y": c.imag, "Z": v.get("Z", 0.0)})
     return out
 
 
@@ -2862,6 +2904,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _touch_probe(t, line, up)
         elif up.startswith("PATTERN DEF"):
             t.pattern = _pattern_def(up, t.q)
+        elif up.startswith("CONTOUR DEF"):
+            _contour_def(t, up)
         elif up.startswith("CYCL CALL PAT"):
             t.modal = False  # F..: the feed between the points (F MAX, none: rapid)
             _pattern_def_call(t, line, "feed" if re.search(r"\bF\s*[\d.Q]", up) else "rapid")

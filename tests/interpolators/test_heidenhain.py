@@ -471,7 +471,7 @@ BAD = [
     ("L B+10 F100", "axis 'B'"),
     ("FN 14: ERROR = 1000", "FN 14"),
     ("CYCL CALL PAT F100", "without a PATTERN DEF"),
-    ("PATTERN DEF FRAME1 (X+0 Y+0 DX+5 DY+5 NUMX2 NUMY2 ROT+0 ROTX+0 ROTY+0 Z+0)", "pattern 'FRAME1' is not supported"),
+    ("PATTERN DEF SQUARE1 (X+0 Y+0 D+5)", "pattern 'SQUARE1' is not supported"),
     ("L X+nan F100", "not a number"),
     ("L X+1.2.3 F100", "malformed number"),
     ("L X+0 Y+0 FMAX\nFL X+10 Y+0", "FL feed move without a feed"),

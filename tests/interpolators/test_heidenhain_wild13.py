@@ -101,7 +101,7 @@ def test_pattern_def_pitchcirc_steps_by_step_or_to_end_after_a_pos():
 
 
 @pytest.mark.parametrize(("form", "message"), [
-    ("PAT1 (X+0 Y+0 DX+8 DY+10 NUMX5 NUMY4 ROT+0 ROTX+0 ROTY+0 Z+0)", "pattern 'PAT1' is not supported"),
+    ("SQUARE1 (X+0 Y+0 D+8)", "pattern 'SQUARE1' is not supported"),  # PAT1 and FRAME1 run: test_heidenhain_sl35
     ("ROW1 (X+0 Y+0 NUM5 Z+0)", "PATTERN DEF ROW without D"),
     ("CIRC1 (X+0 Y+0 D20 NUM0 Z+0)", "PATTERN DEF CIRC with NUM0"),
     ("PITCHCIRC1 (X+0 Y+0 D20 START+0 NUM3)", "PATTERN DEF PITCHCIRC without STEP or END"),
@@ -148,9 +148,9 @@ def test_q367_of_cycle_254_stays_an_error():
         program(body)
 
 
-def test_contour_def_is_named_when_refused():
-    # the TNC 640 SL cycles' "simple contour formula" (CONTOUR DEF P1 = LBL 1 I2 = LBL 2) instead of cycle 14:
-    # refused, now naming the function and the cycle vcnc runs instead (was 'unknown or unsupported block')
-    with pytest.raises(GCodeError, match="CONTOUR DEF .* CYCL DEF 14 CONTOUR GEOMETRY"):
-        program("CONTOUR DEF ~\n P1 = LBL 1 ~\n I2 = LBL 2\nM30\nLBL 1\nL X+0 Y+0 RL\nLBL 0\nLBL 2\n"
-                "L X+5 Y+5 RL\nLBL 0")
+def test_contour_formula_file_is_named_when_refused():
+    # the TNC 640 SL cycles' contour formula file (SEL CONTOUR, DECLARE CONTOUR, QC1 = ..) is refused naming the
+    # function and the simple contour formula vcnc runs instead (CONTOUR DEF itself runs since session 35:
+    # test_heidenhain_sl35)
+    with pytest.raises(GCodeError, match="SEL CONTOUR .* CONTOUR DEF P1 = LBL 1"):
+        program('SEL CONTOUR "MODEL"\nM30')

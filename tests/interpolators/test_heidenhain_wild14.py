@@ -158,7 +158,7 @@ def test_fn_9_with_another_comparison_names_the_fn_of_that_comparison():
     # without '~', as a TNC simulator's test program writes it
     ("1 CYCL DEF 200 DRILLING\n  Q200=2\n  Q201=-5\n  Q206=ZZ\n", r"t\.h:5:8: malformed number"),
     # a PATTERN DEF's form on its second line
-    ("1 PATTERN DEF ~\n  PAT1 (X+25 Y+33 DX+8 Z+0)\n", r"t\.h:3:3: pattern 'PAT1' is not supported"),
+    ("1 PATTERN DEF ~\n  PAT1 (X+25 Y+33 DX+8 Z+0)\n", r"t\.h:3:9: PATTERN DEF PAT without DY, NUMX, NUMY"),
     ("1 PATTERN DEF ~\n  ROW1 (X+10 Y+20 D+15 NUM5 Z+0) ~\n  ROW2 (X+10 Y+60 D+15 NUM100000 Z+0)\n",
      r"t\.h:4:9: PATTERN DEF ROW with NUM100000"),
 ])
