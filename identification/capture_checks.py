@@ -19,8 +19,8 @@ from vcnc.core.axes import axis_unit
 from vcnc.core.capture import UNIT_GIVEN, Capture, check_sampling
 from vcnc.core.errors import CaptureError, IdentificationError
 
-__all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
-           "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
+__all__ = ["check_capture", "travelled_direction", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO",
+           "MIN_FOLLOW_CORRELATION", "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
            "check_jumps", "JUMP_FACTOR", "REFERENCE_JUMP_FACTOR", "JUMP_SHARE", "JUMP_WINDOW",
            "check_swapped", "polynomial_share", "INTERPOLATED_SHARE", "RESPONSE_SHARE", "through_changes"]
 
@@ -127,7 +127,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     CaptureError
         Unknown axis, NaN/inf, time not increasing or not uniform.
     IdentificationError
-        Fewer than :data:`MIN_SAMPLES` samples, no motion, motion in one direction only,
+        Fewer than :data:`MIN_SAMPLES` samples, no motion, too little motion either way
+        (:func:`travelled_direction`; motion one way only is identified),
         measurement identical to the reference, positions that look like metres (too small a motion when
         ``meta[UNIT_GIVEN]`` states their unit), a measured
         channel that does not follow the commanded one (another axis', a velocity, the following
@@ -185,24 +186,44 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             f"error to identify from (was '{axis}_ref' copied into '{axis}'?)",
             file=src,
         )
-    opt = options or RegressorOptions()
-    v = np.diff(x) / T
-    db = opt.velocity_deadband
-    n_pos, n_neg = int(np.sum(v > db)), int(np.sum(v < -db))
-    need = max(20, int(0.01 * (n_pos + n_neg)))
-    if n_pos < need or n_neg < need:
-        which = "negative" if n_neg < need else "positive"
-        raise IdentificationError(
-            f"friction not identifiable: axis {axis!r} moves in one direction only ({n_pos} samples with positive "
-            f"and {n_neg} with negative measured velocity; at least {need} of each needed); the test must also move "
-            f"in the {which} direction",
-            file=src,
-        )
+    travelled_direction(x, T, axis, src, options=options)
     others = {a: np.asarray(capture.measured[:, j], float) for j, a in enumerate(capture.axes) if a != axis}
     check_channels(xr, x, T, axis, src, others=others)
     check_swapped(xr, x, axis, src)
     check_jumps(xr, x, T, axis, src)
     return xr, x, T
+
+
+def travelled_direction(measured: np.ndarray, sample_time: float, axis: str, src: str | None = None, *,
+                        options: RegressorOptions | None = None) -> str:
+    """Which way the measured position moves: ``"two-way"``, or ``"positive"`` / ``"negative"`` when it moves
+    that way only (a :data:`identification.regressor.FRICTION_DIRECTIONS` value).
+
+    A direction counts as travelled when at least ``max(20, 1 %)`` of the samples that move
+    (speed above ``options.velocity_deadband``) move that way. A loop moving one way only is still
+    identified (a weld seam, a feed axis' one-way test); only the Coulomb level of the direction it
+    never travels is not, and :class:`~identification.regressor.RegressorOptions` ``friction`` then
+    takes it as the mirror of the other's.
+
+    Raises
+    ------
+    IdentificationError
+        When neither direction is travelled so: too little motion to identify a loop from.
+    """
+    opt = options or RegressorOptions()
+    v = np.diff(np.asarray(measured, float)) / sample_time
+    db = opt.velocity_deadband
+    n_pos, n_neg = int(np.sum(v > db)), int(np.sum(v < -db))
+    need = max(20, int(0.01 * (n_pos + n_neg)))
+    if n_pos < need and n_neg < need:
+        raise IdentificationError(
+            f"too little motion to identify on axis {axis!r}: {n_pos} samples with positive and {n_neg} with negative "
+            f"measured velocity (at least {need} one way needed); record a test that moves the axis",
+            file=src,
+        )
+    if n_pos >= need and n_neg >= need:
+        return "two-way"
+    return "positive" if n_pos >= need else "negative"
 
 
 def _unit_hint(ratio: float) -> str:
