@@ -12,6 +12,7 @@ import pytest
 
 from identification.capture_checks import channel_name, check_capture
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
+from vcnc.core.capture import Capture
 from vcnc.core.errors import IdentificationError
 
 
@@ -35,6 +36,17 @@ def test_a_reference_of_held_targets_is_named_with_its_column(sample_time):
     with pytest.raises(IdentificationError, match=r"axis 'x': the commanded position \(TARGET:X-PosCmd\) is a "
                                                   r"sequence of held targets, not a trajectory: it changes 11 times"):
         check_capture(_targets(sample_time), "x")
+
+
+def test_a_single_target_is_named_too():
+    # a KUKA RSI weld log's z axis: Z_RSol steps by 65.8 mm once, the robot travels it over 40 samples of 12 ms
+    t = np.arange(2425) * 0.012
+    xr = np.where(t < 10.0, 977.3, 1043.1)
+    x = np.clip(977.3 + 2.3 * (t - 10.0) / 0.012, 977.3, 1043.1)
+    cap = Capture(t=t, axes=("z",), reference=xr[:, None], measured=x[:, None], meta={"commanded": "z:Z_RSol"})
+    with pytest.raises(IdentificationError, match=r"the commanded position \(Z_RSol\) is a sequence of held targets, "
+                                                  r"not a trajectory: it changes once in 29.1 s"):
+        check_capture(cap, "z")
 
 
 def test_a_trajectory_is_no_held_target():
