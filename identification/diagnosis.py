@@ -1447,7 +1447,8 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
                      "validation_max_um": e.get("validation_max_after_um")})
     for row, r in zip(rows, record):
         row["record_rms_um"] = r
-    rows.append(dict(rows[-1], label="final model"))
+    final = {k: v for k, v in rows[-1].items() if k not in ("name", "summary")}  # the model, not its last effect
+    rows.append(dict(final, label="final model"))
     return rows
 
 

@@ -30,6 +30,8 @@ def test_the_table_keeps_to_100_columns_and_says_what_each_effect_fitted_below_i
     lines = text.splitlines()
     assert max(len(line) for line in lines) <= TABLE_COLUMNS == 100
     assert lines[3].startswith("+ time_periodic  ") and "1.352" in lines[2] and "0.419" in lines[3]
+    assert lines[4].startswith("final model  ") and "0.419" in lines[4]
+    assert text.count("+ time_periodic") == 2 and text.count("period 0.018183 s") == 1  # its row, its description
     described = " ".join(line.strip() for line in lines if "period 0.018183" in line or line.startswith("    "))
     assert described.startswith("+ time_periodic: period 0.018183 s") and described.endswith("1372 -> 1372 mm/s^2")
     assert text.count("reduced-model poles on the bounds") == 1
