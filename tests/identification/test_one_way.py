@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -58,3 +59,14 @@ def test_a_record_that_barely_moves_either_way_is_still_refused():
                                                   r"positive and 5 with negative measured velocity"):
         travelled_direction(np.cumsum(v), 1e-3, "x")
     assert travelled_direction(np.cumsum(np.abs(np.sin(np.arange(2000) * 0.01))), 1e-3, "x") == "positive"
+
+
+def test_the_diagnosis_of_a_one_way_record_divides_by_no_zero_column():
+    # its regressor's -NV column is zero: the equation-error base of the searches scaled it by its norm, 0 (NaN, and
+    # LAPACK's "DLASCL parameter number 4 had an illegal value" on stderr for each search)
+    from identification import identify
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        m = identify(_one_way(1.0))
+    assert m.fit["friction"]["travelled"] == "positive" and m.validation
