@@ -31,7 +31,8 @@ LinuxCNC's task loads it, task/taskclass.cc ``emcToolSetNumber``), so G43 withou
 take the tool before it in rs274. A tool length offset in force at G20/G21 is read back unconverted
 (saicanon.cc ``GET_EXTERNAL_TOOL_LENGTH_ZOFFSET``; emccanon.cc converts it, ``TO_PROG_LEN``), so rs274 takes a length
 set in mm as inch (or back) at the next G43.2, G53 or change of offset under G91. The generated programs
-(``--generate``) avoid these three.
+(``--generate``) avoid these three. After an M66 wait (L1-L4) rs274 reads ``#5399`` as 0 (saicanon.cc: no inputs),
+where vcnc takes the awaited level (1 after L1/L3): a program that moves by ``#5399`` differs there.
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively), or with generated programs instead

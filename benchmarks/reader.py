@@ -1,7 +1,7 @@
 """Reading throughput of the ISO and Heidenhain readers: lines and blocks per second of ``load_program``.
 
 Run: ``.venv/bin/python benchmarks/reader.py [--lines N] [--tnc-lines N] [--rotary-lines N] [--rotary-only]
-[--largest K] [--repeat R] [FILE ...]``
+[--g93-lines N] [--g93-only] [--largest K] [--repeat R] [FILE ...]``
 
 Programs: the ``K`` largest ISO programs of the G-code corpus (``VCNC_GCODE_CORPUS``, default
 ``../shared/data/gcode-corpus`` beside the repository; skipped with a message when absent), read with the
@@ -11,7 +11,10 @@ the general machinery: a LinuxCNC O-word ``while`` loop with ``#`` parameters an
 same moves written with ``#`` parameters on every line. 4/5-axis programs: the corpus' ISO programs with
 A B C U V W words on 20 lines or more and a generated 4-axis wrap program of ``N`` lines (default 50,000:
 ``X Z A`` on every line, as Universal G-code Sender's ``rotation.ngc``), each beside the same program with its
-A-W words taken out, read in the same run (the reference: how much the rotary words cost). Heidenhain TNC
+A-W words taken out, read in the same run (the reference: how much the rotary words cost); a generated 5-axis
+G93 inverse-time program of ``N`` lines (default 50,000: ``X Y Z A C F`` on every line, the F each move's 1/min), read
+with the shortcut and all the general way, beside the same moves in G94 (the reference its ratios are against) and
+that G94 form without its A-W words. Heidenhain TNC
 programs: the ``K`` largest of the corpus
 (by content, :func:`interpolators.detect_dialect`) and a generated CAM program of ``N`` lines (default 200,000:
 ``L X Y Z F`` lines, ``L IX IY``, ``CC`` + ``C .. DR-``, ``CR .. R.. DR+``, ``L .. FMAX``, ``L .. R0``, M functions,
@@ -48,7 +51,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks.gcode_corpus import extra_axis_lines, without_remapped_m  # noqa: E402
 from interpolators import detect_dialect, load_program  # noqa: E402
+from interpolators._words import program_text  # noqa: E402
 from interpolators.context import INTERPOLATION_CONTEXT  # noqa: E402
+from interpolators.iso import parse_iso  # noqa: E402
 
 CORPUS = Path(os.environ.get("VCNC_GCODE_CORPUS", Path(__file__).resolve().parents[2] / "shared" / "data"
                              / "gcode-corpus"))
@@ -91,6 +96,41 @@ def rotary_program(lines: int) -> str:
         x = 0.5 * (k if (i // per_pass) % 2 == 0 else per_pass - 1 - k)
         out.append(f"X{x:.1f} Z{19.9 + 0.002 * math.sin(0.05 * x + 0.02 * a):.4f} A{a:.4f}")
         i += 1
+    out.append("M30")
+    return "\n".join(out) + "\n"
+
+
+def five_axis_program(lines: int, *, inverse_time: bool = True) -> str:
+    """A 5-axis simultaneous program of about ``lines`` lines as a CAM post for an A/C table writes it: passes of
+    200 moves ``X Y Z A C`` (4 decimals, the tool flank along a twisted ruled surface: A tilting 20-40 deg, C turning
+    with the pass), a rapid retract and approach between passes. ``inverse_time``: G93 with each move's F in 1/min
+    (its time: the XYZ length over 1,500 mm/min, 4 significant decimals, as a post computes it), ``G93`` on the first
+    feed move of a pass and ``G94`` back on the retract; else the same moves in G94 with ``F1500.`` on a pass's first
+    feed move (the modal feed after it)."""
+    out = [f"(generated 5-axis {'G93 inverse time' if inverse_time else 'G94'} program: benchmarks/reader.py)",
+           "G21 G17 G90 G94", "G0 X0. Y0. Z50. A0. C0."]
+    k = 0
+    while len(out) < lines - 1:
+        z0 = -0.01 * (k % 50)
+        pts = []
+        for i in range(200):
+            t = 2 * math.pi * (k + i / 200.0) / 7.0
+            r = 40.0 + 5.0 * math.sin(3 * t)
+            pts.append((r * math.cos(t), r * math.sin(t), z0 - 8.0 * math.sin(t) ** 2,
+                        30.0 + 10.0 * math.sin(2 * t), math.degrees(t) % 360.0))
+        x, y, z, a, c = pts[0]
+        out += [f"G0 X{x:.4f} Y{y:.4f} Z5. A{a:.4f} C{c:.4f}", f"G1 Z{z:.4f} F300."]
+        prev = pts[0]
+        for j, (x, y, z, a, c) in enumerate(pts[1:]):
+            words = f"X{x:.4f} Y{y:.4f} Z{z:.4f} A{a:.4f} C{c:.4f}"
+            if inverse_time:
+                length = math.dist(prev[:3], (x, y, z)) or 1e-3
+                out.append(f"{'G93 G1 ' if j == 0 else ''}{words} F{1500.0 / length:.4f}")
+            else:
+                out.append(f"{words}{' F1500.' if j == 0 else ''}")
+            prev = (x, y, z, a, c)
+        out.append(("G94 " if inverse_time else "") + "G0 Z5.")
+        k += 1
     out.append("M30")
     return "\n".join(out) + "\n"
 
@@ -187,22 +227,49 @@ def rs274_reference(path: Path) -> tuple[float, bool] | None:
     return best, refused
 
 
-def measure(label: str, path: Path, repeat: int, *, rs274: bool = True) -> None:
+def measure(label: str, path: Path, repeat: int, *, rs274: bool = True, shortcuts: bool = True,
+            against: tuple[str, float] | None = None) -> float:
     """Print lines/s, blocks/s of ``load_program`` and the ratios to :func:`reference` and (``rs274``: an ISO
-    program) :func:`rs274_reference`."""
+    program) :func:`rs274_reference`; return the time [s]. ``shortcuts=False``: an ISO program read all the general
+    way (``parse_iso(shortcuts=False)``); ``against``: the name and time of another reading of the same run, whose
+    ratio is printed too."""
     lines = path.read_bytes().count(b"\n")
     best = math.inf
     for _ in range(repeat):
         t0 = time.process_time()
-        program = load_program(path, context=INTERPOLATION_CONTEXT)
+        if shortcuts:
+            program = load_program(path, context=INTERPOLATION_CONTEXT)
+        else:
+            program = parse_iso(program_text(str(path)), source=str(path), context=INTERPOLATION_CONTEXT,
+                                shortcuts=False)
         best = min(best, time.process_time() - t0)
     ref = reference(path)
     rs274 = rs274_reference(path) if rs274 else None
     other = "" if rs274 is None else (f"  x{best / rs274[0]:5.1f} rs274 ({rs274[0]:.2f} s, {lines / rs274[0]:,.0f} "
                                       f"lines/s{', refused' if rs274[1] else ''})")
+    if against is not None:
+        other += f"  x{best / against[1]:5.2f} {against[0]}"
     print(f"{label:44s} {lines:>9,d} lines {len(program.blocks):>9,d} blocks  {best:7.2f} s  "
           f"{lines / best:>10,.0f} lines/s {len(program.blocks) / best:>10,.0f} blocks/s  "
           f"x{best / ref:6.0f} the str.split reference ({ref * 1e3:.1f} ms){other}")
+    return best
+
+
+def g93_section(lines: int, repeat: int) -> None:
+    """A 5-axis G93 program of ``lines`` lines (:func:`five_axis_program`) read with the shortcut and all the general
+    way (what it took before the shortcut took G93), beside its G94 form and its XYZ form (the G94 form without its
+    A-W words, :func:`without_extra_words`); the ratios against the G94 form, measured in the same run."""
+    g94 = five_axis_program(lines, inverse_time=False)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "program.ngc"
+        path.write_text(g94)
+        reference_time = measure(f"5-axis G94 form, {lines:,d} lines", path, repeat, rs274=False)
+        against = ("the G94 form", reference_time)
+        path.write_text(five_axis_program(lines))
+        measure(f"5-axis G93, {lines:,d} lines", path, repeat, rs274=False, against=against)
+        measure("5-axis G93, all the general way", path, repeat, rs274=False, shortcuts=False, against=against)
+        path.write_text(without_extra_words(g94))
+        measure("its XYZ form (G94, A-W words out)", path, repeat, rs274=False, against=against)
 
 
 def rotary_section(lines: int, repeat: int) -> None:
@@ -235,7 +302,12 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=1, help="runs per program (the best is shown)")
     ap.add_argument("files", nargs="*", type=Path, help="further programs to measure")
     ap.add_argument("--rotary-only", action="store_true", help="only the 4/5-axis programs and their references")
+    ap.add_argument("--g93-lines", type=int, default=50_000, help="lines of the generated 5-axis G93 program")
+    ap.add_argument("--g93-only", action="store_true", help="only the 5-axis G93 program and its references")
     args = ap.parse_args()
+    if args.g93_only:
+        g93_section(args.g93_lines, args.repeat)
+        return
     if CORPUS.is_dir() and not args.rotary_only:
         by_size = [p for p in sorted(CORPUS.iterdir(), key=lambda p: -p.stat().st_size)
                    if p.suffix.lower() not in (".tsv", ".md")]
@@ -246,6 +318,7 @@ def main() -> None:
     elif not CORPUS.is_dir():
         print(f"G-code corpus not found at {CORPUS} (set VCNC_GCODE_CORPUS): corpus programs skipped")
     rotary_section(args.rotary_lines, args.repeat)
+    g93_section(args.g93_lines, args.repeat)
     if args.rotary_only:
         return
     with tempfile.TemporaryDirectory() as tmp:

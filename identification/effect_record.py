@@ -25,7 +25,7 @@ class EffectRecord(Mapping[str, Any]):
         The record: ``name`` (an effect name, ARCHITECTURE.md "Effect names") and ``parameters``
         (the element's parameters), and after a diagnosis ``units``, ``rms_before_um``,
         ``rms_after_um``, ``validation_rms_before_um``, ``validation_rms_after_um``, ``summary``,
-        ``description``, ``evidence`` and more; further keys are kept.
+        ``description``, ``evidence``, ``unpinned`` and more; further keys are kept.
 
     Raises
     ------
@@ -100,6 +100,12 @@ class EffectRecord(Mapping[str, Any]):
     def evidence(self) -> Mapping[str, Any]:
         """What the diagnosis based the effect on."""
         return types.MappingProxyType(dict(self._data.get("evidence") or {}))
+
+    @property
+    def unpinned(self) -> Mapping[str, str]:
+        """The parameters the record does not pin, each with why (``{}`` when it pins them all): the model
+        simulates with their fitted values, which are not measurements (``Effect.unpinned``)."""
+        return types.MappingProxyType(dict(self._data.get("unpinned") or {}))
 
     def to_dict(self) -> dict[str, Any]:
         """The record as a plain dict (as the model file writes it)."""

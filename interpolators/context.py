@@ -30,7 +30,8 @@ from vcnc.core.errors import InputError
 
 __all__ = ["Tool", "TouchProbe", "Dialect", "MachineContext", "DIALECTS", "WORK_OFFSETS", "DEFAULT_CONTEXT",
            "INTERPOLATION_CONTEXT",
-           "read_tool_table", "read_tnc_tool_table", "EXTENDED_OFFSETS", "extended_offset", "work_offset_code",
+           "read_tool_table", "read_tnc_tool_table", "read_datum_table", "tnc_table_rows", "EXTENDED_OFFSETS",
+           "extended_offset", "work_offset_code",
            "FADAL_FIXTURES", "TOOL_OFFSET_MEMORIES"]
 
 #: Fanuc tool compensation memory types (:attr:`MachineContext.tool_offset_memory`).
@@ -258,6 +259,30 @@ class Dialect:
         G1 with zero feed rate") and grbl (error 22). When set, it applies under every dialect (a note says
         so, and that LinuxCNC and grbl refuse the move); it never replaces an F0, a G95 feed per revolution
         or the F a G94 after G93 needs.
+    rapid_feed_stop : bool
+        Whether the control stops where a rapid (G00, FMAX) meets a feed move (G01, G02, G03), either way,
+        whatever the path mode: True on LinuxCNC, Fanuc, Haas and Fadal, False on grbl and the TNC, whose
+        look-ahead passes that junction at speed as any other (:func:`interpolators.interpolate.interpolate`).
+        Sources: LinuxCNC ``src/emc/tp/tp.c`` ``handleModeChange`` (older ``tpCheckCanonType``): where one of two
+        consecutive moves is a traverse and the other not, "Blending disabled: can't blend between rapid and feed
+        motions", the first ends in ``TC_TERM_COND_STOP``. FANUC Series 30i/31i/32i-MA user's manual B-63944EN/02,
+        4.1 "Positioning (G00)": "In the positioning mode actuated by G00, the tool is accelerated to a
+        predetermined speed at the start of a block and is decelerated at the end of a block. Execution proceeds to
+        the next block after confirming the in-position"
+        (http://www.cncmanuals.com/fanuc/773/30i-300i-300is-ma-31i-310i-310is-ma-a5-32i-320i-320is-ma-common-to-lathe-machining-center-users-manual/page/82;
+        a stop after the rapid; our reading of "accelerated ... at the start of a block": the rapid starts from rest
+        after a feed move too, the cutting mode G64 passing only the end of a cutting block at speed, 0i-PC
+        B-64154EN/01 Table 5.4). Haas mill operator's manual, G00: "The machine waits until all motions are complete
+        before starting the next command", Setting 57 changing "how closely the machine waits for a precise stop
+        before and after a rapid move" (https://scribd.com/document/534599821/G00). Fadal reads Fanuc's Format 2
+        (our reading: its rapids stop as Fanuc's). grbl ``grbl/planner.c`` ``plan_buffer_line``: every block's entry
+        speed is bounded by the junction deviation alone (only a system motion, homing or parking, starts at rest),
+        the rapid flag setting only its nominal speed (``plan_compute_profile_nominal_speed``). HEIDENHAIN: no TNC
+        manual we found names a stop at an FMAX block's end; an ``L ... FMAX`` block is a straight line at the rapid
+        rate within the look-ahead and cycle 32's tolerance as any other (the TNC 425/415 B/407 user's manual rounds
+        an FMAX block's corner with M112: "L X+123.723 Y+25.491 R0 FMAX M124 T0.01",
+        https://azmanual.top/manuals/797829/heidenhain-tnc-407-280-580-user-manual.html?page=167); our reading: it
+        is blended.
     """
 
     name: str = "linuxcnc"
@@ -270,6 +295,7 @@ class Dialect:
     subroutine_path: tuple[str, ...] = ()
     user_m_path: tuple[str, ...] = ()
     initial_feed: float | None = None
+    rapid_feed_stop: bool = True
 
     def __post_init__(self) -> None:
         if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
@@ -293,11 +319,11 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
     "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True),
     "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True),
-    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl"),
+    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl", rapid_feed_stop=False),
     # Fadal VMC (interpolators.iso_fadal): Format 2 (Fanuc-like) with Fadal's own words; units and path mode
     # are machine settings there (G20/G21 only check them), vcnc's defaults (mm, continuous path) apply
     "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True),
-    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s"),
+    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s", rapid_feed_stop=False),
 })
 
 
@@ -352,6 +378,11 @@ class MachineContext:
         :mod:`interpolators.tilted`); None (the default): a tilt is an error naming the function.
     touch_probe : TouchProbe
         The workpiece touch probe's table row (Heidenhain ``TCH PROBE`` cycles).
+    datum_table : mapping of int to ndarray (3,)
+        The Heidenhain datum table (a ``.D`` file, :func:`read_datum_table`): row ``D`` to its X, Y, Z
+        columns [mm], the shift ``CYCL DEF 7.1 #D`` selects (from the preset, in the workpiece coordinates:
+        TNC7 user's manual 81762x-17, "Datum table *.d"). Empty (the default): the context has no datum
+        table, and selecting a row is an error naming it.
     """
 
     work_offsets: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
@@ -365,6 +396,7 @@ class MachineContext:
     tool_offset_memory: str = "C"
     kinematics: Kinematics | None = None
     touch_probe: TouchProbe = dataclasses.field(default_factory=TouchProbe)
+    datum_table: Mapping[int, np.ndarray] = dataclasses.field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.linear_units not in ("mm", "inch"):
@@ -388,6 +420,12 @@ class MachineContext:
                 raise InputError(f"tool table entry {number!r} must be a Tool with number {number!r}")
             tools[int(number)] = tool
         object.__setattr__(self, "tools", MappingProxyType(tools))
+        rows = {}
+        for row, value in dict(self.datum_table).items():
+            if not isinstance(row, int) or row < 0:
+                raise InputError(f"datum table row {row!r} must be a whole number >= 0")
+            rows[row] = _xyz(value, f"datum table row {row}")
+        object.__setattr__(self, "datum_table", MappingProxyType(rows))
         object.__setattr__(self, "home", _xyz(self.home, "home"))
         object.__setattr__(self, "reference2", _xyz(self.reference2, "reference2"))
         bad = [a for a in self.extra_axes if a not in EXTRA_NAMES]
@@ -491,6 +529,21 @@ _TNC_TABLE_BEGIN = re.compile(r"\s*BEGIN\s+\S*\s*\.T\s+(MM|INCH)\b", re.I)
 _TNC_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)$")
 
 
+def tnc_table_rows(lines: list[str]) -> list[tuple[int, dict[str, str]]]:
+    """The rows of a Heidenhain table file (TOOL.T, a datum table .D): text with fixed column widths, a
+    ``BEGIN`` line, a header line whose column names start where their columns start, one line per row, and
+    ``[END]``. Each row as its 1-based line number and its fields by column name (stripped text)."""
+    header = lines[1].rstrip()
+    starts = [m.start() for m in re.finditer(r"\S+", header)]
+    names = header.split()
+    rows = []
+    for lineno, raw in enumerate(lines[2:], start=3):
+        if not raw.strip() or raw.strip().upper() == "[END]":
+            continue
+        rows.append((lineno, {name: raw[a:b].strip() for name, a, b in zip(names, starts, starts[1:] + [len(raw)])}))
+    return rows
+
+
 def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
     """Read a Heidenhain tool table TOOL.T (iTNC 530, TNC 320/620/640, TNC7).
 
@@ -513,19 +566,13 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
     if len(lines) < 2 or not re.match(r"\s*T\s", lines[1]):
         raise InputError(f"{path}:2: Heidenhain tool table without its header line; expected the column names "
                          "T NAME L R ... after the BEGIN line")
-    header = lines[1].rstrip()
-    starts = [m.start() for m in re.finditer(r"\S+", header)]
-    names = header.split()
+    names = lines[1].split()
     missing = [c for c in ("T", "L", "R") if c not in names]
     if missing:
         raise InputError(f"{path}:2: Heidenhain tool table header without column {missing[0]}; expected "
                          "T NAME L R ... (the TNC's TOOL.T)")
     tools: dict[int, Tool] = {}
-    for lineno, raw in enumerate(lines[2:], start=3):
-        if not raw.strip() or raw.strip().upper() == "[END]":
-            continue
-        fields = {name: raw[a:b].strip() for name, a, b in zip(names, starts, starts[1:] + [len(raw)])}
-
+    for lineno, fields in tnc_table_rows(lines):
         def number(col: str, *, lineno: int = lineno, fields: dict = fields) -> float:
             text = fields.get(col, "")
             if not text:
@@ -549,3 +596,45 @@ def read_tnc_tool_table(path: str, lines: list[str]) -> dict[int, Tool]:
             raise InputError(f"{path}:{lineno}: {exc.message}; expected the TOOL.T columns under the header's "
                              "names") from None
     return tools
+
+
+_TNC_DATUM_BEGIN = re.compile(r"\s*BEGIN\s+\S*\.D\s+(MM|INCH)\b", re.I)
+
+
+def read_datum_table(path: str) -> dict[int, np.ndarray]:
+    """Read a Heidenhain datum table (a ``.D`` file: ``BEGIN ZEROSHIFT.D MM``, a header ``D X Y Z ...``, one
+    line per row, ``[END]``; the fixed widths of :func:`tnc_table_rows`) into :attr:`MachineContext.datum_table`.
+
+    Following the TNC7 user's manual "Datum table *.d" (HEIDENHAIN 81762x-17): ``D`` the row number, ``X``, ``Y``,
+    ``Z`` the datum, "a shift in the workpiece coordinate system W-CS" [mm, or inch in an INCH table, converted
+    to mm]; an empty field is 0. The columns A, B, C, U, V, W (offsets of those axes in the machine coordinates)
+    and DOC are read past.
+
+    Raises
+    ------
+    InputError
+        Unreadable file, no BEGIN ... .D line or no header with D, or a malformed number (file and line named).
+    """
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            lines = fh.read().splitlines()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read datum table: {exc.strerror or exc}") from None
+    begin = _TNC_DATUM_BEGIN.match(lines[0]) if lines else None
+    if begin is None:
+        raise InputError(f"{path}:1: not a Heidenhain datum table; expected a first line BEGIN <name>.D MM (or INCH)")
+    if len(lines) < 2 or "D" not in lines[1].split():
+        raise InputError(f"{path}:2: Heidenhain datum table without its header line; expected the column names "
+                         "D X Y Z ... after the BEGIN line")
+    scale = 25.4 if begin.group(1).upper() == "INCH" else 1.0
+    rows: dict[int, np.ndarray] = {}
+    for lineno, fields in tnc_table_rows(lines):
+        if not re.fullmatch(r"\d+", fields["D"]):
+            raise InputError(f"{path}:{lineno}: row number {fields['D']!r} is not a whole number; "
+                             "expected D as 0, 1, 2 ...")
+        bad = [c for c in "XYZ" if fields.get(c) and not _TNC_NUMBER.match(fields[c])]
+        if bad:
+            raise InputError(f"{path}:{lineno}: column {bad[0]} holds {fields[bad[0]]!r}, not a number; expected "
+                             "the columns under the header's names (fixed widths)")
+        rows[int(fields["D"])] = np.array([float(fields.get(c) or 0.0) * scale for c in "XYZ"])
+    return rows

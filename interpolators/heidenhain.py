@@ -104,6 +104,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     CYCL DEF 7/9/32/1/2/4/5/17/12/200-209/240/241/251-254/256/257/262-265/267/392
                                     cycles; machining cycles run by M99, CYCL CALL, CYCL CALL PAT or
                                     CYCL CALL POS
+    CYCL DEF 7.1 #5, TRANS DATUM TABLE TABLINE 5
+                                    datum shift to row 5 of the datum table (context.datum_table)
     CYCL DEF 220/221                polar / Cartesian pattern: the last machining cycle at each position
     PATTERN DEF POS1 (X.. Y.. Z..)  the positions of CYCL CALL PAT
     CYCL DEF 8/10/11/26, TRANS ..   mirror image, rotation, scaling about the datum (arcs and RL/RR
@@ -154,7 +156,7 @@ from pathlib import Path
 import numpy as np
 
 from interpolators._words import INCH, Where, program_text
-from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext
+from interpolators.context import DEFAULT_CONTEXT, DIALECTS, WORK_OFFSETS, MachineContext
 from interpolators.heidenhain_compensation import finish_compensation
 from interpolators.heidenhain_contours import (
     CONTOUR_CYCLES,
@@ -303,6 +305,8 @@ class Machine:
         self.preset: str | None = "G54"
         # preset table rows a touch probe cycle wrote (interpolators.heidenhain_probing): work offset -> value [mm]
         self.presets: dict[str | None, np.ndarray] = {}
+        # the datum table (context.datum_table) with the rows a touch probe cycle wrote (Q303=0): row -> X, Y, Z [mm]
+        self.datum_rows: dict[int, np.ndarray] = dict(context.datum_table)
         self.transform = Transform()
         self.comp = "R0"
         self.comp_start: int | None = None  # index of the entry block of the running RL/RR run
@@ -612,7 +616,8 @@ def parse_heidenhain(text: str, *, source: str | None = None, context: MachineCo
         m.blocks = fill_extra(m.blocks)
     notes = tuple(text if n == 1 else f"{text} x{n}" for text, n in m.notes.items())
     axes = program_axes(m.used, m.blocks)
-    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes)
+    return Program(blocks=tuple(m.blocks), source=source, dialect="heidenhain", axes=axes, name=name, notes=notes,
+                   rapid_feed_stop=DIALECTS["heidenhain"].rapid_feed_stop)
 
 
 def _check_contour_closed(m: Machine) -> None:
@@ -1177,9 +1182,13 @@ def _cycle_def(blk: SourceBlock, m: Machine, where: Where) -> None:
         _tilt_cycle(rest, m, where, col, blk)
         return
     if number == 7:
-        if rest.strip().startswith("#"):  # TNC 640 manual, cycle 7: "#5" selects a row of the datum table
-            where.fail("cycle 7 with a datum table row (#n) is not supported (no datum table in the machine context)",
-                       column=col, text=rest.strip(), expected="CYCL DEF 7.1 X.. / 7.2 Y.. / 7.3 Z..")
+        if rest.strip().startswith("#"):
+            found = re.fullmatch(r"\s*#\s*(\d+|Q[LR]?\d+)\s*", rest, re.I)
+            if found is None:
+                where.fail(f"cycle 7: malformed datum table row {rest.strip()!r}", column=col, text=rest.strip(),
+                           expected="#n or #Qn, the row of the datum table")
+            _datum_table_shift(found.group(1), m, where, col, "cycle 7", rest.strip())
+            return
         words = block_words(rest, 0, where, m, column0=col)
         for w in words:
             if w.key not in ("X", "Y", "Z", "IX", "IY", "IZ"):
@@ -1345,8 +1354,10 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
     zero moves by it and PLANE RESET finds the part where the probe put it (our reading: the manual's page on
     probing in a tilted plane was not found); Q305=n, Q303=1: row n of the preset table (the work offsets, as
     cycle 247 numbers them)
-    holds the datum, active once cycle 247 selects it; Q303=0 (or -1): row n of the datum table, which vcnc
-    does not model (noted)."""
+    holds the datum, active once cycle 247 selects it; Q303=0: row n of the datum table ("Write determined datum
+    in the active datum table. The reference system is the active workpiece coordinate system", iTNC 530 cycle
+    manual 15.6, Q303), the shift from the preset that puts the probed point at ``origin_to``, active once
+    ``CYCL DEF 7.1 #n`` selects it; Q303=-1 (entered by the TNC in old programs, "do not use"): noted."""
     delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
     if row == 0 and m.tilt is not None:  # the datum set in the tilted plane, the preset kept untilted
         machine = m.to_machine(delta) - m.to_machine(np.zeros(3))
@@ -1355,6 +1366,9 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
         return
     if row == 0:
         m.presets[m.preset] = m.preset_value() + delta
+        return
+    if table == 0:
+        m.datum_rows[row] = m.shift + delta
         return
     if table != 1 or _preset_row(row) is None:
         m.note(f"TCH PROBE {number}: the datum written to row {row} of the "
@@ -1367,6 +1381,25 @@ def _preset_row(n: int) -> str | None:
     """The work offset that stands in for row ``n`` >= 1 of the preset table (:func:`_preset_cycle`: G54 = 1 ..
     G59.3 = 9); None beyond them."""
     return WORK_OFFSETS[n - 1] if n <= len(WORK_OFFSETS) else None
+
+
+def _datum_table_shift(name: str, m: Machine, where: Where, column: int, what: str, text: str) -> None:
+    """The datum shift to the row ``name`` (a number or a Q parameter) of the datum table, its X, Y and Z
+    (:attr:`MachineContext.datum_table`, in mm whatever the program's unit): ``CYCL DEF 7.1 #5`` (TNC 640 cycle
+    programming manual, cycle 7 DATUM SHIFT: with datum tables the cycle takes the number of a datum from the
+    table) and ``TRANS DATUM TABLE TABLINE 5`` (TNC 640 user's manual, "TRANS DATUM"). TNC7 user's manual
+    81762x-17, "Datum table *.d": its X, Y, Z "have the effect of a shift in the workpiece coordinate system
+    W-CS", and a datum table must be active to use it, so a row the context's table lacks, or a context without a
+    table, is an error naming the row (a TNC without the row stops there too)."""
+    row = int(name) if name[0].isdigit() else _whole_number(name, m, where, column, what="datum table row")
+    value = m.datum_rows.get(row)
+    if value is None:
+        held = (f"the datum table has rows {', '.join(map(str, sorted(m.datum_rows)))}"
+                if m.datum_rows else "the machine context has no datum table")
+        where.fail(f"{what}: row {row} of the datum table is not known ({held})", column=column, text=text,
+                   expected="a datum table with that row (vcnc interpolate --datum-table FILE.D, or the machine "
+                            "file's [program] datum_table)")
+    _datum_shift({axis: value[i] / m.scale for i, axis in enumerate("XYZ")}, m)
 
 
 def _datum_shift(values: dict[str, float], m: Machine) -> None:
@@ -1551,9 +1584,22 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: Machine, w
            extra=extra)
 
 
+#: ``TRANS DATUM TABLE TABLINE 5`` (``TABLINE Q5``), optionally with the table's file ``TABLE "TNC:\\ZS.D"``.
+_TRANS_TABLE_RE = re.compile(r'\s*DATUM\s+TABLE\s+(?:TABLE\s*("[^"]*")\s*)?TABLINE\s*(\d+|Q[LR]?\d+)\s*$', re.I)
+
+
 def _trans(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
     """``TRANS DATUM|MIRROR|ROTATION|SCALE``: the transformations of cycles 7, 8, 10, 11."""
     col = blk.column + pos
+    table = _TRANS_TABLE_RE.match(blk.code, pos)
+    if table is not None:
+        if table.group(1) is not None:
+            where.fail(f"TRANS DATUM TABLE with its own table {table.group(1)!r}", column=col,
+                       text=blk.code[pos:].strip(),
+                       expected="TRANS DATUM TABLE TABLINE n of the machine context's datum table (vcnc interpolate "
+                                "--datum-table FILE.D, or the machine file's [program] datum_table)")
+        _datum_table_shift(table.group(2), m, where, col, "TRANS DATUM TABLE", blk.code[pos:].strip())
+        return
     t, shift = trans_block(blk.code[pos:], m.transform, where, m.params, column0=col, scale=m.scale)
     if shift is not None:
         if not shift:

@@ -719,6 +719,12 @@ def _arc(kw: str, seen: dict[str, Word], target: np.ndarray, m: Machine, where: 
             if m.pole is None:
                 where.fail("C arc without a circle centre", column=blk.column, text=where.text,
                            expected="a CC block before C")
+            p, q = PLANE_AXES[plane]
+            if math.hypot(m.pos[p] - m.pole[p], m.pos[q] - m.pole[q]) <= 1e-9:
+                # TNC 640 user's manual, "Circular path C around circle center CC": the arc runs about CC from
+                # the tool's position, so a start on CC has radius 0 (the control stops with an error there)
+                where.fail("C arc of radius zero: the tool stands on the circle centre CC", column=blk.column,
+                           text=where.text, expected="a CC away from the start point (the centre of the arc)")
             return arc_from_center(m.pos, target, m.pole, ccw=ccw != flips, plane=plane,
                                    tolerance=arc_end_tolerance(m.inch))
         if "R" not in seen:

@@ -80,8 +80,8 @@ cycle gives: a hole or pocket too large or a stud too small is scrap, the other 
 Our reading, where the manuals leave details open: the move back after a touch goes to the starting point at
 the FMAX column's feed; the datum is set as :class:`ProbeRun` ``datum`` says (the reader applies it: Q305=0
 the active preset, Q305=n with Q303=1 row n of the preset table, with Q303=0 row n of the datum table, which
-vcnc does not model: noted); a touch point farther from its starting point than the DIST column is an error
-(the TNC reports it unreachable).
+``CYCL DEF 7.1 #n`` selects; Q303=-1 noted); a touch point farther from its starting point than the DIST
+column is an error (the TNC reports it unreachable).
 
 Not modelled (an error naming the cycle, and for some why): the other probe cycles (0, 1, 401-405, 414-416,
 418, 425, 430, 444, 45x, 46x, 14xx, ...), and the tool touch probe cycles (TT: 30-33, 480-484: the tool

@@ -183,6 +183,20 @@ def _chains(program: Program) -> list[_Chain]:
     return chains
 
 
+def _rapid_feed_stops(stop: bool, before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """Which junctions, between moves ``before`` and ``after`` (each a rapid or not, one entry per junction), are
+    stops because the control stops where a rapid meets a feed move (``stop``: ``Program.rapid_feed_stop``, the
+    dialect's :attr:`interpolators.context.Dialect.rapid_feed_stop`: LinuxCNC's ``handleModeChange``, Fanuc's and
+    Haas' G00 with its in-position check; grbl and the TNC pass that junction at speed, bounded as any other).
+    Whatever the path mode: under G64 such a junction is neither blended (:func:`_blend_worth`) nor passed at speed
+    (:func:`_corner_stops` splits the chain there), as under G61. The rapid and the feed move stay one chain until
+    then, so that the corners of a program of short rapids and feed moves are blended chain by chain as before
+    (a chain per move costs its own look-ahead pass: twice the interpolation time of such programs). The chains of
+    the axes beyond X, Y, Z stop there under every control (:func:`_extra_block`)."""
+    before, after = np.asarray(before, dtype=bool), np.asarray(after, dtype=bool)
+    return before != after if stop else np.zeros(before.shape, dtype=bool)
+
+
 def _feeds_after_rapid(chains: list[_Chain], cur: _Chain) -> _Chain | None:
     """The chain of the feed moves of ``cur`` (the last of ``chains``) after its last rapid, split off it as a chain
     of its own (the last of ``chains``), for a feed move that moves the axes beyond X, Y, Z to join; ``cur`` itself
@@ -348,7 +362,7 @@ def interpolate(
     lim = _axis_limits(chains, limits, jerk_limited)
     every = _resolve_limits(limits)
     g = _geometry(chains, lim, jerk_limited, program, Ts, every)
-    c = _corner_stops(g, chains, lim, Ts, jerk_limited, every)
+    c = _corner_stops(g, chains, lim, Ts, jerk_limited, every, rapid_feed_stop=program.rapid_feed_stop)
     del chains  # the rest works on the packed geometry: the chains' items are not kept through the sampling
     v_max, a_max, j_max, v0, v1 = _faster_jerk_share(g, c, lim, _path_bounds(g, c, lim, jerk_limited), jerk_limited,
                                                      every)
@@ -450,7 +464,8 @@ def _geometry(chains: list[_Chain], lim: AxisLimitArrays, jerk_limited: bool, pr
         else:
             ch, run_of = _merged(ch, jerk_limited)
             segs, blks = blend_corners(ch.segments, ch.blocks, ch.junction_tolerances,
-                                       worth=_blend_worth(ch, lim, jerk_limited, Ts),
+                                       worth=_blend_worth(ch, lim, jerk_limited, Ts,
+                                                          rapid_feed_stop=program.rapid_feed_stop),
                                        curvature_continuous=jerk_limited,
                                        kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))),
                                        offsets=[run_of[id(s)].deviation if id(s) in run_of else 0.0
@@ -667,7 +682,6 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
     kinks = [plain[k] and plain[k + 1] for k in range(len(segments) - 1)]  # not beside a merged curve
     corner_of = {b: k for k, (sg, b) in enumerate(zip(segments, blocks)) if plain[k]}
     blk = program.blocks
-    corner_value = [b.extra_target for b in blk]
 
     def ends(blends: list, corners: list[int]) -> tuple[np.ndarray, ...]:  # the axes at the blends' ends
         r0, m0 = _on_line([blk[blocks[k]] for k in corners], np.array([b.start for b in blends]).reshape(-1, 3),
@@ -681,7 +695,7 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         return extra_curve_bounds(d1, d2, d3, np.full(n, np.inf), limits, share=np.full(n, 1.0 - JUNCTION_SHARE),
                                   jerk_limited=jerk_limited)[0]
 
-    worth = _blend_worth(ch, lim, jerk_limited, Ts, cap)
+    worth = _blend_worth(ch, lim, jerk_limited, Ts, cap, rapid_feed_stop=program.rapid_feed_stop)
     for attempt in range(3):
         segs, blks = blend_corners(segments, blocks, tol.tolist(), worth=worth, curvature_continuous=jerk_limited,
                                    kink_limits=(float(np.min(lim.acceleration)), float(np.min(lim.jerk))),
@@ -703,7 +717,7 @@ def _blended_extra(ch: _Chain, fit_of: dict, lim: AxisLimitArrays, limits: Mappi
         for i, k in enumerate(corners):
             if isinstance(segments[k], Arc) or isinstance(segments[k + 1], Arc):  # beside an arc: along the arc
                 along[i] = _arc_corner_positions(points[i], segments[k], segments[k + 1])
-        ratio = excess(*args, np.array([corner_value[blocks[k]] for k in corners]), allowed[corners], along=along)
+        ratio = excess(*args, np.array([blk[blocks[k]].extra_target for k in corners]), allowed[corners], along=along)
         if np.all(ratio <= 1.0):
             spl, offsets = hermite_axes(*_with_cut_arcs(args, cut, blk))  # one spline for the chain's blends
             pieces = [sg for sg, _ in made] + [sg for sg, _ in cut]
@@ -1078,11 +1092,12 @@ def _limits(g: _Geom, idx: np.ndarray, lims: AxisLimitArrays, jerk_limited: bool
 
 
 def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: float, jerk_limited: bool,
-                  limits: Mapping[str, AxisLimits]) -> _Chains:
+                  limits: Mapping[str, AxisLimits], *, rapid_feed_stop: bool) -> _Chains:
     """2. The geometric speed bound at each junction inside a chain; a junction whose bound is
     negligible (a real corner or reversal) becomes a stop, splitting the chain, so that only
     chains passing discontinuous junctions at speed pay the JUNCTION_SHARE reserve. The axes
-    beyond X, Y, Z take part by the same rule (their rate steps, :func:`_extra_junctions`)."""
+    beyond X, Y, Z take part by the same rule (their rate steps, :func:`_extra_junctions`). A junction of a rapid
+    and a feed move is a stop too where the control stops there (``rapid_feed_stop``, :func:`_rapid_feed_stops`)."""
     packed, seg_chain_a = g.packed, g.chain
     n_seg = len(g.segments)
     L = packed.length
@@ -1108,8 +1123,8 @@ def _corner_stops(g: _Geom, chains: list[_Chain], lim: AxisLimitArrays, Ts: floa
         if g.extra is not None:
             jl, jl_tiny = _extra_junctions(g, inner, jl, jl_tiny, v_full, limits, Ts, jerk_limited)
         v_stop = MIN_JUNCTION_SPEED_SHARE * np.minimum(v_full[inner], v_full[inner + 1])
-        split = inner[jl <= v_stop]
-        keep_j = jl > v_stop
+        keep_j = (jl > v_stop) & ~_rapid_feed_stops(rapid_feed_stop, g.rapid[inner], g.rapid[inner + 1])
+        split = inner[~keep_j]
         rough = inner[keep_j & (jl_tiny < np.maximum(v_full[inner], v_full[inner + 1]))]
         inner, jl = inner[keep_j], jl[keep_j]
     else:
@@ -1519,7 +1534,7 @@ _TANGENT_STEP = 1e-3
 
 
 def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float,
-                 cap: Callable[[CornerBlends], np.ndarray] | None = None):
+                 cap: Callable[[CornerBlends], np.ndarray] | None = None, *, rapid_feed_stop: bool = False):
     """Predicate: is passing each corner through its blend faster than stopping at it?
 
     Model of one corner between lines cruising at ``V`` (their speed bound, or the speed they can
@@ -1539,7 +1554,8 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float
     tangent arcs and lines, where no stop is near (measured: the random tangent contours and the rounded
     rectangles of ``tests/interpolators/test_curvature_junctions.py`` ran up to 13 % slower with the model alone).
     ``cap(blends)``, when given, lowers each blend's speed bound (the axes beyond X, Y, Z across it,
-    :func:`_blended_extra`).
+    :func:`_blended_extra`). A corner of a rapid and a feed move is never worth it where the control stops there
+    (``rapid_feed_stop``, :func:`_rapid_feed_stops`).
     """
     share = 1.0 - JUNCTION_SHARE  # the blend's bound in a chain that may reserve the junction share
     segments, feeds, rapid = ch.segments, np.asarray(ch.feeds), np.asarray(ch.rapid)
@@ -1572,7 +1588,7 @@ def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float
                                                   - _corner_direction(segments[i], "end"))) <= _TANGENT_STEP
                              for i in k[kink].tolist()]
         faster[kink] = (faster[kink] | tangent[kink]) & (v_b[kink] > v_j[kink])
-        return faster
+        return faster & ~_rapid_feed_stops(rapid_feed_stop, rapid[k], rapid[k + 1])
 
     return worth
 

@@ -312,6 +312,8 @@ class State:
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
     parts_counters: dict[int, float] = dataclasses.field(default_factory=dict)  # Fanuc/Haas #3901, #3902 as set
     parts_read: bool = False  # the program read #3901/#3902 (a note)
+    input_result: float | None = 0.0  # LinuxCNC #5399, the result of the last M66 (0 until one runs)
+    input_unknown: str = ""  # why #5399 cannot be known, when input_result is None
     corner_fresh: bool = False  # the corner was set by the block just run
     decimal_noted: bool = False  # the note on a Fanuc number without a decimal point is given
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
@@ -472,7 +474,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if st.extra_used:
         blocks = fill_extra(blocks)
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
-                   messages=tuple(messages))
+                   messages=tuple(messages), rapid_feed_stop=dialect.rapid_feed_stop)
 
 
 def _enter_level(st: State, level: int, lowest: int, plain: PlainMoves, where: Where, notes: Notes) -> None:

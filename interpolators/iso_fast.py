@@ -1,7 +1,7 @@
 """The ISO reader's shortcut for plain moves: the bulk of a CAM program, run without the general machinery.
 
-Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] X.. Y.. Z.. [A.. B.. C.. U.. V.. W..] [I.. J.. K..] [F..]``:
-a move in the modal state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a
+Most lines of a CAM program are ``[N..] [G0|G1|G2|G3] [G93|G94] X.. Y.. Z.. [A.. B.. C.. U.. V.. W..] [I.. J.. K..|R..]
+[F..]``: a move in the modal state a post processor leaves alone for thousands of lines. :class:`PlainMoves` runs such a
 block itself and appends the same :class:`interpolators.program.Block` the general executor
 (:mod:`interpolators.iso`, ``_execute``) makes of it -- the same kind, end points, centre, feed, line, number and
 text, the extra axes' start and end positions, bit for bit, and the same modal state after it -- and declines
@@ -14,19 +14,34 @@ increments under G91; on G0/G1 with or without X Y Z, and on an arc that has an 
 proportion). A move of the extra axes alone runs at the F along their own distance, in deg/min along A B C or
 along U V W (:func:`interpolators.iso_motion.move_feed`, the general path's rule).
 
-It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, a word of
-an axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, a Fanuc ``,R``/``,C``
-...), a repeated letter, a G code other than G0-G3 (by its exact value), a centre word on a G0/G1 or on the plane
+Under G93 inverse time (LinuxCNC G-code reference, "G93, G94, G95: Feed Rate Mode": "the move should be completed in
+[one divided by the F number] minutes"; rs274ngc interp_inverse.cc sets the rate to the block's length times F) a feed
+move takes its time from the F word of its own block, through the same :func:`interpolators.iso_motion.move_feed`; the
+F does not become the modal feed, and a G0 ignores it. A G93 or G94 word on the move's line is taken as the general
+path's ``_modes`` takes it (LinuxCNC interp_convert.cc ``convert_feed_mode``): G94 after G93 clears the modal feed,
+so the next feed move needs an F. A feed move without an F under G93 (rs274ngc: "F word missing with inverse time
+g1 move" / "arc move"; Haas: "each non-rapid motion block must have its own feedrate"), F0 and two feed-mode words
+go the general way, which words the error.
+
+An arc by its radius R (LinuxCNC G-code reference, "Radius Format Arc": R > 0 at most a half circle, R < 0 more; the
+Fanuc and Haas manuals alike) is made by the general path's :func:`interpolators.arcs.arc_from_radius` with its
+dialect's tolerance (:func:`interpolators.arcs.radius_arc_tolerance`), R scaled by G20, and keeps no programmed
+centre; R beside I J K, on a G0/G1, a full circle by R, an R shorter than half the chord, and under Fanuc an R
+without a decimal point go the general way.
+
+It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, a word of an
+axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, a Fanuc ``,R``/``,C`` ...), a
+repeated letter, a G code other than G0-G3, G93 and G94 (by its exact value), a centre word on a G0/G1 or on the plane
 normal of an arc, an arc without an X Y Z word, an F <= 0, no axis word, a feed move without a feed, an arc whose
-centre is not on the circle (the general path then words the error), under grbl an arc without an end-point word
-in its plane, and under Fanuc an axis or centre word written without a decimal point (:mod:`interpolators.iso_decimal`);
-and every block in a modal state it does not model: no motion mode, a motion other than G0-G3 (a canned cycle,
-G5, G33), axis words after G80 with no motion code (a note), G93 inverse time, G95 feed per revolution, Fanuc G16
-polar coordinates, a rotated system (G10 L2 R, G68), a tilted working plane (G68.2), G51 scaling and G51.1
-mirroring, tool centre point control (G43.4, G43.5, Haas G234: the rotary words then move the tool tip on the
-part, :mod:`interpolators.iso_tcp`), cutter compensation (on, or its exit move pending), a Fanuc ``,R``/``,C``
-corner pending. Units (G20/G21), G90/G91, G90.1/G91.1, the plane, the work and G92 offsets (of the extra axes too),
-the tool length and the G61/G64 path mode are modelled as the general path has set them.
+centre is not on the circle (the general path then words the error), under grbl an arc without an end-point word in its
+plane, and under Fanuc an axis or centre word written without a decimal point (:mod:`interpolators.iso_decimal`); and
+every block in a modal state it does not model: no motion mode, a motion other than G0-G3 (a canned cycle, G5, G33),
+axis words after G80 with no motion code (a note), G95 feed per revolution, Fanuc G16 polar coordinates, a rotated
+system (G10 L2 R, G68), a tilted working plane (G68.2), G51 scaling and G51.1 mirroring, tool centre point control
+(G43.4, G43.5, Haas G234: the rotary words then move the tool tip on the part, :mod:`interpolators.iso_tcp`), cutter
+compensation (on, or its exit move pending), a Fanuc ``,R``/``,C`` corner pending. Units (G20/G21), G90/G91,
+G90.1/G91.1, the plane, the work and G92 offsets (of the extra axes too), the tool length, the G61/G64 path mode and
+G93/G94 are modelled as the general path has set them.
 
 The state is looked at once after each block the general path ran, and after each write of a work offset or
 tool entry by a Fanuc/Haas system variable (``#5221 = ..``, which may share its line with a move)
@@ -41,7 +56,13 @@ import math
 import numpy as np
 
 from interpolators._words import INCH
-from interpolators.arcs import ArcWordError, arc_from_center, center_arc_tolerance
+from interpolators.arcs import (
+    ArcWordError,
+    arc_from_center,
+    arc_from_radius,
+    center_arc_tolerance,
+    radius_arc_tolerance,
+)
 from interpolators.iso_axes import EXTRA_LETTERS
 from interpolators.iso_motion import move_feed
 from interpolators.program import Block
@@ -51,6 +72,8 @@ __all__ = ["PlainMoves"]
 
 #: G value -> round(10 * G) of the motion codes run here (exact values only: G1.0000001 goes the general way).
 _MOTION = {0.0: 0, 1.0: 10, 2.0: 20, 3.0: 30}
+#: G93 inverse time -> True, G94 units per minute -> False (exact values; G95 goes the general way).
+_FEED_MODE = {93.0: True, 94.0: False}
 _AXIS = {"X": 0, "Y": 1, "Z": 2}
 _CENTRE = {"I": 0, "J": 1, "K": 2}
 _INF = math.inf
@@ -90,7 +113,7 @@ class PlainMoves:
 
     def _judge(self) -> bool:
         st = self.st
-        self.ready = (not st.inverse_time and not st.per_rev and not st.fanuc_polar and st.frame is None
+        self.ready = (not st.per_rev and not st.fanuc_polar and st.frame is None
                       and not st.rotation and st.comp_side is None and st.comp_start is None
                       and st.comp_close_at is None and st.corner is None and st.corner_word is None and not st.tcp)
         if self.ready:
@@ -106,9 +129,9 @@ class PlainMoves:
         read = self._read(words)
         if read is None:
             return False
-        motion, number, feed, axes, centre, extra = read
+        motion, number, feed, axes, centre, extra, mode, radius = read
         st = self.st
-        if not axes and (not extra or centre):
+        if not axes and (not extra or centre or radius is not None):
             return False
         if st.motion not in (None, 0, 10, 20, 30):
             return False
@@ -116,6 +139,10 @@ class PlainMoves:
             if st.after_g80 or st.motion is None:
                 return False
             motion = st.motion
+        # the feed mode after the block's G93/G94 (LinuxCNC convert_feed_mode; iso._modes): G94 after G93 clears the
+        # modal feed, G93 keeps it; under G93 a feed move takes its time from its own F
+        inverse = st.inverse_time if mode is None else mode
+        cleared = st.inverse_time and mode is False
         scale = INCH if st.inch else 1.0
         pos = st.pos
         target = pos.copy()
@@ -127,33 +154,45 @@ class PlainMoves:
             for i, v in axes.items():
                 target[i] = v * scale + off[i]
         new_feed = None if feed is None else feed * scale / 60.0
-        path_feed = st.feed if feed is None else new_feed
+        path_feed = (None if cleared else st.feed) if feed is None else new_feed
         if motion == 0:
-            if centre:
+            if centre or radius is not None:
                 return False
             path_feed = _INF
+        elif inverse:
+            if feed is None:  # the general path words the error (an F on every G1/G2/G3 block under G93)
+                return False
         elif path_feed is None:
             return False
-        elif motion == 10 and centre:
+        elif motion == 10 and (centre or radius is not None):
             return False
         if motion <= 10:
             target.setflags(write=False)
             seg = Line.from_points(pos, target)
         else:
-            seg = self._arc(motion, axes, centre, target, scale)
+            seg = self._arc(motion, axes, centre, target, scale) if radius is None else \
+                self._radius_arc(motion, axes, centre, target, radius * scale)
             if seg is None:
                 return False
             target = seg.end
         # committed: the modal state as the general path leaves it
+        if mode is not None:
+            if cleared:
+                st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
+                st.feed_reset = True
+            st.inverse_time = mode
         if feed is not None:
-            st.feed, st.feed_rotary, st.feed_zero = new_feed, feed / 60.0, False
+            st.feed_zero = False
+            if not inverse:
+                st.feed, st.feed_rotary = new_feed, feed / 60.0
+        st.block_f = feed
         if extra:
             extra_start, extra_target = self._extra(extra, scale)
-            if motion != 0 and seg.length == 0:  # the extra axes alone: the F along their own distance
-                path_feed = move_feed(st, seg, extra_target - extra_start)
         else:
             extra_start = extra_target = None
-        st.block_f = feed
+        if motion != 0 and (inverse or extra and seg.length == 0):
+            # G93: the block's length over its 1/F minutes; the extra axes alone: the F along their own distance
+            path_feed = move_feed(st, seg, None if extra_start is None else extra_target - extra_start)
         st.motion = motion
         st.after_g80 = False
         st.spline_pq = None
@@ -173,9 +212,10 @@ class PlainMoves:
         return True
 
     def _read(self, words: list) -> tuple | None:  # noqa: C901 - one pass over the words
-        """``(motion, N word, F, axes, centre, extra)`` of a block's words (axis, centre and extra-axis column ->
-        value), or None for a word or repeat the shortcut does not take."""
-        motion = number = feed = None
+        """``(motion, N word, F, axes, centre, extra, feed mode, R)`` of a block's words (axis, centre and
+        extra-axis column -> value; the feed mode True for a G93 word, False for G94, None without), or None for a
+        word or repeat the shortcut does not take."""
+        motion = number = feed = mode = radius = None
         axes: dict[int, float] = {}
         centre: dict[int, float] = {}
         extra: dict[int, float] = {}
@@ -194,9 +234,12 @@ class PlainMoves:
                     return None
                 centre[i] = w.value
             elif letter == "G":
-                if motion is not None or w.value not in _MOTION:
+                if w.value in _MOTION and motion is None:
+                    motion = _MOTION[w.value]
+                elif w.value in _FEED_MODE and mode is None:
+                    mode = _FEED_MODE[w.value]
+                else:
                     return None
-                motion = _MOTION[w.value]
             elif letter == "N":
                 if number is not None:
                     return None
@@ -205,6 +248,10 @@ class PlainMoves:
                 if feed is not None or not w.value > 0:
                     return None
                 feed = w.value
+            elif letter == "R":
+                if radius is not None or fanuc and "." not in w.text:
+                    return None
+                radius = w.value
             elif letter in extra_columns:
                 i = extra_columns[letter]
                 if i in extra or fanuc and "." not in w.text:
@@ -212,7 +259,7 @@ class PlainMoves:
                 extra[i] = w.value
             else:
                 return None
-        return motion, number, feed, axes, centre, extra
+        return motion, number, feed, axes, centre, extra, mode, radius
 
     def _extra(self, words: dict[int, float], scale: float) -> tuple[np.ndarray, np.ndarray]:
         """The start and end positions ``(a, b, c, u, v, w)`` [deg, mm] of a move with the extra axis words
@@ -254,6 +301,23 @@ class PlainMoves:
         except ArcWordError:
             return None
         self.centre = center
+        return arc
+
+    def _radius_arc(self, motion: int, axes: dict[int, float], centre: dict[int, float], target: np.ndarray,
+                    radius: float):
+        """The arc of radius ``radius`` [mm] (negative: more than a half circle) as the general path makes it
+        (:func:`interpolators.iso_arcs.read_arc`), or None where that path would refuse it (I/J/K beside R, a full
+        circle, R too short for the chord, grbl's arc without an end-point word in its plane)."""
+        st = self.st
+        p, q = PLANE_AXES[st.plane]
+        if centre or self.grbl and p not in axes and q not in axes:
+            return None
+        try:
+            arc = arc_from_radius(st.pos, target, radius, ccw=motion == 30, plane=st.plane,
+                                  tolerance=radius_arc_tolerance(st.context.dialect.arc_rule))
+        except ArcWordError:
+            return None
+        self.centre = None  # the general path keeps no programmed centre of an R arc
         return arc
 
 

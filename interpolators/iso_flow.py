@@ -66,7 +66,7 @@ from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_macro_args import macro_arguments
 from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_modal_call import MODAL_CALL_CODES, ModalCall, ModalCalls
-from interpolators.iso_params import Parameters, evaluate_at, has_parameters, read_line
+from interpolators.iso_params import Parameters, evaluate_at, evaluate_condition, has_parameters, read_line
 from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_words, read_words, strip_comments
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
@@ -696,7 +696,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if pc in prog.macro.statements:
             pc = prog.macro.execute(pc, prog.where(pc), params)
             continue
-        code = prog.code[pc]
+        code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
         if words is not None and not _may_call(code, words) and not (modal_calls and modal_calls.calls):  # CAM output
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
@@ -802,8 +802,12 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
         _push(prog, pc, frames, _Frame(return_pc=pc + 1, start_pc=start, repeats=count - 1, kind="m98",
                                        modal=_modal_limit(frames)))
         return start
-    back_to = next((w for w in words if w.letter == "P"), None) if frames else None
+    back_to = next((w for w in words if w.letter == "P"), None) if frames or params.macro_b else None
     rest = [w for w in words if w is not m99 and w is not back_to]
+    if not frames and back_to is not None:
+        if rest:
+            yield FlowLine(where.line, where.text, rest, where.file)
+        return _branch_in_main(prog, pc, back_to, where)
     if not frames:
         if on_note is not None:
             on_note(_main_m99_note(prog, pc))
@@ -825,6 +829,39 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
 
 #: An M99 word in a line of code.
 _M99 = re.compile(r"M\s*0*99(?![0-9.])", re.I)
+#: A Haas conditional M99: a bracketed expression opens the block (after its sequence number), an M99 follows.
+_CONDITIONAL_M99 = re.compile(r"\s*(?:N\s*\d+\s*)?\[.*\]\s*M\s*0*99(?![0-9.])", re.I)
+
+
+def _conditional_m99(prog: _Program, pc: int, params: Parameters) -> str | None:
+    """The code of line ``pc``; of a Haas block ``N50 [#100 LT 10] M99 P10`` (``haas``: macro B without Fanuc's
+    rules), without its condition when the condition holds, else ``None`` (the block is skipped, as an empty line:
+    "otherwise processing continues with the next program line in sequence"). Haas mill
+    operator's manual 96-8000 (1999), "Macros", "Conditional Expressions": "With macros enabled, M99 can be used
+    with a conditional expression to branch conditionally ... N50 [#100 LT 10] M99 P10 ; ... the branch occurs
+    only when #100 is less than 10" (the same text in Haas's online "Conditional Expressions" page, #10000)."""
+    code = prog.code[pc]
+    if code is None or not params.macro_b or params.fanuc or not _CONDITIONAL_M99.match(code):
+        return code
+    start = code.index("[")
+    holds, end = evaluate_condition(code, start, prog.where(pc), params)
+    return code[:start] + " " * (end - start) + code[end:] if holds else None
+
+
+def _branch_in_main(prog: _Program, pc: int, p: Word, where: Where) -> int:
+    """``M99 P<n>`` in the main program (``fanuc``, ``haas``): go on at its block ``N<n>`` (Haas mill operator's
+    manual 96-8000, "Macros", "Conditional Expressions": "M99 in the HAAS control has the ability to branch
+    unconditionally to any line in the current subroutine by placing a P code on the same line ... N50 M99 P10 ;
+    branches to line N10"; in a main program, whose M99 alone loops back to its start, our reading is the same
+    branch within it), found as a macro B GOTO finds it and counted as a backward GOTO is."""
+    n = round(p.value)
+    target = prog.macro.find(n, pc) if p.value == n else None
+    if target is None:
+        where.fail(f"M99 P{p.value:g}: no block N{p.value:g} in this program", column=p.column, text=p.text,
+                   expected="M99 P<n> with a block N<n> in the same program")
+    if target <= pc:
+        prog.macro.count_back(pc, where, f"M99 P{n}")
+    return target
 
 
 def _main_m99_note(prog: _Program, pc: int) -> str:

@@ -287,6 +287,10 @@ class MacroFlow:
         forward = [j for j in lines if j > pc]
         return forward[0] if forward else (lines[0] if lines else None)
 
+    def count_back(self, pc: int, where: Where, what: str) -> None:
+        """Count a branch back from line ``pc`` (``what`` names it in the error of an endless loop)."""
+        self._count(pc, where, what)
+
     def _count(self, pc: int, where: Where, what: str) -> None:
         self.passes[pc] = self.passes.get(pc, 0) + 1
         if self.passes[pc] > self.max_passes:

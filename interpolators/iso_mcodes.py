@@ -102,6 +102,8 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
     """M codes: tool change, LinuxCNC's M70-M73 and notes; True at program end (M2/M30)."""
     ended = False
     for m, _ in mcodes:
+        if m == 66 and st.context.dialect.name == "linuxcnc":
+            _wait_on_input(seen, st, where, notes)
         if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
             st.spindle_turning = m in (3, 4)
             st.spindle_ccw = m == 4
@@ -147,6 +149,53 @@ def _modal_state(m: int, st: State, where: Where, notes: Notes) -> None:
             return
     notes.add({70: "M70 modal state saved", 71: "M71 saved modal state invalidated", 72: "M72 modal state restored",
                73: "M73 modal state saved, restored at the subroutine's return"}[m])
+
+
+#: M66 wait modes (LinuxCNC m-code.adoc "M66 Wait on Input": L0 IMMEDIATE, L1 RISE, L2 FALL, L3 HIGH, L4 LOW) and
+#: the level the input has when the wait ends: the one waited for (vcnc's machine has no inputs, so the event comes at
+#: once); L0 reads an input nothing drives, as LinuxCNC reads a motion.digital-in pin no HAL net connects: 0.
+_WAIT_LEVEL = {0: 0.0, 1: 1.0, 2: 0.0, 3: 1.0, 4: 0.0}
+
+
+def _wait_on_input(seen, st: State, where: Where, notes: Notes) -> None:
+    """LinuxCNC ``M66 P- | E- <L-> <Q->`` (m-code.adoc "M66 Wait on Input"): wait for digital input P or read
+    analog input E; the input's value goes to ``#5399``, -1 when the Q timeout [s] passes first. The checks and
+    messages are rs274's (``interp_check.cc``/``interp_convert.cc``, run on such lines): "Need to have either a valid
+    P or a valid E word with M66", "Invalid to select both a digital and an analog input with M66", "Negative l
+    word used", "Can't select analog input with wait type != immediate return" ("Mode 0 is the only one permitted
+    for an analog input") and "Zero timeout with wait type != immediate return" ("A Q value of zero is an error if
+    the L-word is non-zero"; a missing Q is 0). The wait takes no time here and ends with the event it waits for
+    (:data:`_WAIT_LEVEL`; our reading for a machine without inputs: the program runs the path it is written for,
+    as when its sensor answers, not the timeout's branch), so ``#5399`` is 1 after L1/L3, 0 after L2/L4 and 0 after
+    L0; a mode beyond 4, which the manual does not define, leaves ``#5399`` unknown (reading it is an error). rs274
+    alone (saicanon.cc) returns 0 for every mode."""
+    p, e, lw, q = (seen.get(k) for k in "PELQ")
+    m66 = f"M66 {' '.join(w.text for w in (p, e, lw, q) if w is not None)}".strip()
+    if p is not None and e is not None:
+        where.fail(f"{m66}: both a digital (P) and an analog (E) input (LinuxCNC: \"Invalid to select both a digital "
+                   "and an analog input with M66\")", column=e.column, text=e.text,
+                   expected="M66 P<digital> or E<analog>")
+    given = p if p is not None else e
+    if given is None or given.value < 0:
+        where.fail(f"{m66}: no input to wait on (LinuxCNC: \"Need to have either a valid P or a valid E word with "
+                   "M66\")", column=getattr(given, "column", 1), text=getattr(given, "text", "M66"),
+                   expected="M66 P<digital input> or E<analog input>, a number >= 0")
+    mode = 0.0 if lw is None else lw.value
+    if lw is not None and (mode < 0 or mode != int(mode)):
+        where.fail(f"{m66}: wait mode L must be a whole number >= 0 (LinuxCNC: \"Negative l word used\", \"Non "
+                   "integer value for integer\")", column=lw.column, text=lw.text, expected="L0 .. L4")
+    if mode and e is not None:
+        where.fail(f"{m66}: an analog input is read at once (LinuxCNC: \"Can't select analog input with wait type != "
+                   "immediate return\")", column=lw.column, text=lw.text, expected="M66 E<input> L0")
+    if mode and (q is None or q.value == 0):
+        where.fail(f"{m66}: a wait (L{int(mode)}) needs a timeout Q > 0 [s] (LinuxCNC: \"Zero timeout with wait type "
+                   "!= immediate return\")", column=lw.column, text=lw.text,
+                   expected=f"M66 {given.text} L{int(mode)} Q<s>")
+    st.input_result = _WAIT_LEVEL.get(int(mode))
+    st.input_unknown = "" if st.input_result is not None else (
+        f"the result of {m66} at line {where.line}, whose wait mode L{int(mode)} is none of LinuxCNC's L0-L4")
+    notes.add("M66 wait on input: the input taken as answering at once (#5399: 1 after L1/L3, 0 after L2/L4; L0 reads "
+              "an input nothing drives, 0)")
 
 
 def planner_word(seen, gcodes, mcodes, where: Where, notes: Notes) -> dict:

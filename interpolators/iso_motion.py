@@ -455,7 +455,11 @@ def _nurbs_curve(st: State, blocks, used, where: Where, number, mcol: int, mtok:
 
 def move_feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> float:
     """Path feed [mm/s] of a feed move: the modal feed, or under G93 the block's length over its
-    time 1/F minutes (LinuxCNC G-code reference, G93). A move with X, Y, Z still (``seg`` of length
+    time 1/F minutes (LinuxCNC G-code reference, G93; Haas mill manual, G93: "60 (seconds) divided by the F
+    value"). Under ``fanuc`` a G93 arc's F is its feed over its radius (FANUC Series 16/18-MC operator's manual
+    B-62764EN, "Inverse time feed (G93)": "FRN = feedrate / arc radius", "the feedrate is calculated not from the
+    actual amount of movement in the block but from the arc radius"): the arc takes ``|sweep| / F`` minutes, its
+    tangential feed in the plane R x F. A move with X, Y, Z still (``seg`` of length
     0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed
     [mm/s], or with U, V, W still too along its rotary distance in deg/s (RS274/NGC 3,
     Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`)."""
@@ -467,6 +471,8 @@ def move_feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> flo
         return st.feed if linear else st.feed_rotary
     if not st.inverse_time:
         return st.feed
+    if type(seg) is Arc and st.context.dialect.name == "fanuc":
+        return seg.length * st.block_f / (60.0 * abs(seg.sweep))
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
 
 

@@ -14,6 +14,7 @@ LinuxCNC "Numbered Parameters" (https://linuxcnc.org/docs/html/gcode/overview.ht
 ``#5220``                 coordinate system number 1-9 (G54 .. G59.3)
 ``#5221``-``#5230``       G54 offset X Y Z A B C U V W and rotation R [machine units, deg], ``#5241``.. G55, every 20
                           up to ``#5381``-``#5390`` G59.3
+``#5399``                 the result of the last M66 wait on input, 0 before one (:mod:`interpolators.iso_mcodes`)
 ``#5400``                 tool in the spindle (0 when none); ``#5401``-``#5409`` its stored offsets (Z:
                           length), ``#5410`` its diameter [machine units]
 ``#5420``-``#5428``       current position in the active coordinate system with all offsets, program
@@ -68,7 +69,8 @@ and move nothing; the virtual machine's counters are 0 when the program starts (
 program is the first to run on), and a program that reads them is noted (:attr:`ReaderState.parts_read`).
 
 The clocks are not read (Fanuc 0i-MD B-64304EN "System variables"; Haas "Macros" #3001 millisecond
-timer, #3002 hour timer; Mike Lynch, "Converting Time and Date to a More Useful Format", Modern Machine Shop 2019:
+timer, #3002 hour timer, and Haas's own timers #3020-#3025, power-on, cycle start, feed and part timers;
+Mike Lynch, "Converting Time and Date to a More Useful Format", Modern Machine Shop 2019:
 ``#3001`` the milliseconds clock "always runs, can be reset using #3001=0", ``#3002`` the hours clock likewise,
 ``#3011`` the date yyyymmdd and ``#3012`` the time hhmmss, which "cannot be reset"). A program writes ``#3001 = 0``
 or ``#3002 = 0`` to start timing: accepted, without effect. Reading one is an error naming it: the clocks count the
@@ -118,6 +120,12 @@ PARTS_COUNTERS = (3901, 3902)
 #: Fanuc/Haas clocks (module docstring): the milliseconds and hours clocks a program may reset, the date and time.
 _CLOCKS = {3001: "the milliseconds clock", 3002: "the hours clock", 3011: "the date", 3012: "the time of day"}
 _RESETTABLE_CLOCKS = (3001, 3002)
+#: Haas's timers (zappettiniconsulting.com/wiki/haas-system-variables, from the Haas mill operator's manual "Macros",
+#: "System variables": #3020 power on timer (read only), #3021 cycle start timer, #3022 feed timer, #3023 present part
+#: timer, #3024 last complete part timer, #3025 previous part timer): like the clocks, the time the machine has run.
+_HAAS_TIMERS = {3020: "Haas's power-on timer", 3021: "Haas's cycle start timer", 3022: "Haas's feed timer",
+                3023: "Haas's present part timer", 3024: "Haas's last complete part timer",
+                3025: "Haas's previous part timer"}
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
 
@@ -167,6 +175,8 @@ class ReaderState(Protocol):
     modal_calls: ModalCalls | None  # Fanuc G66/G66.1 in force
     parts_counters: dict[int, float]  # Fanuc/Haas #3901, #3902 as the program set them
     parts_read: bool  # the program read a parts counter
+    input_result: float | None  # LinuxCNC #5399 (iso_mcodes, M66)
+    input_unknown: str
     tcp: int  # tool centre point control in force (iso_tcp), 0 off
 
     @property
@@ -304,9 +314,10 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _tool_offset(register, st) if register is not None else (None, why)
     if fanuc and st.context.dialect.name == "haas" and n == 3026:  # Haas "Macros": #3026 tool in spindle
         return float(st.tool_current or 0), ""
-    if fanuc and n in _CLOCKS:
-        if n in _RESETTABLE_CLOCKS:
-            return None, (f"{_CLOCKS[n]}, which counts the time the machine has run: that time comes from "
+    timer = _HAAS_TIMERS.get(n) if fanuc and st.context.dialect.name == "haas" else None
+    if fanuc and (n in _CLOCKS or timer):
+        if n in _RESETTABLE_CLOCKS or timer:
+            return None, (f"{_CLOCKS.get(n, timer)}, which counts the time the machine has run: that time comes from "
                           "interpolating the program after it is read, so a program steered by it (a wait "
                           "WHILE [#3001 LT ..]) cannot be read; G04 waits a given time")
         return None, f"{_CLOCKS[n]} of a run, which a program file does not fix"
@@ -337,6 +348,8 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return _work_offset(n, st), ""
     if 5400 <= n <= 5410:
         return _tool(n, st), ""
+    if n == 5399 and not fanuc:
+        return st.input_result, st.input_unknown
     return None, ""
 
 

@@ -228,6 +228,11 @@ class Program:
         The messages of the run in the order it gives them (a message in a loop once per pass):
         LinuxCNC's active comments under the ``linuxcnc`` dialect; none under the others, where a
         comment is a comment.
+    rapid_feed_stop : bool
+        Whether the control that reads it stops where a rapid meets a feed move, either way, whatever the path
+        mode (:attr:`interpolators.context.Dialect.rapid_feed_stop`, which the readers copy here): True on
+        LinuxCNC (the default dialect), Fanuc, Haas and Fadal; False on grbl and the TNC, whose look-ahead
+        passes that junction at speed.
     """
 
     blocks: tuple[Block, ...]
@@ -237,6 +242,7 @@ class Program:
     name: str | None = None
     notes: tuple[str, ...] = ()
     messages: tuple[Message, ...] = ()
+    rapid_feed_stop: bool = True
 
     def __len__(self) -> int:
         return len(self.blocks)

@@ -78,6 +78,12 @@ class Effect:
         """Short text for tables, e.g. ``delay 2 samples``."""
         return self.NAME
 
+    def unpinned(self, *, travel: float, duration: float) -> dict[str, str]:
+        """The parameters a record of ``travel`` [mm or deg] and ``duration`` [s] does not pin, each with why
+        (``{}`` when it pins them all): the model still simulates with the fitted value, but the report must not
+        state it as measured (:meth:`identification.effects.PositionPeriodic.unpinned`)."""
+        return {}
+
     # ------------------------------------------------------------------ simulation
     def pack(self, spec, *, model_sample_time: float) -> None:
         """Write this effect's contribution into a :class:`identification.augmented.SimSpec`."""

@@ -36,12 +36,13 @@ def test_fadal_ppi_on_a_cam_program_says_the_poles_are_not_pinned(tmp_path, caps
     assert abs(slowest - 4.68) < 0.02 * 4.68
     assert m.fit["rms_um"] < 0.6
     # which basin the rough refinement ends in moves with the platform's rounding (session 34's merged main: the
-    # restart ended at a pair of damping 0.999, where the starts, gated on zeta >= 1, do not run): the pair is near
-    # the truth, or the command line says not to trust the poles
-    rec = m.fit["output_error"].get("pair_starts")
-    if rec is not None:
-        assert rec["fits"][rec["kept"]][3] == min(f[3] for f in rec["fits"])
-        assert rec["pinned"] or "poles not pinned by this record" in out
+    # restart ended at a pair of damping 0.999, where the starts, then gated on zeta >= 1, did not run): the pair is
+    # near the truth, or the command line says not to trust the poles. The valley does not pin the pair, so the starts
+    # run whatever the damping (coulomb35), each on the record's first 20,000 samples, the best on all of it.
+    rec = m.fit["output_error"]["pair_starts"]
+    assert rec["window"] == 20_000 and len(rec["fits"]) <= 1 + 8 + 1
+    assert rec["fits"][rec["kept"]][3] == min(f[3] for f in rec["fits"])
+    assert rec["pinned"] or "poles not pinned by this record" in out
     near = abs(m.poles["omega_n_hz"] - 36.3) < 0.15 * 36.3 and abs(m.poles["zeta"] - 0.753) < 0.1
     assert near or "poles not pinned by this record" in out or "trust the model's prediction" in out, (m.poles, out)
     assert "upper bound" not in out

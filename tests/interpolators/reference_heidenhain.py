@@ -248,6 +248,7 @@ class _Tnc:
 
     def __init__(self, context):
         self.ctx = context
+        self.datum_rows = dict(context.datum_table)  # the datum table, with the rows probing wrote (Q303=0)
         self.pos = np.array(context.home, float)
         self.scale = 1.0
         self.shift = np.zeros(3)
@@ -959,7 +960,11 @@ def _cycle_def(t: _Tnc, line: int, text: str) -> None:
     """``CYCL DEF n.k ...`` (and the SolidWorks spelling ``CYCLE DEF``)."""
     m = re.match(r"CYCLE? DEF\s*(\d+)(?:\.(\d+))?\s*(.*)$", text)
     number, sub, rest = int(m.group(1)), int(m.group(2) or 0), m.group(3)
-    if number == 7 and sub > 0:
+    if number == 7 and sub > 0 and rest.strip().startswith("#"):  # a row of the datum table: its X, Y, Z [mm]
+        t.shifted = t.tilt is not None
+        row = rest.strip()[1:].strip()
+        t.shift[:] = t.datum_rows[int(_val(row, t.q))]
+    elif number == 7 and sub > 0:
         w = _words(rest, t.q)
         t.shifted = t.tilt is not None
         for i, a in enumerate("XYZ"):
@@ -1134,6 +1139,8 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
         t.overrides[t.preset] = t.preset_point() + (move if t.tilt is None else t.tilt @ move)
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
+    elif p["Q303"] == 0:  # row of the datum table: the shift from the preset that puts the probed point there
+        t.datum_rows[row] = t.shift + move
 
 
 def _axis_points(t: _Tnc, p: dict, number: int, tip: float, gap: float, go, approach, move: np.ndarray) -> None:
@@ -1258,6 +1265,8 @@ def _trans(t: _Tnc, up: str) -> None:
             t.rot = 0.0
         else:
             t.scl = 1.0
+    elif kind == "DATUM" and rest.startswith("TABLE"):  # TRANS DATUM TABLE TABLINE n: row n of the datum table
+        _cycle_def(t, 0, "CYCL DEF 7.1 #" + rest.split("TABLINE")[1].strip())
     elif kind == "DATUM":
         _cycle_def(t, 0, "CYCL DEF 7.1 " + rest)
     else:

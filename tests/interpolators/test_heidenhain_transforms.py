@@ -141,7 +141,7 @@ def test_tool_def_alone_preselects_and_tool_call_by_name():
     ("PLANE VECTOR BX+1 BY+0 BZ+0 NX+0 NY+0 NZ+1 STAY", "PLANE VECTOR"),
     ("FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS", "FUNCTION TCPM (TCPM, tool centre point management) needs"),
     ("L X+0 Y+0 R0 FMAX M128", "M128 (TCPM"),
-    ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM without an axis value"),
+    ("TRANS DATUM TABLE TABLINE 3", "TRANS DATUM TABLE: row 3 of the datum table is not known"),
     ("CYCL DEF 8.0 MIRROR IMAGE\nCYCL DEF 8.1 Z", "MIRROR IMAGE of the tool axis Z"),
     ("CYCL DEF 11.0 SCALING\nCYCL DEF 11.1 SCL 0", "SCL must be > 0"),
     ("CYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 45", "cycle 10 ROTATION without ROT"),
@@ -151,7 +151,7 @@ def test_tool_def_alone_preselects_and_tool_call_by_name():
     ("CYCL DEF 18.0 THREAD CUTTING", "cycle 18 THREAD CUTTING (spindle-synchronised"),
     ("CYCL DEF 3.0 SLOT MILLING\nCYCL DEF 3.1 SET UP 2", "cycle 3 SLOT MILLING (the old cycle: no manual page"),
     ("CYCL DEF 258 POLYGON STUD Q573=+0 Q571=+50", "cycle 258 POLYGON STUD (the manual found"),
-    ("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 #5", "datum table row (#n)"),
+    ("CYCL DEF 7.0 DATUM SHIFT\nCYCL DEF 7.1 #5", "row 5 of the datum table is not known (the machine context has no"),
     ("CYCL DEF 247 DATUM SETTING Q339=+1.5", "cycle 247: preset 1.5 is not a row of the preset table"),
 ])
 def test_errors_name_the_cycle(body, words):

@@ -371,8 +371,9 @@ def test_radius_arc_chord_tolerance_is_linuxcncs():
 
 def test_io_m_codes_take_their_words():
     """LinuxCNC M62-M68 (digital/analog outputs, M66 wait): their P/E/L/Q words are theirs, noted,
-    no motion; E anywhere else is an error."""
-    prog = parse_program("G21 M68 E0 Q0\nM64 P2\nM66 E1 L3 Q5\nG1 X5 F100\n", context=MachineContext())
+    no motion; E anywhere else is an error. (An analog input E is read at once, L0: rs274 refuses "M66 E1 L3 Q5",
+    "Can't select analog input with wait type != immediate return"; test_iso_wild22.)"""
+    prog = parse_program("G21 M68 E0 Q0\nM64 P2\nM66 P1 L3 Q5\nG1 X5 F100\n", context=MachineContext())
     assert [b.target.tolist() for b in prog.blocks] == [[5, 0, 0]]
     assert "M62-M68 digital/analog I/O x3" in prog.notes
     with pytest.raises(GCodeError, match="outside M66-M68"):

@@ -5,7 +5,8 @@ Each program below is read twice, with the shortcut (``parse_iso``'s default) an
 every block (end points and feeds by their bytes, the segment's geometry), the notes, the messages and the
 axes, or the same error with the same message. The programs are hand-written, one per modal state the
 shortcut models (units, G90/G91, G90.1/G91.1, the planes, offsets, tool length, path mode) or declines
-(inverse time, feed per revolution, cutter compensation, rotation, scaling, mirroring, polar coordinates,
+(inverse time -- taken since g93fast35, where these lines without their own F are the general path's error --,
+feed per revolution, cutter compensation, rotation, scaling, mirroring, polar coordinates,
 canned cycles, corner rounding, axis words after G80, Fanuc numbers without a decimal point, arcs it would
 refuse): a shortcut that took a block it does not model would give a different block or no error. For the
 declined states the test also checks that the state changes what the plain lines after it mean (so that the
@@ -69,6 +70,13 @@ MODELLED = {
     "after a canned cycle and G80": "G21 G90 G98\nG81 X5. Y5. Z-2. R1. F100.\nX6.\nG80\n" + MOVES,
     "after compensation off": "G21 G90\nG0 X-5. Y-5.\nG41 D1 G1 X0. Y0. F100.\nG1 X5.\nG40 G1 X-5. Y-5.\n" + MOVES,
     "after a program stop": "G21 G90\nG0 X1. Y1.\nM0\n" + MOVES,
+    # R arcs (LinuxCNC G-code reference, "Radius Format Arc": R > 0 at most a half circle, R < 0 more; the
+    # Fanuc/Haas manuals alike), as CAM posts for grbl and Fanuc write them: both ways, helical, modal, inch
+    "radius arcs": "G21 G90\nG0 X0. Y0. Z5.\nG1 Z-1. F300.\nG2 X10. Y0. R5.\nG3 X20. Y0. R-5. F450.\n"
+                   "X30. Y0. Z-2. R5.01\ng2 x30. y10. r5\nN80 G02 X40. Y10. Z-1.5 R+5.\nG18 G2 X50. Z-1.5 R5.\n"
+                   "G19 G3 Y20. Z-1.5 R5.\n",
+    "radius arcs, inch and incremental": "G20 G91\nG0 X1. Y1.\nG1 X.5 F10.\nG2 X1. Y0. R.5\nG3 X1. Y1. R-1.\n"
+                                          "G1 Y-.5\n",
 }
 
 #: The states the shortcut declines (with their preamble), and a plain line after it.
@@ -109,6 +117,18 @@ ODD_LINES = [
     "G21 G54 G90\nG1 X1. F100.\n#5221=10. G1 X2.\nG1 X3.\n",  # Fanuc/Haas: G54's X offset set on a move's line
     "G21 G90 F100.\nG1 X1e5\n",  # an exponent
     "G21 G90\nG1 X1000000000.5 F100.\n",  # a number out of range
+    "G21 G90\nG1 X5. R2. F100.\n",  # R on G1 (Fanuc/Haas: the lathe's corner R; elsewhere only on arcs)
+    "G21 G90\nG0 X5. R2.\n",  # R on G0
+    "G21 G90\nG0 X0. Y0.\nG2 X2. Y0. R1. I1. F100.\n",  # R and I: an error
+    "G21 G90\nG0 X0. Y0.\nG2 X0. Y0. R1. F100.\n",  # a full circle by R: an error
+    "G21 G90\nG0 X0. Y0.\nG2 X5. Y0. R1. F100.\n",  # R shorter than half the chord
+    "G21 G90\nG0 X0. Y0.\nG2 X2.0000001 Y0. R1. F100.\n",  # within the tolerance of a half circle
+    "G21 G90\nG0 X0. Y0.\nG2 X2. Y0. R0 F100.\n",  # R0
+    "G21 G90\nG0 X0. Y0.\nG2 X2. Y0. R1 F100.\n",  # Fanuc: R1 without a decimal point
+    "G21 G90\nG0 X0. Y0.\nG2 X2. Y0. R1. R1. F100.\n",  # R twice
+    "G21 G90\nG0 X0. Y0.\nG2 Z-1. R1. F100.\n",  # no end point in the plane (grbl refuses it)
+    "G21 G90\nG0 X0. Y0. A0.\nG2 A10. R1. F100.\n",  # R with a rotary word only
+    "G21 G90\nG0 X0. Y0.\nG2 X2. Y0. R1. P2 F100.\n",  # P turns on an R arc
 ]
 
 
@@ -155,6 +175,25 @@ def test_declined_states_give_the_general_blocks(state, dialect):
 def test_odd_lines_give_the_general_blocks_or_error(text, dialect):
     assert_same(text, dialect)
     assert_same(text + "M2\n", dialect)
+
+
+def test_radius_arcs_are_taken_by_the_shortcut(monkeypatch):
+    """R arcs go the short way (with the general executor's block maker broken they still read), each the arc of
+    its radius: R > 0 the short way round, R < 0 the long way (LinuxCNC G-code reference, "Radius Format Arc")."""
+    import interpolators.iso as iso
+
+    def refused(*args, **kwargs):
+        raise AssertionError("the general path ran a plain R arc")
+
+    monkeypatch.setattr(iso, "motion_block", refused)
+    text = "G21 G17 G90\nG0 X0. Y0. Z0.\nG1 X0. F300.\nG2 X10. Y0. R5.\nG3 X18. Y0. R-5.\nX28. Y0. Z-1. R5.01\n" \
+           "G20\nG2 X1.5 Y0. R.25\nM2\n"
+    prog = parse_iso(text, context=CONTEXT)
+    half, long_way, helix, inch = prog.blocks[2:]
+    assert half.segment.radius == pytest.approx(5.0) and half.length == pytest.approx(5 * math.pi)
+    assert long_way.length == pytest.approx(5.0 * (2 * math.pi - 2 * math.asin(0.8)))  # chord 8 of R5, long way
+    assert helix.segment.radius == pytest.approx(5.01) and helix.target[2] == -1.0
+    assert inch.segment.radius == pytest.approx(0.25 * 25.4)  # R in inch under G20
 
 
 def test_fanuc_numbers_without_a_decimal_point_in_increments():
@@ -224,8 +263,12 @@ def _random_move(rng, st: dict) -> str:
             end[p] += 0.5  # off the circle: an error
         for i in sorted({p, q, 3 - p - q} if end[3 - p - q] != pos[3 - p - q] else {p, q}):
             words.append("XYZ"[i] + _number(rng, end[i] - pos[i] if st["inc"] else end[i]))
-        for i in sorted((p, q)):
-            words.append("IJK"[i] + _number(rng, centre[i] if st["absarc"] else centre[i] - pos[i]))
+        if rng.random() < 0.3:  # by radius: negative beyond a half circle
+            beyond_half = sweep > math.pi if motion == "3" else sweep < math.pi  # the arc's own sweep > 180 deg
+            words.append("R" + _number(rng, -r if beyond_half else r))
+        else:
+            for i in sorted((p, q)):
+                words.append("IJK"[i] + _number(rng, centre[i] if st["absarc"] else centre[i] - pos[i]))
         st["pos"] = end
     else:
         new = list(pos)

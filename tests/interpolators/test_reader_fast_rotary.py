@@ -3,15 +3,15 @@ words: the blocks the general executor makes, bit for bit.
 
 Each program is read twice, with the shortcut and every block the general way (``shortcuts=False``), under each
 dialect, on a five-axis machine with all six extra axes and an A/C tilting table, and the two readings must be the
-same: every field of every block (the extra axes' start and end positions and the feed of a move of the rotary
-axes alone by their bytes), the notes, the messages and the axes, or the same error with the same message. The
-programs are hand-written, one per modal state the shortcut models with the extra axes (units -- A B C never
-scaled by G20, U V W are --, G90/G91, a work offset and a G92 offset of A, the planes, arcs and helices turning
-A) or declines (inverse time G93, feed per revolution G95, tool centre point control G43.4/G43.5/G234, a tilted
-working plane G68.2/G53.1, cutter compensation, a G10 R rotation, a canned cycle, G53 and G28 with A, a word of
-an axis the machine lacks, a Fanuc A without a decimal point): for the declined states also the reading of the
-plain lines after the state must differ from their reading without it (so that the identity says something).
-Generated programs (fixed seeds) mix moves of random subsets of X Y Z A B C U V W with these states. The
+same: every field of every block (the extra axes' start and end positions and the feed of a move of the rotary axes
+alone by their bytes), the notes, the messages and the axes, or the same error with the same message. The programs are
+hand-written, one per modal state the shortcut models with the extra axes (units -- A B C never scaled by G20, U V W
+are --, G90/G91, a work offset and a G92 offset of A, the planes, arcs and helices turning A) or declines (inverse time
+G93 -- taken since g93fast35, test_reader_fast_g93.py --, feed per revolution G95, tool centre point control
+G43.4/G43.5/G234, a tilted working plane G68.2/G53.1, cutter compensation, a G10 R rotation, a canned cycle, G53 and
+G28 with A, a word of an axis the machine lacks, a Fanuc A without a decimal point): for the declined states also the
+reading of the plain lines after the state must differ from their reading without it (so that the identity says
+something). Generated programs (fixed seeds) mix moves of random subsets of X Y Z A B C U V W with these states. The
 corpus' programs with rotary words, when the corpus is present, are read both ways too.
 """
 

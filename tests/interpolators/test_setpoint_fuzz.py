@@ -17,6 +17,9 @@ from toolpaths.geometry import SplineCurve
 #: Seeds run per source: CAM-like code is quick; of the readers' generators, one program each that runs in seconds
 #: (``python -m benchmarks.setpoint_fuzz`` runs them at volume).
 SEEDS = {"cam": range(6), "tnc_cam": range(8), "rotary_cam": range(6), "linuxcnc": (2,), "fanuc": (0,)}
+#: The context of the cases of a rapid passed at speed into a feed move: grbl's (Dialect.rapid_feed_stop; LinuxCNC,
+#: Fanuc and Haas stop there).
+GRBL = INTERPOLATION_CONTEXT.with_dialect("grbl")
 
 
 @pytest.mark.parametrize("source", SEEDS)
@@ -203,13 +206,14 @@ def test_scurve_kink_blend_passes_the_corner_within_the_tolerance():
 
 
 def test_limit_check_allows_the_rapid_rate_on_a_step_across_a_rapid_end():
-    # a rapid down Z at up to 30 mm/s into a feed move at the 20 mm/s velocity limit (G64: passed at speed): the
+    # a rapid down Z at up to 30 mm/s into a feed move at the 20 mm/s velocity limit (grbl: passed at speed): the
     # position step that straddles the junction runs partly on the rapid, above 20 mm/s on average; the check took
-    # the feed block's limit for it (found: fanuc_generator seeds 127 and 138)
+    # the feed block's limit for it (found: fanuc_generator seeds 127 and 138, when the planner blended that junction
+    # under every dialect; LinuxCNC and Fanuc stop there since session 35, Dialect.rapid_feed_stop)
     limits = {"x": AxisLimits(velocity=20.0, acceleration=500.0, rapid=30.0),
               "y": AxisLimits(velocity=20.0, acceleration=500.0, rapid=30.0),
               "z": AxisLimits(velocity=20.0, acceleration=500.0, rapid=30.0)}
-    prog = parse_program("G21 G64\nG0 X0 Y0 Z0\nG0 Z-10\nG1 Z-20 F6000\nM2\n")
+    prog = parse_program("G21 G64\nG0 X0 Y0 Z0\nG0 Z-10\nG1 Z-20 F6000\nM2\n", context=GRBL)
     sp = interpolate(prog, limits=limits, sample_time=0.0025)
     z = sp.position[:, 2]
     first_feed = int(np.argmax(sp.block == 2))
@@ -232,8 +236,8 @@ def test_a_rapid_into_a_merged_run_is_blended_within_the_run_s_smaller_tolerance
     # P0.5: _merged read the run's last block as the one before the next piece's first, shared by the pieces),
     # so the S-curve's kink blend of the rapid into the curve passed X10 Y0 Z5 0.185 mm away under P0.01 (found:
     # setpoint_fuzz cam seed 42205, 0.078 mm); the corner is within min(0.5, 0.01), LinuxCNC's
-    # tcFindBlendTolerance (src/emc/tp/tc.c)
-    prog = parse_program(_rapid_into_dense_chords(), context=INTERPOLATION_CONTEXT)
+    # tcFindBlendTolerance (src/emc/tp/tc.c); under grbl, which blends that junction
+    prog = parse_program(_rapid_into_dense_chords(), context=GRBL)
     limits = {a: AxisLimits(velocity=100.0, acceleration=1000.0, jerk=1e5, rapid=200.0) for a in "xyz"}
     for profile in ("trapezoid", "scurve"):
         sp = interpolate(prog, limits=limits, sample_time=0.001, profile=profile)
@@ -245,7 +249,7 @@ def test_a_rapid_into_a_merged_run_is_blended_within_the_run_s_smaller_tolerance
 def test_deviation_check_takes_the_smaller_tolerance_of_a_junction():
     # the same plan with the corner cut by 0.05 mm on the first chord's samples: within the rapid's P0.5, but the
     # junction's tolerance is min(0.5, 0.01) (junction_tolerances); the check allowed the larger before
-    prog = parse_program(_rapid_into_dense_chords(), context=INTERPOLATION_CONTEXT)
+    prog = parse_program(_rapid_into_dense_chords(), context=GRBL)
     limits = {a: AxisLimits(velocity=100.0, acceleration=1000.0, jerk=1e5, rapid=200.0) for a in "xyz"}
     sp = interpolate(prog, limits=limits, sample_time=0.001, profile="trapezoid")
     np.testing.assert_allclose(junction_tolerances(prog)[[0, 1, -1]], [0.01, 0.01, 0.0])

@@ -122,9 +122,11 @@ def test_the_summary_of_a_cut_program_says_where_it_was_cut(tmp_path):
 
 
 def test_the_contour_error_of_the_feed_moves_is_given_beside_that_of_every_move(tmp_path, capsys):
-    # a long diagonal rapid (X and Y lag differently at 250 mm/s), then a slow cut along it: the rapid's
-    # deviation is the program's largest (7.7 um), the cut's smaller (5.3 um, measured)
-    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG0 X120 Y80\nG1 X140 Y90 F300\nM30\n")
+    # a long diagonal rapid (X and Y lag differently at 250 mm/s), a dwell, then a slow cut along it: the rapid's
+    # deviation is the program's largest, the cut's smaller (measured). Without the dwell the cut starts where the
+    # rapid stops (LinuxCNC stops between a rapid and a feed move: Dialect.rapid_feed_stop, session 35) and the axes
+    # still settling from the rapid's stop give the cut's first samples the rapid's deviation
+    prog = write(tmp_path, "G21 G90\nG0 X0 Y0\nG0 X120 Y80\nG4 P0.5\nG1 X140 Y90 F300\nM30\n")
     js, rep = tmp_path / "s.json", tmp_path / "rep"
     # (--settle 0: the capture ends with the reference, as machine.simulate below; with the settling tail
     # (newuser34) fadal-pid overshoots the last point by 15.8 um after the reference stopped, the run's largest)

@@ -132,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
 
     models = parse_models(args.model)
     model_files = (models,) if isinstance(models, str) else tuple(models.values())
-    inputs = (args.truth, args.toolpath, args.tool_table, *model_files)
+    inputs = (args.truth, args.toolpath, args.tool_table, args.datum_table, *model_files)
     check_output(args.json, option="--json", what="the summary file", inputs=inputs)
     check_output(args.report, option="--report", what="the report", folder=True)
     check_distinct_outputs((("--json", args.json), ("--report", args.report)))

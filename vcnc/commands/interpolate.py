@@ -43,8 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def add_context_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--dialect``, ``--tool-table``, ``--subroutine-path``, ``--user-m-path`` and ``--initial-feed``, shared by
-    the commands that read part programs."""
+    """``--dialect``, ``--tool-table``, ``--datum-table``, ``--subroutine-path``, ``--user-m-path`` and
+    ``--initial-feed``, shared by the commands that read part programs."""
     parser.add_argument("--dialect", choices=("linuxcnc", "fanuc", "haas", "grbl", "fadal"),
                         help="G-code dialect: unit of G04 P (s: linuxcnc, grbl; ms: fanuc, fadal, haas "
                              "without a decimal point) "
@@ -53,6 +53,9 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
                         help="tool table for G43 H, G41/G42 D and TOOL CALL n|\"NAME\": LinuxCNC's "
                              "(T1 P1 D6.0 Z+12.5 ;comment) or a Heidenhain TOOL.T (BEGIN TOOL .T MM, columns "
                              "T NAME L R DL DR)")
+    parser.add_argument("--datum-table", metavar="FILE",
+                        help="Heidenhain datum table (BEGIN ZEROSHIFT.D MM, columns D X Y Z) whose rows "
+                             "CYCL DEF 7.1 #n selects (default: none, and such a block is an error)")
     parser.add_argument("--subroutine-path", metavar="DIR[:DIR]",
                         help="folders searched for the file <name>.ngc of an o<name> call after the program's own "
                              "folder (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH; before the machine's)")
@@ -71,13 +74,13 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
 
 def program_context(args: argparse.Namespace, machine=None):
     """The MachineContext for reading a program: the machine's (without one:
-    ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect, --tool-table,
+    ``interpolators.context.INTERPOLATION_CONTEXT``, axes A B C U V W), with --dialect, --tool-table, --datum-table,
     --subroutine-path, --user-m-path (the paths searched before the machine's), --initial-feed and --default-units
     applied."""
     import dataclasses
     import os
 
-    from interpolators.context import INTERPOLATION_CONTEXT, read_tool_table
+    from interpolators.context import INTERPOLATION_CONTEXT, read_datum_table, read_tool_table
 
     context = machine.context if machine is not None else INTERPOLATION_CONTEXT
     if getattr(args, "dialect", None):
@@ -85,6 +88,8 @@ def program_context(args: argparse.Namespace, machine=None):
     changes = {}
     if getattr(args, "tool_table", None):
         changes["tools"] = {**context.tools, **read_tool_table(args.tool_table)}
+    if getattr(args, "datum_table", None):
+        changes["datum_table"] = {**context.datum_table, **read_datum_table(args.datum_table)}
     paths = {key: tuple(os.path.abspath(p) for p in getattr(args, key).split(":") if p)  # relative: to the cwd
              for key in ("subroutine_path", "user_m_path")
              if getattr(args, key, None)}
@@ -323,7 +328,7 @@ def plot_setpoints(setpoints, *, title: str | None = None):
 def run(args: argparse.Namespace) -> int:
     from vcnc.core.io import atomic_path, check_distinct_outputs, check_output
 
-    inputs = (args.program, args.machine, args.tool_table)
+    inputs = (args.program, args.machine, args.tool_table, args.datum_table)
     check_output(args.output, option="-o", what="the setpoints (CSV)", inputs=inputs)
     check_output(args.blocks, option="--blocks", what="the block table (CSV)", inputs=inputs)
     check_output(args.plot, option="--plot", what="the plot (PNG)", inputs=inputs)

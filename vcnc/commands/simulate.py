@@ -63,7 +63,7 @@ def check_outputs(args: argparse.Namespace) -> None:
     (:func:`vcnc.core.io.check_output`: a long program would otherwise run to its end and fail on the rename)."""
     from vcnc.core.io import check_distinct_outputs, check_output
 
-    inputs = (args.program, args.machine, args.tool_table)
+    inputs = (args.program, args.machine, args.tool_table, args.datum_table)
     check_output(args.output, option="-o", what="the capture file (CSV)", inputs=inputs)
     check_output(args.json, option="--json", what="the summary file", inputs=inputs)
     check_output(args.report, option="--report", what="the report", folder=True)

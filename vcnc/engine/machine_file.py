@@ -29,6 +29,7 @@ Layout::
     decimal_point_input = "calculator"  # calculator | increment: Fanuc DPI (No. 3401#0) = 1 | 0, X10 = 10 | 0.010 mm
     tool_offset_memory = "C"      # A | B | C: Fanuc tool compensation memory (G10 L10-L13, #2001.., #10001..)
     tool_table = "tools.tbl"      # optional LinuxCNC tool table (T1 P1 D6.0 Z+12.5) or Heidenhain TOOL.T
+    datum_table = "ZEROSHIFT.D"   # optional Heidenhain datum table (D X Y Z): the rows of CYCL DEF 7.1 #n
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
     user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
     initial_feed = 500.0          # optional mm/min: feed of a feed move before any F (Fanuc No. 1411); unset: an error
@@ -71,6 +72,7 @@ from interpolators.context import (
     MachineContext,
     Tool,
     TouchProbe,
+    read_datum_table,
     read_tool_table,
     work_offset_code,
 )
@@ -86,9 +88,8 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
-                 "work_offsets", "tools", "linear_units", "decimal_point_input", "tool_offset_memory", "kinematics",
-                 "subroutine_path",
-                 "user_m_path", "initial_feed", "touch_probe")
+                 "datum_table", "work_offsets", "tools", "linear_units", "decimal_point_input", "tool_offset_memory",
+                 "kinematics", "subroutine_path", "user_m_path", "initial_feed", "touch_probe")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
@@ -406,16 +407,9 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
     kwargs["work_offsets"] = {c: _xyz_value(v, path + ("work_offsets", c), where) for c, v in offsets.items()}
     tools: dict[int, Tool] = {}
     if "tool_table" in tab:
-        tt = tab["tool_table"]
-        if not isinstance(tt, str):
-            raise where.error("'program.tool_table' must be a file path string", path + ("tool_table",))
-        ttp = Path(tt)
-        if not ttp.is_absolute() and file and not file.startswith("<"):
-            ttp = Path(file).parent / ttp
-        try:
-            tools.update(read_tool_table(str(ttp)))
-        except InputError as exc:
-            raise where.error(exc.message, path + ("tool_table",)) from None
+        tools.update(_table_file(tab, "tool_table", read_tool_table, path, where, file))
+    if "datum_table" in tab:
+        kwargs["datum_table"] = _table_file(tab, "datum_table", read_datum_table, path, where, file)
     tools_tab = tab.get("tools", {})
     if not isinstance(tools_tab, dict):
         raise where.error("'program.tools' must be tables [program.tools.<number>]", path + ("tools",))
@@ -450,6 +444,21 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
 
 
 _KINEMATICS_AXIS_KEYS = {"name": "", "direction": "", "pivot": "mm", "limits": "deg"}
+
+
+def _table_file(tab: dict, key: str, reader, path: tuple[str, ...], where: _Where, file: str):
+    """``program.tool_table`` or ``program.datum_table``: the file (a relative path starts at this machine file's
+    folder) read by ``reader``, its errors named at the key."""
+    value = tab[key]
+    if not isinstance(value, str):
+        raise where.error(f"'program.{key}' must be a file path string", path + (key,))
+    table = Path(value)
+    if not table.is_absolute() and file and not file.startswith("<"):
+        table = Path(file).parent / table
+    try:
+        return reader(str(table))
+    except InputError as exc:
+        raise where.error(exc.message, path + (key,)) from None
 
 
 def _search_path(value: Any, path: tuple[str, ...], where: _Where, file: str) -> tuple[str, ...]:
