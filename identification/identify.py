@@ -194,7 +194,8 @@ def fit_reduced_model(
                                                                       delay_s, fit, free_delay=free)
         fit.update(error_metrics(err))
     if opt.friction != "two-way":
-        params, err = _mirrored_friction(params, err, xr, T, opt.friction)
+        recorded = np.asarray(original.reference[:, original.axis_index(axis)], float)
+        params, err = _mirrored_friction(params, err, recorded, T, opt.friction, delay_s=delay_s, filter_s=filter_s)
         fit.update(error_metrics(err))
     check_scale(params, x.size * T, axis, original.source)
     return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
@@ -248,15 +249,19 @@ def _equation_error_fit(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: floa
     return fit
 
 
-def _mirrored_friction(params: dict, err: np.ndarray, xr: np.ndarray, T: float, direction: str) -> tuple:
+def _mirrored_friction(params: dict, err: np.ndarray, recorded: np.ndarray, T: float, direction: str, *,
+                       delay_s: float, filter_s: float) -> tuple:
     """``(parameters, error)`` with the Coulomb level of the direction the record does not travel set to the mirror of
     the other's (:func:`one_way_friction`): the refinements move both levels, and the untravelled one only by the few
-    samples where the prediction overshoots that way. The prediction error [mm] takes the change of the simulated
-    record (on ``xr``, the loop frame's reference)."""
+    samples where the prediction moves that way. The prediction error [mm] takes the change of the simulated record
+    (the ``recorded`` reference through the model's dead time and setpoint filter; the fit's error covers the
+    record's last ``err.size`` samples, the loop frame dropping only its start)."""
     known, unknown = ("d0", "d1") if direction == "positive" else ("d1", "d0")
     mirrored = {**params, unknown: -params[known]}
-    if err.size == xr.size and mirrored[unknown] != params[unknown]:
-        err = err + simulate_record(params, xr, T) - simulate_record(mirrored, xr, T)
+    if mirrored[unknown] != params[unknown] and 0 < err.size <= recorded.size:
+        shift = {"delay_samples": delay_s / T, "filter_samples": filter_s / T}
+        change = simulate_record(params, recorded, T, **shift) - simulate_record(mirrored, recorded, T, **shift)
+        err = err + change[recorded.size - err.size:]
     return mirrored, err
 
 
