@@ -19,10 +19,11 @@ from vcnc.core.axes import axis_unit
 from vcnc.core.capture import UNIT_GIVEN, Capture, check_sampling
 from vcnc.core.errors import CaptureError, IdentificationError
 
-__all__ = ["check_capture", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO", "MIN_FOLLOW_CORRELATION",
-           "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
+__all__ = ["check_capture", "travelled_direction", "check_channels", "MIN_SAMPLES", "MAX_SPAN_RATIO",
+           "MIN_FOLLOW_CORRELATION", "MAX_SPEED_RATIO", "check_scale", "MAX_SCALE_ERROR",
            "check_jumps", "JUMP_FACTOR", "REFERENCE_JUMP_FACTOR", "JUMP_SHARE", "JUMP_WINDOW",
-           "check_swapped", "polynomial_share", "INTERPOLATED_SHARE", "RESPONSE_SHARE", "through_changes"]
+           "check_swapped", "polynomial_share", "channel_name", "HELD_TARGET_SHARE", "INTERPOLATED_SHARE",
+           "RESPONSE_SHARE", "through_changes"]
 
 #: Fewest samples accepted (the thesis' test has 22,000 at 1 ms; Sec. 4.3.3 4,096 at 0.6 ms). Slow loggers (4-8 ms
 #: for a few seconds) give 150-450 samples, and 250 fit as well as 500 (measured 2026-11-25 with the first N samples
@@ -127,7 +128,8 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
     CaptureError
         Unknown axis, NaN/inf, time not increasing or not uniform.
     IdentificationError
-        Fewer than :data:`MIN_SAMPLES` samples, no motion, motion in one direction only,
+        Fewer than :data:`MIN_SAMPLES` samples, no motion, too little motion either way
+        (:func:`travelled_direction`; motion one way only is identified),
         measurement identical to the reference, positions that look like metres (too small a motion when
         ``meta[UNIT_GIVEN]`` states their unit), a measured
         channel that does not follow the commanded one (another axis', a velocity, the following
@@ -185,24 +187,44 @@ def check_capture(capture: Capture, axis: str, *, options: RegressorOptions | No
             f"error to identify from (was '{axis}_ref' copied into '{axis}'?)",
             file=src,
         )
-    opt = options or RegressorOptions()
-    v = np.diff(x) / T
-    db = opt.velocity_deadband
-    n_pos, n_neg = int(np.sum(v > db)), int(np.sum(v < -db))
-    need = max(20, int(0.01 * (n_pos + n_neg)))
-    if n_pos < need or n_neg < need:
-        which = "negative" if n_neg < need else "positive"
-        raise IdentificationError(
-            f"friction not identifiable: axis {axis!r} moves in one direction only ({n_pos} samples with positive "
-            f"and {n_neg} with negative measured velocity; at least {need} of each needed); the test must also move "
-            f"in the {which} direction",
-            file=src,
-        )
+    travelled_direction(x, T, axis, src, options=options)
     others = {a: np.asarray(capture.measured[:, j], float) for j, a in enumerate(capture.axes) if a != axis}
-    check_channels(xr, x, T, axis, src, others=others)
+    check_channels(xr, x, T, axis, src, others=others, reference_name=channel_name(capture.meta, axis))
     check_swapped(xr, x, axis, src)
     check_jumps(xr, x, T, axis, src)
     return xr, x, T
+
+
+def travelled_direction(measured: np.ndarray, sample_time: float, axis: str, src: str | None = None, *,
+                        options: RegressorOptions | None = None) -> str:
+    """Which way the measured position moves: ``"two-way"``, or ``"positive"`` / ``"negative"`` when it moves
+    that way only (a :data:`identification.regressor.FRICTION_DIRECTIONS` value).
+
+    A direction counts as travelled when at least ``max(20, 1 %)`` of the samples that move
+    (speed above ``options.velocity_deadband``) move that way. A loop moving one way only is still
+    identified (a weld seam, a feed axis' one-way test); only the Coulomb level of the direction it
+    never travels is not, and :class:`~identification.regressor.RegressorOptions` ``friction`` then
+    takes it as the mirror of the other's.
+
+    Raises
+    ------
+    IdentificationError
+        When neither direction is travelled so: too little motion to identify a loop from.
+    """
+    opt = options or RegressorOptions()
+    v = np.diff(np.asarray(measured, float)) / sample_time
+    db = opt.velocity_deadband
+    n_pos, n_neg = int(np.sum(v > db)), int(np.sum(v < -db))
+    need = max(20, int(0.01 * (n_pos + n_neg)))
+    if n_pos < need and n_neg < need:
+        raise IdentificationError(
+            f"too little motion to identify on axis {axis!r}: {n_pos} samples with positive and {n_neg} with negative "
+            f"measured velocity (at least {need} one way needed); record a test that moves the axis",
+            file=src,
+        )
+    if n_pos >= need and n_neg >= need:
+        return "two-way"
+    return "positive" if n_pos >= need else "negative"
 
 
 def _unit_hint(ratio: float) -> str:
@@ -216,7 +238,7 @@ def _unit_hint(ratio: float) -> str:
 
 
 def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: float, axis: str,
-                   src: str | None = None, *, others: dict | None = None) -> None:
+                   src: str | None = None, *, others: dict | None = None, reference_name: str | None = None) -> None:
     """IdentificationError unless the measured channel follows the commanded one in time, sign and scale.
 
     A position loop's measured position follows its reference (at a lag: its own response plus the
@@ -240,12 +262,15 @@ def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: flo
     others : dict of str to ndarray, optional
         The measured positions of the capture's other axes: one that follows this axis' reference is
         named in the message (columns mapped to the wrong axes).
+    reference_name : str, optional
+        The trace's column (channel) read as the commanded position, for the message.
 
     Notes
     -----
     Following is judged on velocities (:func:`identification.dead_time.follow_lag`): their best
     correlation over lags up to a third of the record must reach :data:`MIN_FOLLOW_CORRELATION`. When
-    it does not, the message names what does follow (:func:`_not_following`): the channel negated,
+    it does not, the message names a commanded position that is a sequence of held targets
+    (:func:`_held_targets`) or what does follow (:func:`_not_following`): the channel negated,
     the commanded position less it (a following error of either sign), its integral (a velocity), another
     axis' measured position. The span is the 0.1-99.9 % range, so a spike or a settling overshoot
     does not set it; a span ratio within reach of a loop's overshoot may still hide a channel in
@@ -255,7 +280,8 @@ def check_channels(reference: np.ndarray, measured: np.ndarray, sample_time: flo
     x = np.asarray(measured, float)
     corr = follow_lag(xr, x, sample_time)[1]
     if corr < MIN_FOLLOW_CORRELATION:
-        message = _barely_moves(xr, x, axis, corr) or _not_following(xr, x, sample_time, axis, corr, others or {})
+        message = (_held_targets(xr, x, sample_time, axis, corr, reference_name) or _barely_moves(xr, x, axis, corr)
+                   or _not_following(xr, x, sample_time, axis, corr, others or {}))
         if message or corr < UNRELATED_CORRELATION:
             raise IdentificationError(message or _unrelated(xr, sample_time, axis, corr), file=src)
     span_r = float(np.subtract(*np.percentile(xr, [99.9, 0.1])))
@@ -350,6 +376,67 @@ def _not_following(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: flo
         if c >= EXPLAINED_CORRELATION:
             return f"{_head(axis, corr)}: {text.format(c=c)}"
     return ""
+
+
+#: A commanded position is a sequence of held targets (a positioning test's, a point-to-point move's) when the
+#: measured one travels at least this share of its path while it stands still, and comes to rest at the value it
+#: holds after at least :data:`HELD_TARGET_ARRIVALS` of its changes [-] (:func:`_held_targets`): an ecmc axis' ISO
+#: 230-2 test logged by camonitor (X-PosCmd, 102 target updates in 2597 s) 1.00, arriving after all 101 changes;
+#: the trajectories of a TNCscope trace, a LinuxCNC halscope log, a camber actuator log, UMich mill logs (0.1 s), a
+#: UR joint log and a random-moves test 0.00-0.09, where a loop travels only its following error after the
+#: reference stops; an electro-hydraulic actuator's setpoint updated every few of its 1 ms samples 0.56-0.66,
+#: arriving after 0.1-0.3 % of its changes (it travels while the setpoint holds between updates, but never reaches
+#: it before the next); a KUKA RSI weld log's Z_RSol, one 65.8 mm step the robot took over 40 samples of 12 ms,
+#: 1.00. Measured on /tmp/realtrace11's set (session 35).
+HELD_TARGET_SHARE = 0.8
+#: ... and the share of the commanded position's changes after which the measured one reaches the new value (within
+#: :data:`_ARRIVED` of the change) before the next [-].
+HELD_TARGET_ARRIVALS = 0.5
+#: The measured position moves at a sample when its step exceeds this share of its 99.9th percentile [-] (noise at
+#: rest is no travel).
+_TRAVEL = 0.05
+#: The measured position has reached a held value when it comes within this share of the change to it [-].
+_ARRIVED = 0.05
+
+
+def channel_name(meta: dict, axis: str) -> str:
+    """The trace's column read as the commanded position of ``axis`` (``meta["commanded"]``, ``"x:NAME,y:NAME"``
+    as :mod:`vcnc.traces` writes it), else ``<axis>_ref``."""
+    for item in str(meta.get("commanded") or "").split(","):
+        a, _, name = item.partition(":")
+        if a.strip() == axis and name:
+            return name.strip()
+    return f"{axis}_ref"
+
+
+def _held_targets(xr: np.ndarray, x: np.ndarray, T: float, axis: str, corr: float, name: str | None) -> str:
+    """The message for a commanded position that is a sequence of held targets, not a trajectory, "" otherwise: the
+    measured position travels at least :data:`HELD_TARGET_SHARE` of its path while the commanded one stands still,
+    and reaches the value held after most changes (:data:`HELD_TARGET_ARRIVALS`). A loop fed a trajectory travels
+    only its following error after the trajectory stops, and a setpoint held between an interpolator's updates moves
+    on before the axis reaches it; an axis sent to a target travels all the way after the target changed and stops
+    there. Our reading: the target of a positioning test (ISO 230-2) or of
+    a point-to-point move, logged in place of the setpoint the trajectory generator feeds the loop."""
+    dr = np.abs(np.diff(xr))
+    dx = np.abs(np.diff(x))
+    top = float(np.percentile(dx, 99.9)) if dx.size else 0.0
+    travel = dx * (dx > _TRAVEL * top)
+    if top <= 0 or not np.any(dr) or float(np.sum(travel[dr == 0])) < HELD_TARGET_SHARE * float(np.sum(travel)):
+        return ""
+    edges = np.diff(np.concatenate(([0], (dr > 0).astype(int), [0])))
+    first, last = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)  # the changes: samples first..last
+    until = np.append(first[1:], xr.size - 1)  # held until the next change
+    arrived = [float(np.min(np.abs(x[b:c + 1] - xr[b]))) <= _ARRIVED * abs(float(xr[b] - xr[a]))
+               for a, b, c in zip(first, last, until, strict=True)]
+    if not arrived or np.mean(arrived) < HELD_TARGET_ARRIVALS:
+        return ""
+    share = float(np.sum(travel[dr == 0]) / np.sum(travel))
+    changes = "once" if len(arrived) == 1 else f"{len(arrived)} times"
+    return (f"axis {axis!r}: the commanded position ({name or f'{axis}_ref'}) is a sequence of held targets, not a "
+            f"trajectory: it changes {changes} in {x.size * T:.4g} s and stands still while the measured "
+            f"position travels {share:.0%} of its path (velocity correlation {corr:.2f}; a positioning test's or "
+            "point-to-point move's targets); identification needs the setpoint the trajectory generator "
+            f"(interpolator) feeds the loop at its servo rate: record that channel and map it as {axis}_ref")
 
 
 #: A commanded span within this many of the measured position's resolution (its smallest step) is too small a

@@ -60,6 +60,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
+import textwrap
 import time
 from collections.abc import Callable
 from typing import Any
@@ -709,8 +710,8 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
     x = np.ascontiguousarray(x, float)
     active = active_mask(xr, x, T, opt.margin_s)
     plan = folds(xr, active, opt.folds)
-    for w in plan.warnings:
-        log.warning("diagnosis: %s", w)
+    for w in plan.warnings:  # kept in validation["warnings"], which the report and the summary's table print
+        log.info("diagnosis: %s", w)
     # the searches fit on every active sample outside the last fold and check their own choices
     # (harmonic counts) on it; the folds judge
     last = plan.mask(len(plan.folds) - 1)
@@ -1380,7 +1381,7 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
                   "--drift remove)" if drift else bound_advice(on_bounds))
         validation["warning"] = ("reduced-model poles on the bounds (" + ", ".join(on_bounds) + "): the reduced "
                                  "structure or the bounds do not fit these data; " + advice)
-        log.warning("diagnosis: %s", validation["warning"])
+        log.info("diagnosis: %s", validation["warning"])  # printed from validation["warning"]: once
     if len(stages) == 1:
         return dataclasses.replace(model, validation=validation, effects=[])
     last: AugmentedAxisModel = stages[-1].full_model  # type: ignore[assignment]
@@ -1521,13 +1522,14 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
                  "identification_max_um": v.get("identification_max_before_um"),
                  "validation_rms_um": v.get("rms_before_um"), "validation_max_um": v.get("max_before_um")}]
     for e in effects:
-        rows.append({"label": f"+ {e['name']} ({e.get('summary', '')})",
+        rows.append({"label": f"+ {e['name']} ({e.get('summary', '')})", "name": e["name"], "summary": e.get("summary"),
                      "identification_rms_um": e.get("rms_after_um"), "identification_max_um": e.get("max_after_um"),
                      "validation_rms_um": e.get("validation_rms_after_um"),
                      "validation_max_um": e.get("validation_max_after_um")})
     for row, r in zip(rows, record):
         row["record_rms_um"] = r
-    rows.append(dict(rows[-1], label="final model"))
+    final = {k: v for k, v in rows[-1].items() if k not in ("name", "summary")}  # the model, not its last effect
+    rows.append(dict(final, label="final model"))
     return rows
 
 
@@ -1610,6 +1612,11 @@ def unpinned_lines(model: ReducedAxisModel) -> list[str]:
     return lines
 
 
+#: Width the command line's table of :func:`format_before_after` and an effect's description under it keep to
+#: [characters].
+TABLE_COLUMNS = 100
+
+
 def format_before_after(model: ReducedAxisModel) -> str:
     """Text table of :func:`before_after_rows` for the command line (errors in um, mdeg on a rotary axis)."""
     rows = before_after_rows(model)
@@ -1618,13 +1625,19 @@ def format_before_after(model: ReducedAxisModel) -> str:
     def f(x):
         return "      -" if x is None or not math.isfinite(float(x)) else f"{float(x):9.3f}"
 
-    width = max(len(r["label"]) for r in rows)
+    # an effect's row is named by the effect; what was fitted follows the table, wrapped (a time-periodic load's
+    # summary made a 130-character label and the table 190 columns wide)
+    labels = [f"+ {r['name']}" if r.get("name") else r["label"] for r in rows]
+    width = max(len(label) for label in labels)
     head = (f"{'model':<{width}}  {'all RMS':>9}  {'ident RMS':>9}  {'ident max':>9}  {'valid RMS':>9}  "
             f"{'valid max':>9}   [{u}]")
     lines = [head, "-" * len(head)]
-    for r in rows:
-        lines.append(f"{r['label']:<{width}}  {f(r.get('record_rms_um'))}  {f(r['identification_rms_um'])}  "
+    for label, r in zip(labels, rows, strict=True):
+        lines.append(f"{label:<{width}}  {f(r.get('record_rms_um'))}  {f(r['identification_rms_um'])}  "
                      f"{f(r['identification_max_um'])}  {f(r['validation_rms_um'])}  {f(r['validation_max_um'])}")
+    for r in rows:
+        if r.get("name") and r.get("summary"):
+            lines.append(textwrap.fill(f"+ {r['name']}: {r['summary']}", TABLE_COLUMNS, subsequent_indent="    "))
     note = samples_note(model)
     if note:
         lines.append(note)

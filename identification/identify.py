@@ -30,7 +30,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from identification.bounds import WIDE_P_MIN_HZ, PoleBounds, as_bounds
-from identification.capture_checks import check_capture, check_scale
+from identification.capture_checks import check_capture, check_scale, travelled_direction
 from identification.datum_offset import COARSE_SHARE, MIN_GAIN, OffsetEstimate, estimate_offset
 from identification.dead_time import FINEST_STEP_S, delay_reference, estimate_delay
 from identification.excitation import excitation
@@ -155,6 +155,8 @@ def fit_reduced_model(
     options = {"method": method, "bounds": bounds, "refine": refine, "regressor_options": regressor_options,
                "seed": seed, "ga_options": ga_options, "setpoint_filter": setpoint_filter}
     xr, x, T = check_capture(capture, axis, options=opt)
+    if opt.friction == "two-way":
+        opt = dataclasses.replace(opt, friction=travelled_direction(x, T, axis, capture.source, options=opt))
     b = as_bounds(bounds, T)
     capture, start, offset, delay_s, delay_fit = _in_loop_frame(capture, axis, delay, xr, x, T, opt, b)
     if delay_s and delay_fit["estimated"] and refine == "output-error" and "delay_candidate" not in original.meta:
@@ -190,6 +192,10 @@ def fit_reduced_model(
         free = bool(delay_s and delay_fit["estimated"])
         params, poles, err, delay_s, filter_s = _with_setpoint_filter(original, axis, params, poles, err, T, b,
                                                                       delay_s, fit, free_delay=free)
+        fit.update(error_metrics(err))
+    if opt.friction != "two-way":
+        recorded = np.asarray(original.reference[:, original.axis_index(axis)], float)
+        params, err = _mirrored_friction(params, err, recorded, T, opt.friction, delay_s=delay_s, filter_s=filter_s)
         fit.update(error_metrics(err))
     check_scale(params, x.size * T, axis, original.source)
     return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
@@ -238,7 +244,37 @@ def _equation_error_fit(sol: SolveResult, xr: np.ndarray, x: np.ndarray, T: floa
         fit["record_start"] = {"dropped_samples": start, "dropped_s": start * T}
     if widened is not None:
         fit["bounds_widened"] = widened
+    if opt.friction != "two-way":
+        fit["friction"] = one_way_friction(opt.friction)
     return fit
+
+
+def _mirrored_friction(params: dict, err: np.ndarray, recorded: np.ndarray, T: float, direction: str, *,
+                       delay_s: float, filter_s: float) -> tuple:
+    """``(parameters, error)`` with the Coulomb level of the direction the record does not travel set to the mirror of
+    the other's (:func:`one_way_friction`): the refinements move both levels, and the untravelled one only by the few
+    samples where the prediction moves that way. The prediction error [mm] takes the change of the simulated record
+    (the ``recorded`` reference through the model's dead time and setpoint filter; the fit's error covers the
+    record's last ``err.size`` samples, the loop frame dropping only its start)."""
+    known, unknown = ("d0", "d1") if direction == "positive" else ("d1", "d0")
+    mirrored = {**params, unknown: -params[known]}
+    if mirrored[unknown] != params[unknown] and 0 < err.size <= recorded.size:
+        shift = {"delay_samples": delay_s / T, "filter_samples": filter_s / T}
+        change = simulate_record(params, recorded, T, **shift) - simulate_record(mirrored, recorded, T, **shift)
+        err = err + change[recorded.size - err.size:]
+    return mirrored, err
+
+
+def one_way_friction(direction: str) -> dict:
+    """The ``fit["friction"]`` record of a model fitted on a record that moves ``direction`` only
+    (:func:`identification.capture_checks.travelled_direction`): the level identified, the one assumed, and a
+    sentence saying so."""
+    known, unknown = ("d0", "d1") if direction == "positive" else ("d1", "d0")
+    other = "negative" if direction == "positive" else "positive"
+    return {"travelled": direction, "identified": known, "assumed": {unknown: f"-{known}"},
+            "statement": f"the record moves in the {direction} direction only: the Coulomb level of the {other} "
+                         f"direction ({unknown}) is unknown; the model takes it as the mirror of the {direction} one "
+                         f"({unknown} = -{known}, friction of the same size both ways)"}
 
 
 def _equation_error(xr: np.ndarray, x: np.ndarray, T: float, opt: RegressorOptions, b: PoleBounds, *, method: str,

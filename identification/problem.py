@@ -71,21 +71,24 @@ class ReducedProblem:
         self.bounds = bounds
         self.names = stats.names
         n = stats.n_columns
+        self.mirrored = _check_columns(stats)
+        # a friction column the record never switches on is left out; its level mirrors the other's (theta2)
+        kept = [j for j in range(3, n) if j != self.mirrored]
+        m = len(kept) + 3  # columns solved
         self.n_theta2 = n - 3
-        _check_columns(stats)
         U = stats.factor
         if U.shape[0] < n + 1:
             U = np.vstack([U, np.zeros((n + 1 - U.shape[0], n + 1))])
-        perm = list(range(3, n)) + [0, 1, 2, n]
-        Up = scipy.linalg.qr(U[:, perm], mode="r", check_finite=False)[0][: n + 1]
-        norms = np.linalg.norm(Up[:, :n], axis=0)
+        perm = kept + [0, 1, 2, n]
+        Up = scipy.linalg.qr(U[:, perm], mode="r", check_finite=False)[0][: m + 1]
+        norms = np.linalg.norm(Up[:, :m], axis=0)
         norms[norms == 0] = 1.0
         Up = Up.copy()
-        Up[:, :n] /= norms
+        Up[:, :m] /= norms
         scale = stats.scale
         d_y = scale[n]
-        g = scale[perm[:n]] / (norms * d_y)  # theta = g * theta'' (column-normalised coordinates)
-        k2 = self.n_theta2
+        g = scale[perm[:m]] / (norms * d_y)  # theta = g * theta'' (column-normalised coordinates)
+        k2 = m - 3
         piv = np.abs(np.diag(Up)[:k2])
         if piv.size and piv.min() < _RANK_TOL * max(1.0, piv.max()):
             j = perm[int(np.argmin(piv))]
@@ -94,6 +97,7 @@ class ReducedProblem:
                 f"regressor column {name!r} ({COLUMN_DESCRIPTIONS.get(name, 'extra column')}) is a linear "
                 "combination of the other columns: its parameter is not identifiable from this capture"
             )
+        n = m
         self._A22 = Up[:k2, :k2]
         self._A21 = Up[:k2, k2 : k2 + 3]
         self._a2y = Up[:k2, n]
@@ -237,7 +241,11 @@ class ReducedProblem:
     def theta2(self, th1: np.ndarray) -> np.ndarray:
         """theta_2 (beta_0, beta_1, beta_2, delta+, delta-, extras) for theta_1 (Eq. 4.9)."""
         rhs = self._a2y - self._A21 @ (np.asarray(th1, float) / self._g1)
-        return self._g2 * scipy.linalg.solve_triangular(self._A22, rhs)
+        th2 = self._g2 * scipy.linalg.solve_triangular(self._A22, rhs)
+        if self.mirrored is None:
+            return th2
+        j = self.mirrored - 3  # delta- (4) or delta+ (3): the other level negated (Coulomb friction the same both ways)
+        return np.insert(th2, j, -th2[3])
 
     def parameters(self, v: np.ndarray) -> tuple[dict[str, float], np.ndarray, np.ndarray]:
         """Model parameters for v = (p, omega_n, zeta) [rad/s].
@@ -310,20 +318,20 @@ class ReducedProblem:
         return all(box[i][0] * (1 - rtol) <= v[i] <= box[i][1] * (1 + rtol) for i in range(3))
 
 
-def _check_columns(stats: SufficientStatistics) -> None:
-    """Name a regressor column that is identically zero."""
-    for j, name in enumerate(stats.names):
-        if stats.absmax[j] > 0:
-            continue
-        if name == "-NV":
+def _check_columns(stats: SufficientStatistics) -> int | None:
+    """Name a regressor column that is identically zero; the index of a friction column that is while the other is
+    not (the record moves one way only, or :class:`~identification.regressor.RegressorOptions` ``friction`` says so:
+    that direction's level is not identified and mirrors the other's), else None."""
+    zero = [j for j, name in enumerate(stats.names) if stats.absmax[j] == 0]
+    friction = [j for j in zero if stats.names[j] in ("-PV", "-NV")]
+    if len(friction) == 1:
+        zero.remove(friction[0])
+    for j in zero:
+        name = stats.names[j]
+        if name in ("-PV", "-NV"):
             raise IdentificationError(
-                "friction not identifiable: the axis never moved in the negative direction (no sample with "
-                "negative measured velocity); the test must move both ways"
-            )
-        if name == "-PV":
-            raise IdentificationError(
-                "friction not identifiable: the axis never moved in the positive direction (no sample with "
-                "positive measured velocity); the test must move both ways"
+                "friction not identifiable: the axis never moved (no sample with a measured velocity of either "
+                "sign); the test must move the axis"
             )
         if name == "e_i":
             raise IdentificationError(
@@ -333,4 +341,5 @@ def _check_columns(stats: SufficientStatistics) -> None:
             f"regressor column {name!r} ({COLUMN_DESCRIPTIONS.get(name, 'extra column')}) is zero at every "
             "sample: its parameter is not identifiable"
         )
+    return friction[0] if len(friction) == 1 else None
 

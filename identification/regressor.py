@@ -44,6 +44,7 @@ __all__ = [
     "COLUMN_DESCRIPTIONS",
     "THETA_NAMES",
     "RegressorOptions",
+    "FRICTION_DIRECTIONS",
     "regressor",
     "iter_regressor",
     "SufficientStatistics",
@@ -65,6 +66,10 @@ COLUMN_DESCRIPTIONS: dict[str, str] = {
     "-NV": "friction switch for negative velocity",
 }
 
+#: What :attr:`RegressorOptions.friction` may say: both Coulomb levels identified, or only that of the
+#: direction named (the record moves that way only; the other level mirrors it).
+FRICTION_DIRECTIONS: tuple[str, ...] = ("two-way", "positive", "negative")
+
 #: Normalised parameters of Eq. (3.10), in column order.
 THETA_NAMES: tuple[str, ...] = ("alpha_i", "alpha_1", "alpha_2", "beta_0", "beta_1", "beta_2", "delta+", "delta-")
 
@@ -84,6 +89,13 @@ class RegressorOptions:
         [mm/s]; |v| <= deadband gives PV = NV = 0. Default 0 (the thesis' PV/NV).
     integration : str
         ``"rectangle"`` (thesis: e_i,k = T sum_{m<=k} e_m) or ``"trapezoid"``.
+    friction : str
+        ``"two-way"`` (default): a Coulomb level for each direction, delta+ and delta- (Eq. 3.10).
+        ``"positive"`` or ``"negative"``: the record moves that way only, so only that direction's
+        level is identified and the other is taken as its mirror (d1 = -d0, Coulomb friction of the
+        same size both ways): the column of that level is -sign(v) (-(PV - NV) for ``"positive"``,
+        -(NV - PV) for ``"negative"``), the other column zero, which
+        :class:`identification.problem.ReducedProblem` leaves out.
     chunk : int
         Rows per chunk when streaming [samples].
     """
@@ -92,6 +104,7 @@ class RegressorOptions:
     smoothing_order: int = 3
     velocity_deadband: float = 0.0
     integration: str = "rectangle"
+    friction: str = "two-way"
     chunk: int = 8192
 
     def __post_init__(self) -> None:
@@ -108,6 +121,10 @@ class RegressorOptions:
         if self.integration not in ("rectangle", "trapezoid"):
             raise IdentificationError(
                 f"integration must be 'rectangle' or 'trapezoid' (got {self.integration!r})"
+            )
+        if self.friction not in FRICTION_DIRECTIONS:
+            raise IdentificationError(
+                f"friction must be one of {', '.join(FRICTION_DIRECTIONS)} (got {self.friction!r})"
             )
         if self.chunk < 16:
             raise IdentificationError(f"chunk must be >= 16 rows (got {self.chunk})")
@@ -198,8 +215,13 @@ def iter_regressor(
         phi[:, 3] = xr[start:stop]
         phi[:, 4] = vr
         phi[:, 5] = ar
-        phi[:, 6] = -(v > db).astype(float)
-        phi[:, 7] = -(v < -db).astype(float)
+        pv, nv = (v > db).astype(float), (v < -db).astype(float)
+        phi[:, 6] = -pv
+        phi[:, 7] = -nv
+        if opt.friction != "two-way":  # one level, the other its mirror: a sign column in the level's place
+            j = 6 if opt.friction == "positive" else 7
+            phi[:, j] = -(pv - nv) if j == 6 else -(nv - pv)
+            phi[:, 13 - j] = 0.0
         yield phi, x[start:stop].copy()
 
 

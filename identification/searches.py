@@ -175,6 +175,9 @@ class SearchContext:
         self._ee_y = d.y[tr] - off
         self._ee_base = d.phi[tr]
         self._base_sc = np.linalg.norm(self._ee_base, axis=0)
+        # a friction column a one-way record never switches is zero: scaled by 1, its base is singular, which the
+        # solves below fall back from (dividing by its norm gave NaN and LAPACK's DLASCL complaints)
+        self._base_sc[self._base_sc == 0] = 1.0
         q, self._base_r = np.linalg.qr(self._ee_base / self._base_sc)
         self._q = q
         self._q_t = np.ascontiguousarray(q.T)

@@ -375,7 +375,7 @@ def test_a_mode_a_later_refit_moves_above_the_nyquist_frequency_is_dropped():
     assert dropped["resonance"]["validation_rms_without_um"] == model.validation["rms_after_um"]
     text = format_before_after(model)
     assert f"dropped: resonance, accepted in an earlier round, because {dropped['resonance']['reason']}" in text
-    assert "+ delay (1 samples)" in text and "+ resonance" not in text
+    assert "+ delay: 1 samples" in text and "+ resonance" not in text
 
 
 def test_dropped_lines_name_the_effect_the_reason_and_the_errors():

@@ -570,6 +570,8 @@ def run(args: argparse.Namespace) -> int:
     )
     out.write(closed_loop_poles_line(model) + "\n")
     out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
+    if (model.fit or {}).get("friction"):
+        out.write(f"friction: {model.fit['friction']['statement']}\n")
     for line in fit_lines(model, rest_um):
         out.write(line + "\n")
     if model.validation:

@@ -1,0 +1,51 @@
+"""The summary's before/after table at 100 columns, and the diagnosis' warnings said once (realfit35: a TNCscope
+trace's time-periodic load made a 130-character row label and a 190-column table; each diagnosis warning was logged
+on stderr and printed again under the table)."""
+
+from __future__ import annotations
+
+import logging
+
+from identification.diagnosis import TABLE_COLUMNS, format_before_after
+from identification.reduced_model import ReducedAxisModel
+from identification.synthetic import FADAL_PID_X
+from vcnc.cli import main
+
+#: The effect summary of the TNCscope trace tnc_N300 (FeedStep150_N300_H55.sco, Duncan-McPherson/Thesis-Work).
+LONG = ("period 0.018183 s, 1 harmonics, peak-to-peak 2743 mm/s^2, on 9.666..13.62 s, amplitude 1372 -> 1372 "
+        "mm/s^2")
+
+
+def _diagnosed() -> ReducedAxisModel:
+    effect = {"name": "time_periodic", "summary": LONG, "parameters": {}, "rms_before_um": 2.108,
+              "rms_after_um": 0.653, "validation_rms_before_um": 2.120, "validation_rms_after_um": 0.679}
+    validation = {"record_rms_um": [1.352, 0.419], "identification_rms_before_um": 2.108, "rms_before_um": 2.120,
+                  "warning": "reduced-model poles on the bounds (zeta = 2 at its upper bound)"}
+    return ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=0.003, axis="y", effects=[effect],
+                            validation=validation)
+
+
+def test_the_table_keeps_to_100_columns_and_says_what_each_effect_fitted_below_it():
+    text = format_before_after(_diagnosed())
+    lines = text.splitlines()
+    assert max(len(line) for line in lines) <= TABLE_COLUMNS == 100
+    assert lines[3].startswith("+ time_periodic  ") and "1.352" in lines[2] and "0.419" in lines[3]
+    assert lines[4].startswith("final model  ") and "0.419" in lines[4]
+    assert text.count("+ time_periodic") == 2 and text.count("period 0.018183 s") == 1  # its row, its description
+    described = " ".join(line.strip() for line in lines if "period 0.018183" in line or line.startswith("    "))
+    assert described.startswith("+ time_periodic: period 0.018183 s") and described.endswith("1372 -> 1372 mm/s^2")
+    assert text.count("reduced-model poles on the bounds") == 1
+
+
+def test_a_diagnosis_warning_is_not_also_logged(tmp_path, capsys, caplog):
+    # a one-way record's folds have no negative motion: the diagnosis warns (test_one_way.py's loop and record)
+    from tests.identification.test_one_way import _one_way
+
+    path = tmp_path / "one_way.csv"
+    _one_way(1.0).to_csv(path)
+    with caplog.at_level(logging.WARNING):
+        assert main(["identify", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert out.count("validation fold 1 (samples 0..3565) has no negative motion") == 1
+    assert not [r for r in caplog.records if r.name.startswith("identification.diagnosis")]
+    assert "friction: the record moves in the positive direction only: the Coulomb level of the negative " in out
