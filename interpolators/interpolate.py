@@ -1534,7 +1534,7 @@ _TANGENT_STEP = 1e-3
 
 
 def _blend_worth(ch: _Chain, lim: AxisLimitArrays, jerk_limited: bool, Ts: float,
-                 cap: Callable[[CornerBlends], np.ndarray] | None = None, *, rapid_feed_stop: bool = False):
+                 cap: Callable[[CornerBlends], np.ndarray] | None = None, *, rapid_feed_stop: bool):
     """Predicate: is passing each corner through its blend faster than stopping at it?
 
     Model of one corner between lines cruising at ``V`` (their speed bound, or the speed they can

@@ -25,6 +25,8 @@ from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from interpolators.iso import State
 
 __all__ = ["off_plane", "arc_turns", "read_arc", "rotated_arc_chords"]
@@ -36,11 +38,13 @@ def off_plane(st: State) -> bool:
 
 
 def rotated_arc_chords(seen, arc_words, target, st: State, blocks, where: Where, common: dict, code: str,
-                        mcol: int, mtok: str) -> None:
+                        mcol: int, mtok: str, feed_of: Callable[[State, Arc], float]) -> None:
     """A G18/G19 arc in a coordinate system rotated about Z (G10 R): built in program coordinates,
     where it is an ordinary arc, and run as chords within :data:`SPLINE_TOLERANCE` of it, mapped to
     machine coordinates (LinuxCNC rotates the arc's points the same way, emccanon.cc); LinuxCNC's P turns
-    (:func:`arc_turns`) too."""
+    (:func:`arc_turns`) too. Each chord runs at the arc's feed ``feed_of(st, arc)``
+    (:func:`interpolators.iso_motion.move_feed`, whose G93 rules, Fanuc's by the arc's radius among them, hold
+    for the arc whatever frame it lies in)."""
     start_p, end_p = st.to_program(st.pos), st.to_program(target)
     shadow = dataclasses.replace(st, pos=start_p, rotations={}, frame=None, offsets={st.wcs: np.zeros(3)},
                                  g92=np.zeros(3), tool_length=0.0, tool_xy=np.zeros(2))
@@ -49,7 +53,7 @@ def rotated_arc_chords(seen, arc_words, target, st: State, blocks, where: Where,
         arc = arc_turns(arc, seen["P"], st, where, code)
     step = 2.0 * math.acos(max(-1.0, 1.0 - SPLINE_TOLERANCE / arc.radius))
     n = max(1, math.ceil(abs(arc.sweep) / step))
-    speed = arc.length * st.block_f / 60.0 if st.inverse_time else st.feed  # the arc's feed on each chord
+    speed = feed_of(st, arc)  # the arc's feed on each chord
     start = st.pos.copy()
     for k in range(1, n + 1):
         point = target.copy() if k == n else st.to_machine(arc.point_at(arc.length * k / n))

@@ -839,11 +839,17 @@ def _conditional_m99(prog: _Program, pc: int, params: Parameters) -> str | None:
     "otherwise processing continues with the next program line in sequence"). Haas mill
     operator's manual 96-8000 (1999), "Macros", "Conditional Expressions": "With macros enabled, M99 can be used
     with a conditional expression to branch conditionally ... N50 [#100 LT 10] M99 P10 ; ... the branch occurs
-    only when #100 is less than 10" (the same text in Haas's online "Conditional Expressions" page, #10000)."""
+    only when #100 is less than 10" (the same text in Haas's online "Conditional Expressions" page, #10000).
+    Under ``fanuc``, whose macro B branches by ``IF [..] GOTO n`` alone (B-64304EN "Branch and repetition"), such
+    a block is an error naming the Haas form."""
     code = prog.code[pc]
-    if code is None or not params.macro_b or params.fanuc or not _CONDITIONAL_M99.match(code):
+    if code is None or not params.macro_b or not _CONDITIONAL_M99.match(code):
         return code
     start = code.index("[")
+    if params.fanuc:
+        prog.where(pc).fail("a conditional M99 ('[condition] M99') is Haas's form, which Fanuc's macro B lacks",
+                            column=start + 1, text=code[start:].strip(),
+                            expected="IF [condition] GOTO n, or --dialect haas for a Haas program")
     holds, end = evaluate_condition(code, start, prog.where(pc), params)
     return code[:start] + " " * (end - start) + code[end:] if holds else None
 

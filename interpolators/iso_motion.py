@@ -179,7 +179,7 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
                 where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "
                            "not supported", column=w.column, text=w.text, expected="no A, B, C, U, V, W on this arc")
             used.update((0, 1, 2))
-            rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok)
+            rotated_arc_chords(seen, arc_words, target, st, blocks, where, common, code, mcol, mtok, move_feed)
             return
         seg = read_arc(seen, arc_words, target, st, where, code, mcol, mtok)
         if "P" in seen:

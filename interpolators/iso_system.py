@@ -69,7 +69,8 @@ and move nothing; the virtual machine's counters are 0 when the program starts (
 program is the first to run on), and a program that reads them is noted (:attr:`ReaderState.parts_read`).
 
 The clocks are not read (Fanuc 0i-MD B-64304EN "System variables"; Haas "Macros" #3001 millisecond
-timer, #3002 hour timer, and Haas's own timers #3020-#3025, power-on, cycle start, feed and part timers;
+timer, #3002 hour timer, and Haas's own timers #3020-#3025, power-on, cycle start, feed and part timers, all but the
+power-on timer #3020 ("read only") reset as #3001 is;
 Mike Lynch, "Converting Time and Date to a More Useful Format", Modern Machine Shop 2019:
 ``#3001`` the milliseconds clock "always runs, can be reset using #3001=0", ``#3002`` the hours clock likewise,
 ``#3011`` the date yyyymmdd and ``#3012`` the time hhmmss, which "cannot be reset"). A program writes ``#3001 = 0``
@@ -126,6 +127,8 @@ _RESETTABLE_CLOCKS = (3001, 3002)
 _HAAS_TIMERS = {3020: "Haas's power-on timer", 3021: "Haas's cycle start timer", 3022: "Haas's feed timer",
                 3023: "Haas's present part timer", 3024: "Haas's last complete part timer",
                 3025: "Haas's previous part timer"}
+#: The Haas timers a program may reset (the same table: all but #3020, "read only"), as it may the clocks #3001/#3002.
+_HAAS_RESETTABLE_TIMERS = (3021, 3022, 3023, 3024, 3025)
 #: Parameters that report the current position (machine, program, Fanuc block end / work position).
 POSITION_PARAMETERS = frozenset([*range(5021, 5030), *range(5420, 5429), *range(5001, 5009), *range(5041, 5049)])
 
@@ -367,14 +370,14 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
     """Fanuc/Haas ``#n = value`` on a work-offset variable: that offset's axis becomes ``value`` (in the
     machine's unit, :attr:`interpolators.context.MachineContext.linear_units`; A B C in deg; a vacant
     value is 0); the tool offset variables set a tool's length / radius geometry or wear, and a write to the clocks
-    ``#3001``/``#3002`` is taken without effect (module docstring). True when
-    ``#n`` is such a variable (the caller reports the others). The parts counters ``#3901``/``#3902`` take the
-    value (vacant: 0)."""
+    ``#3001``/``#3002`` (and under ``haas`` its timers ``#3021``-``#3025``) is taken without effect (module
+    docstring). True when ``#n`` is such a variable (the caller reports the others). The parts counters
+    ``#3901``/``#3902`` take the value (vacant: 0)."""
     if n in PARTS_COUNTERS:
         st.parts_counters[n] = 0.0 if value is None else float(value)
         return True
-    if n in _RESETTABLE_CLOCKS:  # a reset that starts a timing: the clock is not read (module docstring)
-        return True
+    if n in _RESETTABLE_CLOCKS or n in _HAAS_RESETTABLE_TIMERS and st.context.dialect.name == "haas":
+        return True  # a reset that starts a timing: the clock is not read (module docstring)
     register, _ = _tool_register(n, st)
     if register is not None:
         tool = st.tool(register.number) or Tool(number=register.number)

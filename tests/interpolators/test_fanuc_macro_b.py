@@ -201,3 +201,16 @@ def test_a_wear_update_of_the_tool_in_the_spindle_through_an_indirect_variable()
     text = ("G21 G90\nT3 M6\n#100 = -0.05\n#[10000+#4120] = #[10000+#4120] + #100\n"
             "#[10000+#4120] = #[10000+#4120] + #100\nG43 H3 G0 Z0\nG49 G53 G0 X#[11000+#4120] Y#10003\n")
     assert _ends(text, context) == [[0.0, 0.0, 79.9], [80.0, -0.1, 79.9]]
+
+
+def test_haas_part_timers_may_be_reset_but_the_power_on_timer_not():
+    """Haas's system variables (zappettiniconsulting.com/wiki/haas-system-variables, from the Haas "Macros" table):
+    "#3020 Power on timer (read only)", #3021 cycle start, #3022 feed, #3023-#3025 part timers without that mark: a
+    program resets them as it resets #3001 (``#3023 = 0`` before a part); before review35 such a write was refused
+    as "cannot be set". Reading them stays an error (the time comes from the run)."""
+    assert _ends("G21 G90\n#3021 = 0\n#3023 = 0\nG0 X1.\n", HAAS) == [[1.0, 0.0, 0.0]]
+    with pytest.raises(GCodeError, match=r"#3020 cannot be set: Haas's power-on timer") as info:
+        parse_program("G21 G90\n#3020 = 0\nG0 X1.\n", context=HAAS)
+    assert info.value.line == 2
+    with pytest.raises(GCodeError, match=r"parameter #3023: Haas's present part timer"):
+        parse_program("G21 G90\n#3023 = 0\n#1 = #3023\n", context=HAAS)
