@@ -29,14 +29,19 @@ def test_a_signal_during_the_writing_exits_128_plus_its_number_leaving_no_output
 
     def signalled(*args, **kwargs):  # the summary is computed while the capture's temporary file is being written
         out = summarize(*args, **kwargs)
-        signal.raise_signal(signum)
+        if signum == signal.SIGINT:
+            # what Python's own SIGINT handler does (signal.default_int_handler raises KeyboardInterrupt); raised
+            # here, not by raise_signal, whose handler ran too late to stop the run in 2 of 4 loaded xdist runs
+            # (session 35: exit 0; never alone): this case tests vcnc's handling of Ctrl-C, not the delivery
+            raise KeyboardInterrupt
+        signal.raise_signal(signum)  # SIGTERM: the handler vcnc installs turns it into Interrupted
         return out
 
     monkeypatch.setattr(simulation_report, "summarize", signalled)
     before = {p.name for p in work.iterdir()}
     code = main(["simulate", "part.nc", "--machine", "fadal-pid", "-o", "cap.csv", "--json", "run.json"])
     err = capsys.readouterr().err.strip()
-    assert code == status
+    assert code == status, err
     assert err == f"error: interrupted ({signal.Signals(signum).name})"
     assert {p.name for p in work.iterdir()} == before  # neither the outputs nor their temporary names
     assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL  # the handler is the command's only
