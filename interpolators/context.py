@@ -288,9 +288,12 @@ class Dialect:
         LinuxCNC, ``src/emc/rs274ngc/interp_convert.cc`` ``convert_feed_mode``: ``settings->feed_rate = 0.0`` on
         each G_94 and G_95, so ``F100 / G1 X1 / G94 / G1 X2`` is "Cannot do g1 with zero feed rate" in rs274; the
         block's own F applies after it, ``G94 G1 X2 F50`` runs). False: only a change of feed mode clears it (G94
-        after G93, G95 on or off; grbl ``gcode.c``: "feed rate is undefined" after G93 -> G94). Fanuc and Haas: their
-        manuals give G94 as the feed-per-minute mode and G93's cancel, naming no reset of a modal F (our reading:
-        the F stays).
+        after G93, G95 on or off; grbl ``gcode.c``: "feed rate is undefined" after G93 -> G94). LinuxCNC's G-code
+        reference ("G93, G94, G95"; Tormach's PathPilot copy, https://tormach.com/feed-rate-mode-g93-g94-and-g95)
+        words it "A new feed rate is not specified after switching to G94 or G95" as an error. Fanuc and Haas: their
+        manuals give G94 as the feed-per-minute mode and G93's cancel ("G93, Inverse Time Mode OFF and G94, Feed
+        Per Minute ON", http://diy.haascnc.com/reference-docs/inverse-time-and-feed-minute-modes), naming no reset
+        of a modal F (our reading: the F stays).
     """
 
     name: str = "linuxcnc"
