@@ -26,7 +26,7 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   straight rapid instead); it carries the ``line``/``text`` and the feed of the block it leads into
   (of the last feed move before it when that block is a rapid). A smaller turn has no corner: a line
   starts where the tool is, an arc (which LinuxCNC starts there as a slight spiral) is reached by a
-  short bridging line.
+  short bridging line; LinuxCNC's gouge check measures that arc's sweep from where the tool was.
 * **Inside corners** (``beta < -small`` or ``beta > pi + small``, and the near reversals of the
   "h" and "m" shapes: ``beta`` within ``small`` of ``pi`` onto a line after an arc, or into an arc,
   the tool is outside of): both offset elements end where they meet, by LinuxCNC's formulas (after
