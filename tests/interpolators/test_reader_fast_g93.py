@@ -131,7 +131,7 @@ def test_the_errors_name_the_line_and_the_missing_feed(name):
     line = len(ERRORS[name].splitlines())
     assert got[0].startswith(f"error: t.ngc:{line}:"), got[0]
     assert "inverse time (G93) without an F word" in got[0] or "F > 0 [1/min]" in got[0] \
-        or "G94 or G95 reset the feed" in got[0], got[0]
+        or "G94 after G93 resets the feed" in got[0], got[0]
 
 
 @pytest.mark.parametrize("dialect", ["fanuc", "haas"])
@@ -267,7 +267,7 @@ G94_AGAIN = "G21 G90\nF100.\nG1 X1.\nG94\nG1 X2.\nM2\n"
 @pytest.mark.parametrize("shortcuts", [True, False])
 def test_linuxcnc_g94_clears_the_feed_even_when_active(shortcuts):
     """LinuxCNC: the G94 word clears F100 though G94 is already on; the next feed move has no feed (both ways)."""
-    with pytest.raises(InputError, match=r"t\.ngc:5:.*G94 or G95 reset the feed"):
+    with pytest.raises(InputError, match=r"t\.ngc:5:.*a G94/G95 word cleared the feed"):
         parse_iso(G94_AGAIN, context=FIVE_AXIS.with_dialect("linuxcnc"), source="t.ngc", shortcuts=shortcuts)
     # the block's own F comes after its G94 (rs274 runs ``G94 G1 X2 F50`` at F50)
     text = G94_AGAIN.replace("G1 X2.", "G1 X2. F50.").replace("G94\n", "G94 G1 X1.5 F40.\n")
