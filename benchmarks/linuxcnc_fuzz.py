@@ -402,6 +402,21 @@ def chunk_inverse_time(w: _Writer) -> None:
             w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]]) or 'X' + w.num(w.pos[0])} F{w.rng.randint(1, 60)}")
     w.inverse_time = False
     w.emit(f"G94 {w.feed()} G90")
+    w.incremental = False  # the G90 above
+    if w.rng.random() < 0.3:
+        # G94 again while G94 is on: LinuxCNC clears the feed all the same (interp_convert.cc convert_feed_mode),
+        # so the next feed move carries its F; rarely it does not, which rs274 refuses ("Cannot do g1 with zero
+        # feed rate"): a reader that kept the old F shows as "vcnc only"
+        w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]]) or 'X' + w.num(w.pos[0])}")
+        again = w.rng.choice(["G94", "G94 G1", "G94 G0"])
+        feed = "" if w.rng.random() < 0.15 else " " + w.feed()
+        if again == "G94":
+            w.emit(again)
+        else:
+            w.emit(f"{again} {w.axes([w.coord(), w.coord(), w.pos[2]]) or 'X' + w.num(w.pos[0])}"
+                   f"{feed if again == 'G94 G1' else ''}")
+        w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]]) or 'X' + w.num(w.pos[0])}"
+               f"{'' if again == 'G94 G1' else feed}")
 
 
 def chunk_parameters(w: _Writer) -> None:

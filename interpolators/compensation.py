@@ -26,7 +26,7 @@ Compensation" chapter, https://linuxcnc.org/docs/html/gcode/tool-compensation.ht
   straight rapid instead); it carries the ``line``/``text`` and the feed of the block it leads into
   (of the last feed move before it when that block is a rapid). A smaller turn has no corner: a line
   starts where the tool is, an arc (which LinuxCNC starts there as a slight spiral) is reached by a
-  short bridging line.
+  short bridging line; LinuxCNC's gouge check measures that arc's sweep from where the tool was.
 * **Inside corners** (``beta < -small`` or ``beta > pi + small``, and the near reversals of the
   "h" and "m" shapes: ``beta`` within ``small`` of ``pi`` onto a line after an arc, or into an arc,
   the tool is outside of): both offset elements end where they meet, by LinuxCNC's formulas (after
@@ -152,6 +152,9 @@ class _Offset:
     pc: np.ndarray | None = None  # programmed arc centre (2,) [mm], LinuxCNC's for the inside corners
     pr: float = 0.0  # offset radius about ``pc`` at the programmed end [mm]
     grown: float = 0.0  # sweep [rad] an arc gained at Fanuc outside corners (no gouge)
+    # LinuxCNC's start of an arc after a turn of at most ``small``: where the tool is (convert_arc_comp2,
+    # "convex, one arc needed": set_endpoint(cx, cy)), its sweep checked from there (see _check_gouges)
+    spiral_from: np.ndarray | None = None
 
     def tangent(self, point: np.ndarray) -> np.ndarray:
         """Unit tangent at ``point`` (a point of the element)."""
@@ -436,9 +439,15 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius
     for el_a, el_b in zip(chain[:-1], chain[1:]):
         if math.hypot(*(el_a.b - el_b.a)) <= 1e-7:
             el_b.a = el_a.b.copy()
+            if el_b.kind == "arc":
+                el_a.spiral_from = None  # flushed unchecked (dequeue_canons)
             continue
         corner = _flat(blocks[el_a.index].target, plane)
         kind, theta, beta = _corner_kind(el_a, el_b, corner, s, small)
+        if kind != "concave" and el_b.kind == "arc":
+            # convert_arc_comp2 flushes the queued move unchecked at an outside corner (dequeue_canons); into a
+            # line, at an inside corner, at G40 and at the program end move_endpoint_and_flush checks it
+            el_a.spiral_from = None
         if kind == "concave":
             x = _concave_point(el_a, el_b, corner, theta, beta, s=s, radius=radius)
             el_a.b, el_b.a = x.copy(), x.copy()
@@ -456,6 +465,8 @@ def _join_corners(chain: list[_Offset], blocks: list[Block], *, s: float, radius
             el_b.a, el_b.a0 = el_a.b.copy(), el_a.b.copy()
         else:  # LinuxCNC starts the arc where the tool is (a spiral); vcnc bridges the gap by a line
             corners[el_b.index] = [(None, el_a.b.copy(), el_b.a.copy())]
+            if rule == "linuxcnc":
+                el_b.spiral_from = el_a.b.copy()
     return corners
 
 
@@ -617,7 +628,10 @@ def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radiu
     """CompensationError where a trimmed element gouges, by ``move_endpoint_and_flush`` (interp_queue.cc):
     a line that now runs against its programmed direction (the entry: against its offset direction), or
     an arc whose sweep grew by more than 0.0254 (mm programs) or 0.001 (inch programs) [rad] over the
-    programmed sweep and what Fanuc's outside corners added.
+    programmed sweep and what Fanuc's outside corners added. An arc LinuxCNC starts where the tool is (after a
+    turn of at most ``small``: ``spiral_from``) sweeps from there, so that a start a little behind its offset
+    start grows it (rs274 refuses an inch program's arcs of 1.2 deg turn so: tests/interpolators/
+    test_compensation_spiral.py).
 
     ``ends_only`` (LinuxCNC's rule): a line is checked only when its end was moved. LinuxCNC checks a queued
     line when an inside corner moves its end point (the direction from its start to the new end against the
@@ -635,7 +649,7 @@ def _check_gouges(chain: list[_Offset], ent: _Offset, blocks: list[Block], radiu
                 continue
             what = "Straight traverse" if blocks[el.index].kind == "rapid" else "Straight feed"
         else:
-            sweep = _sweep(el, el.a, el.b)
+            sweep = _sweep(el, el.a if el.spiral_from is None else el.spiral_from, el.b)
             programmed = _sweep(el, el.a0, el.b0) if el is ent else abs(blocks[el.index].segment.sweep)
             if sweep <= programmed + el.grown + grow:
                 continue

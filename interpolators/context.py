@@ -283,6 +283,17 @@ class Dialect:
         an FMAX block's corner with M112: "L X+123.723 Y+25.491 R0 FMAX M124 T0.01",
         https://azmanual.top/manuals/797829/heidenhain-tnc-407-280-580-user-manual.html?page=167); our reading: it
         is blended.
+    feed_mode_clears_feed : bool
+        Whether every G94 or G95 word sets the feed rate to 0, even when that feed mode is already active (True:
+        LinuxCNC, ``src/emc/rs274ngc/interp_convert.cc`` ``convert_feed_mode``: ``settings->feed_rate = 0.0`` on
+        each G_94 and G_95, so ``F100 / G1 X1 / G94 / G1 X2`` is "Cannot do g1 with zero feed rate" in rs274; the
+        block's own F applies after it, ``G94 G1 X2 F50`` runs). False: only a change of feed mode clears it (G94
+        after G93, G95 on or off; grbl ``gcode.c``: "feed rate is undefined" after G93 -> G94). LinuxCNC's G-code
+        reference ("G93, G94, G95"; Tormach's PathPilot copy, https://tormach.com/feed-rate-mode-g93-g94-and-g95)
+        words it "A new feed rate is not specified after switching to G94 or G95" as an error. Fanuc and Haas: their
+        manuals give G94 as the feed-per-minute mode and G93's cancel ("G93, Inverse Time Mode OFF and G94, Feed
+        Per Minute ON", http://diy.haascnc.com/reference-docs/inverse-time-and-feed-minute-modes), naming no reset
+        of a modal F (our reading: the F stays).
     """
 
     name: str = "linuxcnc"
@@ -296,6 +307,7 @@ class Dialect:
     user_m_path: tuple[str, ...] = ()
     initial_feed: float | None = None
     rapid_feed_stop: bool = True
+    feed_mode_clears_feed: bool = True
 
     def __post_init__(self) -> None:
         if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
@@ -317,13 +329,14 @@ class Dialect:
 #: in milliseconds without a decimal point); grbl wiki (G4 P in seconds).
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
-    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True),
-    "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True),
-    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl", rapid_feed_stop=False),
+    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False),
+    "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False),
+    "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl", rapid_feed_stop=False,
+                    feed_mode_clears_feed=False),
     # Fadal VMC (interpolators.iso_fadal): Format 2 (Fanuc-like) with Fadal's own words; units and path mode
     # are machine settings there (G20/G21 only check them), vcnc's defaults (mm, continuous path) apply
-    "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True),
-    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s", rapid_feed_stop=False),
+    "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False),
+    "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s", rapid_feed_stop=False, feed_mode_clears_feed=False),
 })
 
 

@@ -800,7 +800,11 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
     if "feed mode" in gcodes:
         # LinuxCNC convert_feed_mode: G93 inverse time; G94 resets the feed rate to 0 (an F must follow)
         key, w = gcodes["feed mode"]
-        if (key == 940 and st.inverse_time) or (key == 950) != st.per_rev:
+        changed = (key == 940 and st.inverse_time) or (key == 950) != st.per_rev
+        # on LinuxCNC every G94/G95 word does, the mode already active or not (Dialect.feed_mode_clears_feed)
+        again = (key != 930 and st.context.dialect.feed_mode_clears_feed
+                 and (st.feed is not None or st.feed_per_rev is not None))
+        if changed or again:
             # G95 (units per revolution) and G94 after it reset the feed as well: an F must follow
             st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
             st.feed_reset = True

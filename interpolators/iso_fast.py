@@ -19,7 +19,8 @@ Under G93 inverse time (LinuxCNC G-code reference, "G93, G94, G95: Feed Rate Mod
 move takes its time from the F word of its own block, through the same :func:`interpolators.iso_motion.move_feed`; the
 F does not become the modal feed, and a G0 ignores it. A G93 or G94 word on the move's line is taken as the general
 path's ``_modes`` takes it (LinuxCNC interp_convert.cc ``convert_feed_mode``): G94 after G93 clears the modal feed,
-so the next feed move needs an F. A feed move without an F under G93 (rs274ngc: "F word missing with inverse time
+and on LinuxCNC every G94 does (:attr:`interpolators.context.Dialect.feed_mode_clears_feed`), so the next feed move
+needs an F. A feed move without an F under G93 (rs274ngc: "F word missing with inverse time
 g1 move" / "arc move"; Haas: "each non-rapid motion block must have its own feedrate"), F0 and two feed-mode words
 go the general way, which words the error.
 
@@ -106,6 +107,7 @@ class PlainMoves:
                               if letter.lower() in st.context.extra_axes}
         self.fanuc = st.context.dialect.name == "fanuc"
         self.grbl = st.context.dialect.arc_rule == "grbl"
+        self.g94_clears = st.context.dialect.feed_mode_clears_feed
 
     def reset(self) -> None:
         """The general path ran a block: judge the state again before the next plain move."""
@@ -142,7 +144,8 @@ class PlainMoves:
         # the feed mode after the block's G93/G94 (LinuxCNC convert_feed_mode; iso._modes): G94 after G93 clears the
         # modal feed, G93 keeps it; under G93 a feed move takes its time from its own F
         inverse = st.inverse_time if mode is None else mode
-        cleared = st.inverse_time and mode is False
+        # LinuxCNC clears it on every G94 (Dialect.feed_mode_clears_feed), G94 already active or not
+        cleared = mode is False and (st.inverse_time or self.g94_clears and st.feed is not None)
         scale = INCH if st.inch else 1.0
         pos = st.pos
         target = pos.copy()

@@ -323,7 +323,8 @@ def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
     elif st.subprogram:
         why += " (this file ends with M99: a subprogram, whose feed comes from the program that calls it)"
     elif st.feed_reset:
-        why = "G94 after G93 resets the feed; no F word since"
+        why = ("a G94/G95 word cleared the feed (G94 after G93 resets the feed on every control; on LinuxCNC each "
+               "G94/G95 word does, interp_convert.cc convert_feed_mode); no F word since")
     vacant = re.search(r"F\s*#\s*(\d+)", re.sub(r"\([^)]*\)", "", where.text or ""), re.I)
     if vacant and not st.feed_zero:  # "F#650" with #650 unset: a vacant variable leaves its word out (iso_params)
         why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"

@@ -31,6 +31,7 @@ from benchmarks.gcode_corpus import corpus_dir, without_remapped_m
 from interpolators.iso import parse_iso
 from tests.interpolators.block_digest import corpus_programs
 from tests.interpolators.test_reader_fast_rotary import FIVE_AXIS, assert_same
+from vcnc.core.errors import InputError
 
 DIALECTS = ("linuxcnc", "fanuc", "haas", "grbl")
 
@@ -70,7 +71,7 @@ PROGRAMS = {
               "G2 X28. Y0. Z-1. R5.01 C30. F1.5\nG20 G3 X1.5 Y0. R.2 F4.\n",
     "G93 again after G94": "G21 G90 G94 F500.\nG1 X1. Y1.\nG93 G1 X2. F10.\nG1 X3. Y2. A5. F20.\nG94 G1 X4. F400.\n"
                            "G93 X5. F4.\nG94 F300.\nG1 X6.\n",
-    "G94 twice": "G21 G90 F500.\nG93 G1 X1. F2.\nG94 G1 X2. F300.\nG94 G1 X3.\n",
+    "G94 twice, an F after the second": "G21 G90 F500.\nG93 G1 X1. F2.\nG94 G1 X2. F300.\nG94 G1 X3. F200.\nX4.\n",
     # LinuxCNC's note on a G1 alone reads the modal feed, which a G93 F leaves as it was
     "a G1 alone after a G93 move": "G21 G90\nG93 G1 X1. F2.\nG1\nG94 F300.\nG1 X2.\n",
 }
@@ -95,6 +96,10 @@ ERRORS = {
     "G93 with a cycle after": "G21 G90 G93 G98\nG1 X1. F2.\nG81 X5. Y5. Z-2. R1. F100.\n",
     "G93.0 and G94.0": "G21 G90\nG93.0 G1 X1. F2.\nG94.0 G1 X2. F300.\n",
     "G93 twice on one line": "G21 G90 F500.\nG93 G93 G1 X1. F2.\n",
+    # LinuxCNC refuses the last move (every G94 clears the feed: Dialect.feed_mode_clears_feed), the others read F300
+    "G94 twice": "G21 G90 F500.\nG93 G1 X1. F2.\nG94 G1 X2. F300.\nG94 G1 X3.\n",
+    "G94 again without F": "G21 G90 G94 F100.\nG1 X1.\nG94\nG1 X2.\n",
+    "G94 again on the move's line": "G21 G90 G94 F100.\nG1 X1.\nG94 G1 X2.\nG1 X3. F50.\n",
     # the message names the F0 only while no F > 0 came after it (a G93 F too)
     "F0, G93 moves, G94 without F": "G21 G90\nF0\nG93 G1 X1. F2.\nG94\nG1 X2.\n",
 }
@@ -252,3 +257,37 @@ def test_corpus_programs_with_g93_read_alike():
                 got = assert_same(body, context)
                 checked += len(got) if not got[0].startswith("error") else 0
     assert checked > 1000
+
+
+#: Hand-written (the brief's case, checked with rs274): ``F100 / G1 X1 / G94 / G1 X2`` is "Cannot do g1 with zero
+#: feed rate" in LinuxCNC's rs274 (interp_convert.cc ``convert_feed_mode`` sets the feed rate to 0 on every G94).
+G94_AGAIN = "G21 G90\nF100.\nG1 X1.\nG94\nG1 X2.\nM2\n"
+
+
+@pytest.mark.parametrize("shortcuts", [True, False])
+def test_linuxcnc_g94_clears_the_feed_even_when_active(shortcuts):
+    """LinuxCNC: the G94 word clears F100 though G94 is already on; the next feed move has no feed (both ways)."""
+    with pytest.raises(InputError, match=r"t\.ngc:5:.*a G94/G95 word cleared the feed"):
+        parse_iso(G94_AGAIN, context=FIVE_AXIS.with_dialect("linuxcnc"), source="t.ngc", shortcuts=shortcuts)
+    # the block's own F comes after its G94 (rs274 runs ``G94 G1 X2 F50`` at F50)
+    text = G94_AGAIN.replace("G1 X2.", "G1 X2. F50.").replace("G94\n", "G94 G1 X1.5 F40.\n")
+    blocks = parse_iso(text, context=FIVE_AXIS.with_dialect("linuxcnc"), shortcuts=shortcuts).blocks
+    assert [b.feed for b in blocks[-2:]] == [pytest.approx(40.0 / 60.0), pytest.approx(50.0 / 60.0)]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas", "grbl"])
+@pytest.mark.parametrize("shortcuts", [True, False])
+def test_other_controls_keep_the_feed_over_a_repeated_g94(dialect, shortcuts):
+    """Fanuc, Haas, grbl: G94 under G94 changes nothing; the move after it runs at F100."""
+    blocks = parse_iso(G94_AGAIN, context=FIVE_AXIS.with_dialect(dialect), shortcuts=shortcuts).blocks
+    assert blocks[-1].feed == pytest.approx(100.0 / 60.0)
+
+
+def test_linuxcnc_g95_again_clears_the_feed_per_revolution():
+    """rs274: ``G95 F0.1 S1000 M3 / G1 X1 / G95 / G1 X2`` is "Cannot do g1 with zero feed rate" (convert_feed_mode
+    sets the feed rate to 0 on each G95 as well); Fanuc keeps F0.1 per revolution."""
+    text = "G21 G90 S1000 M3\nG95 F0.1\nG1 X1.\nG95\nG1 X2.\nM2\n"
+    with pytest.raises(InputError, match=r"t\.ngc:5:"):
+        parse_iso(text, context=FIVE_AXIS.with_dialect("linuxcnc"), source="t.ngc")
+    last = parse_iso(text, context=FIVE_AXIS.with_dialect("fanuc")).blocks[-1]
+    assert last.feed == pytest.approx(0.1 * 1000 / 60.0)
