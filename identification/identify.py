@@ -146,10 +146,7 @@ def fit_reduced_model(
         With ``fit`` holding the prediction of the capture (``rms_um``, ``max_um``) and the solver
         report (``solver``), ``method`` (e.g. ``"exact+oe"``), ``bounds`` and ``delay_s``.
     """
-    if method not in METHODS:
-        raise IdentificationError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
-    if refine not in REFINEMENTS:
-        raise IdentificationError(f"unknown refinement {refine!r}; expected one of {', '.join(REFINEMENTS)}")
+    _check_choices(method, refine)
     opt = regressor_options or RegressorOptions()
     original = capture
     options = {"method": method, "bounds": bounds, "refine": refine, "regressor_options": regressor_options,
@@ -193,13 +190,30 @@ def fit_reduced_model(
         params, poles, err, delay_s, filter_s = _with_setpoint_filter(original, axis, params, poles, err, T, b,
                                                                       delay_s, fit, free_delay=free)
         fit.update(error_metrics(err))
-    if opt.friction != "two-way":
-        recorded = np.asarray(original.reference[:, original.axis_index(axis)], float)
-        params, err = _mirrored_friction(params, err, recorded, T, opt.friction, delay_s=delay_s, filter_s=filter_s)
-        fit.update(error_metrics(err))
+    params = _one_way_friction(original, axis, params, err, T, opt, fit, delay_s=delay_s, filter_s=filter_s)
     check_scale(params, x.size * T, axis, original.source)
     return ReducedAxisModel(parameters=params, sample_time=T, axis=axis, method=label, poles=poles, bounds=b.as_dict(),
                             fit=fit, delay_s=delay_s, setpoint_filter_s=filter_s)
+
+
+def _check_choices(method: str, refine: str) -> None:
+    """An :class:`IdentificationError` naming a ``method`` or ``refine`` that :func:`fit_reduced_model` lacks."""
+    if method not in METHODS:
+        raise IdentificationError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    if refine not in REFINEMENTS:
+        raise IdentificationError(f"unknown refinement {refine!r}; expected one of {', '.join(REFINEMENTS)}")
+
+
+def _one_way_friction(original: Capture, axis: str, params: dict, err: np.ndarray, T: float, opt: RegressorOptions,
+                      fit: dict, *, delay_s: float, filter_s: float) -> dict:
+    """``params`` with the untravelled direction's Coulomb level set to the mirror of the travelled one on a record
+    that moves one way only (:func:`_mirrored_friction`; ``fit``'s error metrics updated), else as they are."""
+    if opt.friction == "two-way":
+        return params
+    recorded = np.asarray(original.reference[:, original.axis_index(axis)], float)
+    params, err = _mirrored_friction(params, err, recorded, T, opt.friction, delay_s=delay_s, filter_s=filter_s)
+    fit.update(error_metrics(err))
+    return params
 
 
 def _after_refinement(stats: SufficientStatistics, narrow: SolveResult, params: dict, poles: dict, err: np.ndarray,
