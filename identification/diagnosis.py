@@ -99,6 +99,7 @@ __all__ = [
     "diagnose_report",
     "refit",
     "coulomb_mean_at_rest",
+    "after_table_lines",
     "with_coulomb_mean",
     "stribeck_static_ratios",
     "no_stribeck_curve",
@@ -1621,10 +1622,6 @@ def format_before_after(model: ReducedAxisModel) -> str:
     """Text table of :func:`before_after_rows` for the command line (errors in um, mdeg on a rotary axis)."""
     rows = before_after_rows(model)
     u = axis_unit(model.axis, small=True)
-
-    def f(x):
-        return "      -" if x is None or not math.isfinite(float(x)) else f"{float(x):9.3f}"
-
     # an effect's row is named by the effect; what was fitted follows the table, wrapped (a time-periodic load's
     # summary made a 130-character label and the table 190 columns wide)
     labels = [f"+ {r['name']}" if r.get("name") else r["label"] for r in rows]
@@ -1633,8 +1630,25 @@ def format_before_after(model: ReducedAxisModel) -> str:
             f"{'valid max':>9}   [{u}]")
     lines = [head, "-" * len(head)]
     for label, r in zip(labels, rows, strict=True):
-        lines.append(f"{label:<{width}}  {f(r.get('record_rms_um'))}  {f(r['identification_rms_um'])}  "
-                     f"{f(r['identification_max_um'])}  {f(r['validation_rms_um'])}  {f(r['validation_max_um'])}")
+        lines.append(f"{label:<{width}}  {_cell(r.get('record_rms_um'))}  {_cell(r['identification_rms_um'])}  "
+                     f"{_cell(r['identification_max_um'])}  {_cell(r['validation_rms_um'])}  "
+                     f"{_cell(r['validation_max_um'])}")
+    return "\n".join(lines + after_table_lines(model))
+
+
+def _cell(x) -> str:  # noqa: ANN001 - a number, None or NaN
+    """A table cell [um or mdeg]: ``-`` where there is no finite value."""
+    return "      -" if x is None or not math.isfinite(float(x)) else f"{float(x):9.3f}"
+
+
+def after_table_lines(model: ReducedAxisModel) -> list[str]:
+    """The lines :func:`format_before_after` prints after its table, each a paragraph (what each effect fitted,
+    wrapped at :data:`TABLE_COLUMNS`; which samples; the split; refusals; parameters not pinned; the folds; warnings;
+    the residual): the command line's summary and the HTML report say the same."""
+    rows = before_after_rows(model)
+    u = axis_unit(model.axis, small=True)
+    f = _cell
+    lines = []
     for r in rows:
         if r.get("name") and r.get("summary"):
             lines.append(textwrap.fill(f"+ {r['name']}: {r['summary']}", TABLE_COLUMNS, subsequent_indent="    "))
@@ -1660,4 +1674,4 @@ def format_before_after(model: ReducedAxisModel) -> str:
         lines.append(f"warning: {w}")
     if (v.get("unexplained") or {}).get("statement"):
         lines.append(f"residual: {v['unexplained']['statement']}")
-    return "\n".join(lines)
+    return lines

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import logging
 
-from identification.diagnosis import TABLE_COLUMNS, format_before_after
+from identification.diagnosis import TABLE_COLUMNS, after_table_lines, before_after_rows, format_before_after
 from identification.reduced_model import ReducedAxisModel
 from identification.synthetic import FADAL_PID_X
 from vcnc.cli import main
@@ -35,6 +35,19 @@ def test_the_table_keeps_to_100_columns_and_says_what_each_effect_fitted_below_i
     described = " ".join(line.strip() for line in lines if "period 0.018183" in line or line.startswith("    "))
     assert described.startswith("+ time_periodic: period 0.018183 s") and described.endswith("1372 -> 1372 mm/s^2")
     assert text.count("reduced-model poles on the bounds") == 1
+
+
+def test_the_lines_after_the_table_are_the_summarys_own_whatever_the_table_holds():
+    """The HTML report prints the summary's lines after its table from ``after_table_lines``, not by counting the
+    table's lines (review35: the report sliced the text at ``2 + len(rows)``, which a wrapped description or a
+    changed layout would have shifted)."""
+    model = _diagnosed()
+    lines = format_before_after(model).splitlines()
+    after = after_table_lines(model)
+    assert lines[2 + len(before_after_rows(model)):] == "\n".join(after).splitlines()
+    assert after[0].startswith("+ time_periodic: period 0.018183 s")  # a wrapped paragraph is one entry
+    assert "\n" in after[0] and any(line == "warning: reduced-model poles on the bounds (zeta = 2 at its upper bound)"
+                                    for line in after)
 
 
 def test_a_diagnosis_warning_is_not_also_logged(tmp_path, capsys, caplog):

@@ -494,7 +494,7 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
     model.plot(fig.subplots(2, 2, sharex=True))
     rep.figure("frf", fig, caption="Tracking and disturbance FRFs of the identified model (cf. Fig. 3.5)")
     if model.validation:
-        from identification.diagnosis import before_after_rows, format_before_after, report_figure
+        from identification.diagnosis import after_table_lines, before_after_rows, report_figure
 
         rep.heading("Residual diagnosis: effects the reduced model lacks")
         rows = before_after_rows(model)
@@ -502,7 +502,7 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
                                                   for r in rows],
                   caption=f"RMS and max error [{u}] of the reduced model, each effect in turn, and the final model")
         # the summary's lines after its table: which samples, the folds, refusals, warnings, the residual
-        for line in format_before_after(model).splitlines()[2 + len(rows):]:
+        for line in after_table_lines(model):
             rep.text(line.strip())
         axs = report_figure(capture, model, axis=axis)
         rep.figure("residual", np.ravel(axs)[0].figure,
