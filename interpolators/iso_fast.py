@@ -103,8 +103,10 @@ class PlainMoves:
         self.extra_offset: list[float] = []
         # the words of the axes beyond X Y Z the machine has -> their column in State.extra; a word of another
         # (an error, or with value 0 a note) goes the general way
-        self.extra_columns = {letter: i for i, letter in enumerate(EXTRA_LETTERS)
-                              if letter.lower() in st.context.extra_axes}
+        extra_columns = {letter: i for i, letter in enumerate(EXTRA_LETTERS) if letter.lower() in st.context.extra_axes}
+        # a coordinate word -> (which of the block's axes, centre, extra words, its column): one rule for all three
+        self.slots = {**{a: (0, i) for a, i in _AXIS.items()}, **{c: (1, i) for c, i in _CENTRE.items()},
+                      **{e: (2, i) for e, i in extra_columns.items()}}
         self.fanuc = st.context.dialect.name == "fanuc"
         self.grbl = st.context.dialect.arc_rule == "grbl"
         self.g94_clears = st.context.dialect.feed_mode_clears_feed
@@ -222,20 +224,17 @@ class PlainMoves:
         axes: dict[int, float] = {}
         centre: dict[int, float] = {}
         extra: dict[int, float] = {}
-        extra_columns = self.extra_columns
+        found = (axes, centre, extra)
+        slots = self.slots
         fanuc = self.fanuc
         for w in words:
             letter = w.letter
-            if letter in _AXIS:
-                i = _AXIS[letter]
-                if i in axes or fanuc and "." not in w.text:
+            slot = slots.get(letter)
+            if slot is not None:  # X Y Z, I J K, or an extra axis the machine has: once, Fanuc's with its point
+                coordinates, i = found[slot[0]], slot[1]
+                if i in coordinates or fanuc and "." not in w.text:
                     return None
-                axes[i] = w.value
-            elif letter in _CENTRE:
-                i = _CENTRE[letter]
-                if i in centre or fanuc and "." not in w.text:
-                    return None
-                centre[i] = w.value
+                coordinates[i] = w.value
             elif letter == "G":
                 if w.value in _MOTION and motion is None:
                     motion = _MOTION[w.value]
@@ -255,11 +254,6 @@ class PlainMoves:
                 if radius is not None or fanuc and "." not in w.text:
                     return None
                 radius = w.value
-            elif letter in extra_columns:
-                i = extra_columns[letter]
-                if i in extra or fanuc and "." not in w.text:
-                    return None
-                extra[i] = w.value
             else:
                 return None
         return motion, number, feed, axes, centre, extra, mode, radius
