@@ -44,7 +44,7 @@ from vcnc.capture import Capture
 T = 0.001
 
 
-def _capture_and_model(idle_s: float = 4.0, load=None) -> tuple[Capture, ReducedAxisModel]:
+def _capture_and_model(idle_s: float = 4.0, load=None, seed: int = 1) -> tuple[Capture, ReducedAxisModel]:
     moves = random_moves_reference(moves=12, span=10.0, feed=100.0, acceleration=1000.0, sample_time=T, dwell=0.3,
                                    seed=3)
     idle = int(idle_s / T)
@@ -53,7 +53,7 @@ def _capture_and_model(idle_s: float = 4.0, load=None) -> tuple[Capture, Reduced
     load = load or PositionPeriodic(period=2.0, coefficients=((1500.0, 800.0),))
     x = augment(reduced, [load]).simulate(xr)
     x[:idle] = xr[0]  # the truth rests (stiction holds it against the load), the model of the load moves
-    x = x + np.random.default_rng(1).normal(0.0, 0.3e-3, x.size)
+    x = x + np.random.default_rng(seed).normal(0.0, 0.3e-3, x.size)
     cap = Capture(t=np.arange(xr.size) * T, axes=("x",), reference=xr[:, None], measured=x[:, None],
                   meta={"source": "test"})
     return cap, reduced
