@@ -296,27 +296,50 @@ def folds(reference: np.ndarray, active: np.ndarray, k: int = 4, *, min_share: f
         j = i - 1 if i == len(fl) - 1 or (i > 0 and fl[i - 1].active <= fl[i + 1].active) else i + 1
         a, b = min(i, j), max(i, j)
         fl[a:b + 1] = [_fold(xr, active, fl[a].start, fl[b].stop)]
-    warnings = []
     if len(fl) < 2:
         raise IdentificationError(f"the capture's motion ({nact} active samples) cannot be cut into two validation "
                                   "folds at points where the reference stands still or reverses")
+    warnings = _fold_warnings(fl, min_share)
+    return FoldPlan(folds=tuple(fl), active=active, warnings=tuple(warnings))
+
+
+def _lacks(f: Fold, min_share: float) -> str | None:
+    """The direction fold ``f`` has (almost) no motion in, or None."""
+    if min(f.positive, f.negative) >= min_share * f.active:
+        return None
+    return "negative" if f.negative < f.positive else "positive"
+
+
+def _fold_warnings(fl: list[Fold], min_share: float) -> list[str]:
+    """What the folds ``fl`` lack, each said once: folds at rest or holding only a settling margin; the folds that
+    have no motion in a direction, in one warning per direction (a one-way record's folds all lack the same one:
+    it was said once per fold, and again for every fold's training folds); a fold whose refit trains on folds
+    without a direction the fold itself moves in (its held-out error extrapolates the friction of that direction).
+    """
+    warnings = []
+    one_way: dict[str, list[int]] = {}
     for i, f in enumerate(fl):
         if f.active == 0:
             warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) is at rest: it validates nothing")
         elif f.positive + f.negative == 0:
             warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) holds only the settling margin of "
                             "a move (the reference does not move in it): it validates the settling only")
-        elif min(f.positive, f.negative) < min_share * f.active:
-            missing = "negative" if f.negative < f.positive else "positive"
-            warnings.append(f"validation fold {i + 1} (samples {f.start}..{f.stop}) has no {missing} motion: "
-                            "direction-dependent effects are not validated there")
+        elif missing := _lacks(f, min_share):
+            one_way.setdefault(missing, []).append(i)
+    for missing, idx in one_way.items():
+        which = (f"fold {idx[0] + 1} (samples {fl[idx[0]].start}..{fl[idx[0]].stop}) has" if len(idx) == 1 else
+                 f"folds {', '.join(str(i + 1) for i in idx)} (samples "
+                 f"{', '.join(f'{fl[i].start}..{fl[i].stop}' for i in idx)}) have")
+        warnings.append(f"validation {which} no {missing} motion: direction-dependent effects are not validated there")
     for i, f in enumerate(fl):  # the folds a held-out fold's refit trains on (identification.diagnosis)
         pos = sum(g.positive for j, g in enumerate(fl) if j != i)
         neg = sum(g.negative for j, g in enumerate(fl) if j != i)
         act = sum(g.active for j, g in enumerate(fl) if j != i)
         if f.positive + f.negative > 0 and act > 0 and min(pos, neg) < min_share * act:
             missing = "negative" if neg < pos else "positive"
+            if _lacks(f, min_share) == missing:
+                continue  # the fold does not move that way either: nothing of it is extrapolated
             warnings.append(f"the folds other than fold {i + 1}, which its refit is trained on, have no {missing} "
                             f"motion: fold {i + 1}'s held-out error extrapolates what depends on the direction "
                             "(friction) from the other direction")
-    return FoldPlan(folds=tuple(fl), active=active, warnings=tuple(warnings))
+    return warnings

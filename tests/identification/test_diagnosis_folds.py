@@ -111,6 +111,21 @@ def test_a_capture_that_never_moves_is_an_error_and_one_way_motion_a_warning():
     assert any("no negative motion" in w for w in plan.warnings), plan.warnings
 
 
+def test_a_one_way_records_missing_direction_is_said_once_with_its_folds():
+    """Moves all forwards, a rest after each (coulombjoint36): every fold lacks the negative direction, said in one
+    warning naming the folds (merged down to two, as folds lacking a direction are); no fold's refit extrapolates a
+    direction the fold itself does not move in (before: one warning per fold and one per fold's training folds, the
+    same fact said four times)."""
+    T = 1e-3
+    step = np.concatenate([np.linspace(0.0, 5.0, 500), np.full(300, 5.0)])
+    one_way = np.concatenate([np.zeros(300), *(5.0 * k + step for k in range(8))])
+    plan = folds(one_way, active_mask(one_way, one_way, T), 4)
+    assert len(plan.folds) == 2
+    spans = ", ".join(f"{f.start}..{f.stop}" for f in plan.folds)
+    assert list(plan.warnings) == [f"validation folds 1, 2 (samples {spans}) have no negative motion: "
+                                   "direction-dependent effects are not validated there"]
+
+
 def test_a_fold_whose_refit_trains_on_one_direction_only_is_named():
     """Two folds, one of which moves one way only (review28's reproducer was a G3 full circle's x on fadal-pid):
     the other fold's refit, trained on it alone, fits the missing direction's friction on nothing; that fold's
