@@ -100,6 +100,7 @@ __all__ = [
     "refit",
     "coulomb_mean_at_rest",
     "after_table_lines",
+    "wrapped_lines",
     "with_coulomb_mean",
     "stribeck_static_ratios",
     "no_stribeck_curve",
@@ -1638,6 +1639,22 @@ def unpinned_lines(model: ReducedAxisModel) -> list[str]:
 #: Width the command line's table of :func:`format_before_after` and an effect's description under it keep to
 #: [characters].
 TABLE_COLUMNS = 100
+
+
+def wrapped_lines(text: str, width: int = TABLE_COLUMNS) -> list[str]:
+    """``text`` as the command line prints it: each of its lines kept when it fits in ``width`` columns, else
+    wrapped at word boundaries, continued 4 columns in (a word longer than the width, a path, stays whole). The
+    words are the text's own: the HTML report prints the same text unwrapped (a summary's sample note, split and
+    naive-prediction lines ran to 275, 282 and 321 columns)."""
+    out = []
+    for line in text.split("\n"):
+        if len(line) <= width:
+            out.append(line)
+            continue
+        indent = line[:len(line) - len(line.lstrip())]
+        out += textwrap.wrap(line, width, initial_indent="", subsequent_indent=indent + "    ",
+                             break_long_words=False, break_on_hyphens=False)
+    return out
 
 
 def format_before_after(model: ReducedAxisModel) -> str:

@@ -81,7 +81,8 @@ def test_cli_says_why_the_best_shift_was_not_used(capture, tmp_path, capsys):
     path = tmp_path / "cap.csv"
     _capture(capture, 0.0, 3).to_csv(path)
     assert main(["identify", str(path), "--no-diagnose"]) == 0
-    line = next(s for s in capsys.readouterr().out.splitlines() if s.startswith("reference dead time"))
+    out = capsys.readouterr().out.replace("\n    ", " ")  # its lines unwrapped (wrapped at 100 columns)
+    line = next(s for s in out.splitlines() if s.startswith("reference dead time"))
     assert line.startswith("reference dead time: 0 s (0 samples; estimated ")
     assert line.endswith("; not used: shorter than 5 samples, which the loop model's own lag cannot be told from)")
     # a shift long enough that lowers the equation error too little (dead_time.MAX_OBJECTIVE_RATIO) is named so

@@ -5,6 +5,7 @@ on stderr and printed again under the table)."""
 from __future__ import annotations
 
 import logging
+from html import escape
 
 from identification.diagnosis import TABLE_COLUMNS, after_table_lines, before_after_rows, format_before_after
 from identification.reduced_model import ReducedAxisModel
@@ -51,14 +52,45 @@ def test_the_lines_after_the_table_are_the_summarys_own_whatever_the_table_holds
 
 
 def test_a_diagnosis_warning_is_not_also_logged(tmp_path, capsys, caplog):
-    # a one-way record's folds have no negative motion: the diagnosis warns (test_one_way.py's loop and record)
+    """A one-way record's summary (test_one_way.py's loop and record, 4600 samples): its folds' missing direction is
+    said once, with the fold list (it was said for each fold, and again for each fold's training folds: four
+    warnings), and every line keeps to 100 columns, as the table (the sample note, the split and the naive
+    predictions ran to 275, 282 and 321 columns; coulombjoint36); the HTML report says the same words, unwrapped."""
     from tests.identification.test_one_way import _one_way
 
     path = tmp_path / "one_way.csv"
     _one_way(1.0).to_csv(path)
     with caplog.at_level(logging.WARNING):
-        assert main(["identify", str(path)]) == 0
+        assert main(["identify", str(path), "--report", str(tmp_path / "report")]) == 0
     out = capsys.readouterr().out
-    assert out.count("validation fold 1 (samples 0..3565) has no negative motion") == 1
     assert not [r for r in caplog.records if r.name.startswith("identification.diagnosis")]
-    assert "friction: the record moves in the positive direction only: the Coulomb level of the negative " in out
+    lines = out.splitlines()
+    assert max(len(line) for line in lines) <= TABLE_COLUMNS
+    assert out.count("no negative motion") == 1 and "the folds other than" not in out
+    said_so = (
+        ["warning: validation folds 1, 2 (samples 0..3565, 3565..4600) have no negative motion:",
+         "    direction-dependent effects are not validated there"],
+        ["samples: 'all' the record's 4600; 'ident' and 'valid' its 4600 active ones (idle stretches, where an",
+         "    axis at rest is predicted for free, trimmed with a 0.2 s margin), 'valid' each fold's predicted",
+         "    by the model refitted on the others; all simulated on the record's sample grid"],
+        ["validation: 2 contiguous folds cut where the reference stands still or reverses; each is held out in",
+         "    turn (the fit on all active samples refitted on the other folds by up to 5 Levenberg-Marquardt",
+         "    iterations) and the held-out errors pooled; idle stretches trimmed with a 0.2 s margin"])
+    for said in said_so:
+        i = lines.index(said[0])
+        assert lines[i:i + len(said)] == said
+    naive = lines.index("naive predictions of the capture: the commanded position itself rms 418.3 um (the "
+                        "following error),")
+    assert lines[naive + 1].startswith("    delayed by 3 samples (0.003 s) rms 351.3 um; the model predicts ")
+    assert "friction: the record moves in the positive direction only: the Coulomb level of the negative" in out
+    # the report's paragraphs are the summary's lines, unwrapped: the same words
+    html = (tmp_path / "report" / "index.html").read_text()
+    paragraphs = []
+    for line in lines:
+        if line.startswith("    ") and paragraphs:
+            paragraphs[-1] += " " + line.strip()
+        else:
+            paragraphs.append(line)
+    for p in paragraphs:
+        if p.startswith(("samples:", "validation:", "warning:", "naive predictions", "residual:", "reference dead")):
+            assert f"<p>{escape(p)}</p>" in html, p

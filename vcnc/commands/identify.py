@@ -560,24 +560,22 @@ def run(args: argparse.Namespace) -> int:
         model.to_json(args.json)
     if rep is not None:
         rep.write(args.report)
-    p, poles = model.parameters, model.poles
-    out = sys.stdout
-    if "columns" in capture.meta:  # a delimited trace's mapping read from its header names
-        out.write(f"{args.capture}: columns {capture.meta['columns']}\n")
-    out.write(f"axis {axis}: {len(capture)} samples, Ts {model.sample_time:g} s, method {model.method}\n")
-    out.write(
-        f"poles: omega_n {poles['omega_n_hz']:.4g} Hz, zeta {poles['zeta']:.4g}, p {poles['p_hz']:.4g} Hz\n"
-    )
-    out.write(closed_loop_poles_line(model) + "\n")
-    out.write("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()) + "\n")
-    if (model.fit or {}).get("friction"):
-        out.write(f"friction: {model.fit['friction']['statement']}\n")
-    for line in fit_lines(model, rest_um):
-        out.write(line + "\n")
-    if model.validation:
-        from identification.diagnosis import format_before_after
+    from identification.diagnosis import format_before_after, wrapped_lines
 
-        out.write(format_before_after(model).rstrip("\n") + "\n")
-    for line in baseline:
-        out.write(line + "\n")
+    p, poles = model.parameters, model.poles
+    lines = []
+    if "columns" in capture.meta:  # a delimited trace's mapping read from its header names
+        lines.append(f"{args.capture}: columns {capture.meta['columns']}")
+    lines.append(f"axis {axis}: {len(capture)} samples, Ts {model.sample_time:g} s, method {model.method}")
+    lines.append(f"poles: omega_n {poles['omega_n_hz']:.4g} Hz, zeta {poles['zeta']:.4g}, p {poles['p_hz']:.4g} Hz")
+    lines.append(closed_loop_poles_line(model))
+    lines.append("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()))
+    if (model.fit or {}).get("friction"):
+        lines.append(f"friction: {model.fit['friction']['statement']}")
+    lines += fit_lines(model, rest_um)
+    if model.validation:
+        lines.append(format_before_after(model).rstrip("\n"))
+    lines += baseline
+    # at most 100 columns (diagnosis.TABLE_COLUMNS), as the table; the report prints the same lines unwrapped
+    sys.stdout.write("".join(f"{line}\n" for text in lines for line in wrapped_lines(text)))
     return 0
