@@ -42,7 +42,8 @@ Procedure (forward selection judged on held-out data)
    the Nyquist frequency or damped beyond 1/sqrt(2), a Stribeck term without its static excess) or no longer
    needed (the final model refitted without it predicts the held-out folds within ``min_gain``, a mode no longer
    coherent with the motion) is dropped, the model refitted without it, and the last round's record says so
-   under ``dropped`` (:func:`_backward_check`; the report's ``dropped:`` lines).
+   under ``dropped`` (:func:`_backward_check`; the report's ``dropped:`` lines). These refits too keep the
+   Coulomb mean where the whole record puts it (:func:`_judged_at_rest`): the final model's mean is the rests'.
 6. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
    the active stretches and the warnings; ``validation.unexplained`` the final residual's
    spectral peaks and its association with position, velocity, direction, acceleration and time
@@ -1048,7 +1049,9 @@ def _backward_check(stages: list[Stage], data: Data, plan: FoldPlan, rounds: lis
     :func:`_choose` that need no refit (:func:`_unphysical`) and, refitted and judged without it, the held-out gain
     and a mode's motion coherence (:func:`_unneeded`) - the backward elimination step of stepwise selection
     (Efroymson, "Multiple regression analysis", in Ralston and Wilf, Mathematical Methods for Digital Computers,
-    Wiley, 1960; our reading: with the held-out gain of :func:`_choose` as the F test's stand-in)."""
+    Wiley, 1960; our reading: with the held-out gain of :func:`_choose` as the F test's stand-in). Each model
+    refitted without an effect is judged with its Coulomb mean where the record puts it (:func:`_judged_at_rest`),
+    as a round's accepted model is: the one that replaces the final model keeps a mean the rests pin."""
     checked = {stages[-1].effect}
     while len(stages) > 1:
         failing = _first_failing(stages, checked, data, plan, opt)
