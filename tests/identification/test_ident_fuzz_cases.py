@@ -439,7 +439,8 @@ def test_a_period_the_travel_covers_once_gives_way_to_its_dominant_harmonic():
     (19.6 mm), logged every 4 ms. The search's single sinusoid took 18.8 mm (it also fits the smooth trend the missed
     saturation leaves along the travel), the refit kept 3 harmonics with the second the largest (57, 173, 10 mm/s^2),
     and the diagnosis named a period of 18.8 mm, a wrong parameter. The refit now continues from that harmonic's
-    period (diagnosis._shorter_period_form): 9.94 mm with one harmonic, the same held-out error (0.798 um)."""
+    period (diagnosis._shorter_period_form): 9.94 mm with one harmonic, the same held-out error (0.798 um; 0.786 um
+    since the accepted model is judged again at the Coulomb mean the rests put it, coulombjoint36)."""
     from benchmarks.ident_fuzz import build, draw_case
 
     case = draw_case(31, 39)
@@ -452,4 +453,4 @@ def test_a_period_the_travel_covers_once_gives_way_to_its_dominant_harmonic():
     assert params["period_mm"] == pytest.approx(10.0, rel=0.01)
     assert params["harmonics"] == 1
     assert model.validation["rms_before_um"] == pytest.approx(1.31, abs=0.02)
-    assert model.validation["rms_after_um"] == pytest.approx(0.798, abs=0.01)
+    assert model.validation["rms_after_um"] == pytest.approx(0.786, abs=0.01)

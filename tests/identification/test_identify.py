@@ -168,7 +168,7 @@ def test_cli_says_when_a_pole_sits_on_the_box_the_nyquist_frequency_of_a_slow_re
                    measured=cap.measured[::q, :1], meta={"source": "logged every 3 ms"})
     slow.to_csv(tmp_path / "slow.csv")
     assert main(["identify", str(tmp_path / "slow.csv"), "--no-diagnose"]) == 0
-    out = capsys.readouterr().out
+    out = capsys.readouterr().out.replace("\n    ", " ")  # its lines unwrapped (wrapped at 100 columns)
     assert ("warning: omega_n 166.7 Hz sits on the upper bound of its box, the record's Nyquist frequency "
             "(166.7 Hz at Ts = 0.003 s): the loop may be faster than this record resolves") in out
     # the same axis logged every 0.25 ms is resolved: no pole on a bound, no warning
