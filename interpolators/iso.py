@@ -155,7 +155,7 @@ from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import io_words, m_codes, planner_word, user_m_file
+from interpolators.iso_mcodes import io_words, m_codes, planner_word, spindle_select, user_m_file
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -597,6 +597,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     if st.context.dialect.name == "fanuc":
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
+    spindle_select(seen, gcodes, mcodes, st, where, notes)
     if st.context.dialect.name == "grbl":
         for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)

@@ -1,0 +1,50 @@
+"""Readings settled by the post processors of hobby and router CAM (session 36, fcpost36): FreeCAD's Path/CAM posts
+(FreeCAD/FreeCAD src/Mod/CAM/Path/Post/scripts/), Vectric's ``.pp`` templates, and the controls they write for. Each
+snippet is written for these tests in the output style of the post it names (repository, path); the control's
+manual gives the reading."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
+
+LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"])
+
+#: A Vectric VCarve post for LinuxCNC's QtPlasmaC ("THS vCarve Post", a .pp template, FIRST_PLUNGE_MOVE "M3 $0 S1"):
+#: the torch is spindle 0, selected with LinuxCNC's $ word; M52 adaptive feed, M65 outputs, M68 analog output.
+THS_PLASMA = ("%\n(THS vCarve Post)\nG20\nG90 G40\nG17 G91.1\nG64 P0.01 Q0.012\nM52 P1.\nM65 P2.\n"
+              "M68 E3 Q0.\n\nG54\nF40\n(----- Toolpath Profile 1 -----)\nG0 X1.0000 Y1.0000\nM3 $0 S1\n"
+              "G1 X2.0000 Y1.0000\nG2 X2.5000 Y1.5000 I0.0000 J0.5000\nM5\n\nG0 X0 Y0\nM65 P2.\n"
+              "M68 E3 Q0.\nM5 $-1\nM30\n%\n")
+
+
+def test_the_spindle_selection_word_of_linuxcnc():
+    # LinuxCNC M-code reference "M3, M4, M5": "M3 $0 S1000"; $-1 all spindles. rs274 -g runs THS_PLASMA (its moves
+    # match vcnc's: benchmarks/linuxcnc_diff.py). Before: "unknown word '$0' (a grbl setting ...)"
+    prog = parse_program(THS_PLASMA, context=LINUXCNC)
+    assert prog.blocks[-1].target.tolist() == pytest.approx([0.0, 0.0, 0.0])
+    assert prog.blocks[-2].target.tolist() == pytest.approx([2.5 * 25.4, 1.5 * 25.4, 0.0])
+    assert any(n.startswith("$ spindle selection (one spindle: $0)") for n in prog.notes)
+    for block in ("M3 $0.9 S1", "M3 $ -1 S1", "M3 $[-1] S1", "S100 $0", "M19 $0 R0"):  # rs274 runs each
+        parse_program(f"G21\n{block}\nG0 X1\nM2\n", context=LINUXCNC)
+
+
+@pytest.mark.parametrize("block, message", [
+    ("M3 $1 S100", r"2:4: spindle \$1: vcnc's machine has one spindle"),  # rs274: "Invalid spindle ($) number"
+    ("M5 $-2", r"2:4: spindle \$-2"),
+    ("G0 X1 $0", r"2:7: \$ \(spindle selection\) word with no S, M3"),  # rs274: "... word with no M3, ... to use it"
+    ("G97 $0", r"2:5: \$ \(spindle selection\) word with no S"),
+    ("M5 $0 $-1", r"2:7: word \$ appears twice"),  # rs274: "Multiple spindle choice ($) words on one line"
+])
+def test_a_spindle_selection_linuxcnc_refuses(block, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"G21\n{block}\nG0 X1\nM2\n", context=LINUXCNC)
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "grbl"])
+def test_other_dialects_name_the_linuxcnc_spindle_word(dialect):
+    with pytest.raises(GCodeError, match=r"2:4: unknown word '\$0'.*on LinuxCNC '\$' selects the spindle"):
+        parse_program("G21\nM3 $0 S1\nG0 X1\nM2\n", context=MachineContext(dialect=DIALECTS[dialect]))
