@@ -48,3 +48,17 @@ def test_a_spindle_selection_linuxcnc_refuses(block, message):
 def test_other_dialects_name_the_linuxcnc_spindle_word(dialect):
     with pytest.raises(GCodeError, match=r"2:4: unknown word '\$0'.*on LinuxCNC '\$' selects the spindle"):
         parse_program("G21\nM3 $0 S1\nG0 X1\nM2\n", context=MachineContext(dialect=DIALECTS[dialect]))
+
+
+@pytest.mark.parametrize("line, column, text, code", [
+    ("M117 Cutting Toolpath 1", 6, "Cutting", "M117 <text>: Marlin's LCD message"),
+    ("M118 E1 Hello", 9, "Hello", "M118 <text>: Marlin's serial print"),
+])
+def test_a_marlin_message_line_is_named(line, column, text, code):
+    # Vectric's Marlin gCode post (an MPCNC router's: "Added status messages (M117)") writes "M117 <text>"
+    # (marlinfw.org/docs/gcode/M117.html "M117 [string]"); no dialect of vcnc reads Marlin. Before: "malformed
+    # number for word C ('Cutting': a statement of another control's language, such as KinetiC-NC's PRINT?)"
+    prog = f"; Vectric gCode for Marlin\n{line}\nG90\nG21\nG0 X10.000 Y10.000\nM30\n"
+    with pytest.raises(GCodeError, match=rf":2:{column}: malformed number for word {text[0]} \({code}, whose text "
+                                         r"is no G-code.*--dialect grbl\)"):
+        parse_program(prog, context=MachineContext(dialect=DIALECTS["grbl"]))
