@@ -62,3 +62,21 @@ def test_a_marlin_message_line_is_named(line, column, text, code):
     with pytest.raises(GCodeError, match=rf":2:{column}: malformed number for word {text[0]} \({code}, whose text "
                                          r"is no G-code.*--dialect grbl\)"):
         parse_program(prog, context=MachineContext(dialect=DIALECTS["grbl"]))
+
+
+#: FreeCAD's UC-CNC post (FreeCAD/FreeCAD src/Mod/CAM/Path/Post/scripts/uccnc_post.py: ``"%" + PROG_NAME``, then
+#: the "(uccnc_post with default settings)" comment and its preamble with comments after each code)
+UCCNC = ("%prog1\n(uccnc_post with default settings)\n(Units: 'mm' and 'mm/min')\n(preamble: begin)\n"
+         "G17 (Default: XY-plane)\nG54 (Default: First coordinate system)\nG90 (Default: Absolute distance mode "
+         "selection)\n(preamble: done)\nG0 X10.000 Y10.000\nG1 Z-1.000 F100.000\nM05 (stop spindle)\n"
+         "M30 (Stop program and rewind code)\n")
+
+
+def test_a_program_name_after_the_first_percent_names_its_reading():
+    # rs274 refuses "%prog1" ("Bad character '%' used"); a Fanuc control skips the tape's leader. Before, the error
+    # named only CNCjs's macro lines
+    with pytest.raises(GCodeError, match=r":1:1: '%' must stand alone on its line \(a program name after the '%', "
+                                         r"as FreeCAD's UC-CNC post writes '%prog1': --dialect fanuc"):
+        parse_program(UCCNC, context=LINUXCNC)
+    prog = parse_program(UCCNC, context=MachineContext(dialect=DIALECTS["fanuc"]))
+    assert prog.blocks[-1].target.tolist() == pytest.approx([10.0, 10.0, -1.0])
