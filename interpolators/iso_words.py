@@ -21,7 +21,7 @@ from collections.abc import Callable
 from interpolators._words import MAX_MAGNITUDE, Where, fence_hint, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
-           "WORD_LETTERS", "SPINDLE_SELECT", "fail_words", "foreign_hint"]
+           "WORD_LETTERS", "SPINDLE_SELECT", "fail_words", "foreign_hint", "firmware_dwell_hint"]
 
 
 class WordError(ValueError):
@@ -178,6 +178,17 @@ def foreign_hint(tok: str, *, first: bool = True) -> str:
         return (" (a quoted text, as Centroid CNC12 macros write a prompt, M225 #100 \"text\", or a macro file, "
                 "G65 \"file\"; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)")
     return fence_hint(tok)
+
+
+def firmware_dwell_hint(letters) -> str:
+    """Why a G4 block has no P, when it has an S: ``G4 S<seconds>``, the dwell of RepRapFirmware (Duet G-code
+    reference, "G4: Dwell": "Pnnn Time to wait, in milliseconds; Snnn Time to wait, in seconds") and Marlin
+    (marlinfw.org/docs/gcode/G004.html "S<time(s)>"), which FreeCAD's RRF post writes after M3 (rrf_post.py:
+    "RRF: P for milliseconds, S for seconds, change P to S"); in ISO G-code S is the spindle speed."""
+    if "S" not in letters:
+        return ""
+    return (" (G4 S<seconds> is the dwell of RepRapFirmware and Marlin, as FreeCAD's rrf_post writes it; an ISO "
+            "control reads S as the spindle speed: write G4 P)")
 
 
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,

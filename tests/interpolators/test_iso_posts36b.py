@@ -80,3 +80,22 @@ def test_a_program_name_after_the_first_percent_names_its_reading():
         parse_program(UCCNC, context=LINUXCNC)
     prog = parse_program(UCCNC, context=MachineContext(dialect=DIALECTS["fanuc"]))
     assert prog.blocks[-1].target.tolist() == pytest.approx([10.0, 10.0, -1.0])
+
+
+#: FreeCAD's RepRapFirmware post (FreeCAD/FreeCAD src/Mod/CAM/Path/Post/scripts/rrf_post.py): a spindle wait after M3
+#: written "G4 S3" ("RRF: P for milliseconds, S for seconds, change P to S"), the tool change left as "  T1".
+RRF = ("(Exported by FreeCAD)\n(Post Processor: rrf_post.py, version: 2022-02-11)\n(Begin preamble)\n"
+       "(Default Configuration)\nG90\nG21\nG17\n(Begin toolchange)\n  T1\nM3 S10000\nG4 S3\nG0 X30.000 Y30.000\nM5\n")
+
+
+@pytest.mark.parametrize("dialect, message", [
+    ("grbl", r"G4 dwell without P: grbl takes the dwell time from P only"),
+    ("linuxcnc", r"G04 needs exactly one of P or X"),
+    ("fanuc", r"G04 needs exactly one of P or X"),
+])
+def test_a_firmware_dwell_in_seconds_is_named(dialect, message):
+    # Duet G-code reference "G4: Dwell": "Snnn Time to wait, in seconds"; an ISO control's S is the spindle speed.
+    # Before, the error did not say what G4 S is
+    with pytest.raises(GCodeError, match=rf":11:1: {message}.*\(G4 S<seconds> is the dwell of RepRapFirmware and "
+                                         r"Marlin"):
+        parse_program(RRF, context=MachineContext(dialect=DIALECTS[dialect]))
