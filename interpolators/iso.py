@@ -1242,6 +1242,14 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         if "motion" in gcodes:
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):
+            if "motion" not in gcodes and st.context.dialect.name == "linuxcnc":
+                # rs274 check_g_codes tests the block's motion_to_be, the modal motion only when the block has axis
+                # words: a bare "G53" (a FreeCAD Job's fixture G53, its fixture op writing the code alone) is
+                # refused, "G53 G0" and "G53 X5" after G0 run
+                where.fail("G53 without G0/G1 or axis words in its block: LinuxCNC refuses it (\"Must use G0 or G1 "
+                           "with G53\")", column=w.column, text=w.text,
+                           expected="G53 G0 X.. (a move in machine coordinates), or --dialect fanuc/grbl, where a "
+                                    "bare G53 does nothing")
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
         machine = not _incremental_g53(st, notes)
         target = block_target(seen, axis_words, st, machine=machine)

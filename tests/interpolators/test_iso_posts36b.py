@@ -99,3 +99,19 @@ def test_a_firmware_dwell_in_seconds_is_named(dialect, message):
     with pytest.raises(GCodeError, match=rf":11:1: {message}.*\(G4 S<seconds> is the dwell of RepRapFirmware and "
                                          r"Marlin"):
         parse_program(RRF, context=MachineContext(dialect=DIALECTS[dialect]))
+
+
+def test_a_bare_g53_is_refused_as_linuxcnc_refuses_it():
+    # FreeCAD's Job offers the fixture "G53" (Path/Main: MachineState.WCSLIST "G53", "G54", ..), which its fixture
+    # operation writes as a code alone; centroid_post.py's preamble "G53 G00 G17" has its G0. rs274 -g: "Must use g0
+    # or g1 with g53" for "G53" and "G90 G53" after a G0 move, and runs "G53 G0" and "G53 X5". Before, vcnc ran a
+    # bare G53 on the modal G0 silently
+    for block in ("G53", "G90 G53", "G53 G49 M5"):
+        with pytest.raises(GCodeError, match=r":3:\d+: G53 without G0/G1 or axis words in its block: LinuxCNC "
+                                             r"refuses it \(\"Must use G0 or G1 with G53\"\)"):
+            parse_program(f"G21\nG0 X1\n{block}\nG0 X2\nM2\n", context=LINUXCNC)
+    for block in ("G53 G0", "G53 G00 G17", "G53 X5"):
+        parse_program(f"G21\nG0 X1\n{block}\nG0 X2\nM2\n", context=LINUXCNC)
+    for dialect in ("fanuc", "grbl"):  # grbl gcode.c checks the modal motion; Fanuc's G53 without axes moves nothing
+        prog = parse_program("G21\nG0 X1\nG53\nG0 X2\nM2\n", context=MachineContext(dialect=DIALECTS[dialect]))
+        assert [b.target[0] for b in prog.blocks] == pytest.approx([1.0, 2.0])
