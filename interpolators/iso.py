@@ -527,7 +527,12 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 where.fail(_unsupported_g(key, words, dialect) + remap, column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in G_CODES:
-                where.fail(f"unknown G code {w.text!r}{remap}", column=w.column, text=w.text,
+                # FreeCAD's Job offers the fixtures G59.4-G59.9 (Path/Main MachineState.WCSLIST) and its posts
+                # write them as chosen; LinuxCNC's last is G59.3 (g-code.adoc "G54-G59.3"), Fanuc's extra ones are
+                # G54.1 P<n>
+                fixture = (" (a fixture FreeCAD's Job offers: LinuxCNC has G54-G59.3, Fanuc G54.1 P1-P300 beyond "
+                           "G59)") if 594 <= key <= 599 else ""
+                where.fail(f"unknown G code {w.text!r}{fixture}{remap}", column=w.column, text=w.text,
                            expected=f"a G code of the {dialect} milling set vcnc reads")
             grp = G_CODES[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(

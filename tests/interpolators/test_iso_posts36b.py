@@ -115,3 +115,12 @@ def test_a_bare_g53_is_refused_as_linuxcnc_refuses_it():
     for dialect in ("fanuc", "grbl"):  # grbl gcode.c checks the modal motion; Fanuc's G53 without axes moves nothing
         prog = parse_program("G21\nG0 X1\nG53\nG0 X2\nM2\n", context=MachineContext(dialect=DIALECTS[dialect]))
         assert [b.target[0] for b in prog.blocks] == pytest.approx([1.0, 2.0])
+
+
+@pytest.mark.parametrize("dialect", ["linuxcnc", "fanuc"])
+def test_a_freecad_fixture_beyond_g59_3_is_named(dialect):
+    # FreeCAD's Job lists the fixtures G54 .. G59.9 (Path/Main MachineState.WCSLIST) and its fixture operation writes
+    # the code chosen; rs274: "Unknown g code used" for G59.4. Before, the error did not say where it came from
+    with pytest.raises(GCodeError, match=r":2:1: unknown G code 'G59.4' \(a fixture FreeCAD's Job offers: LinuxCNC "
+                                         r"has G54-G59.3, Fanuc G54.1 P1-P300 beyond G59\)"):
+        parse_program("G21\nG59.4\nG0 X2\nM2\n", context=MachineContext(dialect=DIALECTS[dialect]))
