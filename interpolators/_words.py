@@ -136,6 +136,14 @@ def _number_hint(line: str, w0: int, j: int, raw: str = "") -> str:
     if line[w0:w0 + 1] in "iI" and re.search(r"M0*[34][ \t]*$", line[:w0], re.I):
         return (" (M3 I / M4 I: Marlin's inline laser power mode, 'M3 [I<mode>]', which a Marlin laser program "
                 "sets; no ISO control reads it: M3 S<power> is the form the grbl dialect reads)")
+    # "M117 Cutting Toolpath 1": Marlin's LCD message, "M117 [string]" (marlinfw.org/docs/gcode/M117.html; M118
+    # "Serial print" likewise), which Vectric's and Estlcam's Marlin posts (MPCNC routers) write: the rest of the line
+    # is text
+    marlin = re.search(r"(?<![A-Za-z])M0*(11[78])(?![0-9.])", line[:w0], re.I)
+    if marlin:
+        return (f" (M{marlin.group(1)} <text>: Marlin's {'LCD message' if marlin.group(1) == '117' else 'serial print'}"
+                ", whose text is no G-code; a 3D printer firmware's code, which no dialect of vcnc reads: remove the "
+                "line to run the rest with --dialect grbl)")
     placeholder = _placeholder_hint(line[w0], raw) if raw and (j >= len(line) or line[j] in " \t") else ""
     if placeholder:
         return placeholder

@@ -155,7 +155,7 @@ from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import io_words, m_codes, planner_word, user_m_file
+from interpolators.iso_mcodes import io_words, m_codes, planner_word, spindle_select, user_m_file
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -527,7 +527,12 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 where.fail(_unsupported_g(key, words, dialect) + remap, column=w.column, text=w.text,
                            expected="milling G codes (see vcnc's ISO reader)")
             if key not in G_CODES:
-                where.fail(f"unknown G code {w.text!r}{remap}", column=w.column, text=w.text,
+                # FreeCAD's Job offers the fixtures G59.4-G59.9 (Path/Main MachineState.WCSLIST) and its posts
+                # write them as chosen; LinuxCNC's last is G59.3 (g-code.adoc "G54-G59.3"), Fanuc's extra ones are
+                # G54.1 P<n>
+                fixture = (" (a fixture FreeCAD's Job offers: LinuxCNC has G54-G59.3, Fanuc G54.1 P1-P300 beyond "
+                           "G59)") if 594 <= key <= 599 else ""
+                where.fail(f"unknown G code {w.text!r}{fixture}{remap}", column=w.column, text=w.text,
                            expected=f"a G code of the {dialect} milling set vcnc reads")
             grp = G_CODES[key][0]
             if grp == "motion" and key == 800 and "motion" in gcodes or grp == "motion" and gcodes.get(
@@ -597,6 +602,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     if st.context.dialect.name == "fanuc":
         words = _decimal_point(words, st, notes)
     seen, gcodes, mcodes = _collect(words, where, notes, st)
+    spindle_select(seen, gcodes, mcodes, st, where, notes)
     if st.context.dialect.name == "grbl":
         for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)
@@ -1241,6 +1247,14 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         if "motion" in gcodes:
             st.motion = motion
         if not axis_words and not any(a in seen for a in EXTRA_LETTERS):
+            if "motion" not in gcodes and st.context.dialect.name == "linuxcnc":
+                # rs274 check_g_codes tests the block's motion_to_be, the modal motion only when the block has axis
+                # words: a bare "G53" (a FreeCAD Job's fixture G53, its fixture op writing the code alone) is
+                # refused, "G53 G0" and "G53 X5" after G0 run
+                where.fail("G53 without G0/G1 or axis words in its block: LinuxCNC refuses it (\"Must use G0 or G1 "
+                           "with G53\")", column=w.column, text=w.text,
+                           expected="G53 G0 X.. (a move in machine coordinates), or --dialect fanuc/grbl, where a "
+                                    "bare G53 does nothing")
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
         machine = not _incremental_g53(st, notes)
         target = block_target(seen, axis_words, st, machine=machine)

@@ -371,6 +371,11 @@ class _Program:
                 if not mixed and re.match(r"%[ \t]*[Oo]\d", s):  # "%O1200(TOKARKA)": a Fanuc tape's first line
                     mixed = (" (a Fanuc tape's first line, whose text after the '%' a Fanuc control skips: "
                              "--dialect fanuc reads it)")
+                elif not mixed and re.fullmatch(r"%[A-Za-z_]\w*", s) and not any(self.code):
+                    # the file's first line: FreeCAD's UCCNC post (uccnc_post.py) starts with "%" + the program
+                    # name, "%prog1"; a Fanuc control skips a tape's leader up to its end of block
+                    mixed = (" (a program name after the '%', as FreeCAD's UC-CNC post writes '%prog1': --dialect "
+                             "fanuc skips it as a tape's leader; or a CNCjs macro line: --dialect grbl)")
                 elif not mixed and re.match(r"%[ \t]*[A-Za-z_]", s):  # iso_grbl: CNCjs's "%wait", "%x0=posx"
                     mixed = (" (a macro line of the CNCjs sender, which evaluates it and streams the rest to "
                              "grbl: --dialect grbl reads the file as CNCjs streams it)")

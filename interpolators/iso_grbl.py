@@ -69,7 +69,7 @@ from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
 from interpolators.iso_flow import refuse_heidenhain_iso
-from interpolators.iso_words import Word, comment_spans
+from interpolators.iso_words import Word, comment_spans, firmware_dwell_hint
 
 __all__ = ["GrblLines", "system_lines", "unsupported_codes"]
 
@@ -144,7 +144,8 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
                        expected="G61 or no path-mode code under grbl")
         if key == 40 and "P" not in letters:
             where.fail("G4 dwell without P: grbl takes the dwell time from P only (gcode.c: '[P word missing]', "
-                       "error 28)", column=w.column, text=w.text, expected="G4 P<seconds>")
+                       f"error 28){firmware_dwell_hint(letters)}", column=w.column, text=w.text,
+                       expected="G4 P<seconds>")
         if key in _GRBLHAL_ONLY:
             notes.append(f"{_GRBLHAL_ONLY[key]} run as grblHAL runs it (grbl 1.1 refuses it: error "
                          f"{_GRBL_ERROR.get(key, 20)})")

@@ -12,12 +12,12 @@ from typing import TYPE_CHECKING
 
 from interpolators._words import Where
 from interpolators.iso_codes import LINUXCNC_M
-from interpolators.iso_words import Word
+from interpolators.iso_words import Word, foreign_hint
 
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["user_m_file", "m_codes", "planner_word", "io_words"]
+__all__ = ["user_m_file", "m_codes", "planner_word", "io_words", "spindle_select"]
 
 
 _M_NOTES = {
@@ -196,6 +196,38 @@ def _wait_on_input(seen, st: State, where: Where, notes: Notes) -> None:
         f"the result of {m66} at line {where.line}, whose wait mode L{int(mode)} is none of LinuxCNC's L0-L4")
     notes.add("M66 wait on input: the input taken as answering at once (#5399: 1 after L1/L3, 0 after L2/L4; L0 reads "
               "an input nothing drives, 0)")
+
+
+#: What reads a ``$`` word (rs274: "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96
+#: or G97 to use it"; rs274 2.9 runs it beside an S word or M3, M4, M5, M19, and refuses "G95 $0", "G97 $0").
+_SPINDLE_M = (3, 4, 5, 19)
+_SPINDLE_MOTION = (330, 331, 760)
+
+
+def spindle_select(seen, gcodes, mcodes, st: State, where: Where, notes: Notes) -> None:
+    """LinuxCNC's ``$`` word, the spindle an S, M3-M5 or M19 acts on (M-code reference, "M3, M4, M5 Spindle
+    Control": "M3 $0 S1000"; "$-1" all spindles, LinuxCNC commit 3139328 "Without a $ M3, M4 & M5 now act on
+    spindle zero. To act on all spindles use $-1"), as QtPlasmaC posts write the torch, ``M3 $0 S1``.
+
+    vcnc's machine has one spindle, as rs274's standalone one: ``$0`` and ``$-1`` select it (the value cut toward
+    zero as rs274 does: ``$0.9`` is 0), other numbers are refused as rs274 refuses them. The other dialects read
+    no ``$`` word."""
+    w = seen.get("$")
+    if w is None:
+        return
+    if st.context.dialect.name != "linuxcnc":
+        where.fail(f"unknown word {w.text!r}{foreign_hint(w.text, first=False)}; on LinuxCNC '$' selects the "
+                   "spindle (M3 $0 S1000): --dialect linuxcnc", column=w.column, text=w.text,
+                   expected="a word of the letters A-Z")
+    if not ("S" in seen or any(m in _SPINDLE_M for m, _ in mcodes)
+            or gcodes.get("motion", (None,))[0] in _SPINDLE_MOTION):
+        where.fail("$ (spindle selection) word with no S, M3, M4, M5, M19, G33, G33.1 or G76 to use it (LinuxCNC)",
+                   column=w.column, text=w.text, expected="M3 $0 S.., M5 $-1, or the block without $")
+    if int(w.value) not in (-1, 0):
+        where.fail(f"spindle ${int(w.value)}: vcnc's machine has one spindle, $0 ($-1: all spindles); a LinuxCNC "
+                   "machine with [TRAJ] SPINDLES > 1 runs it (rs274: \"Invalid spindle ($) number\")",
+                   column=w.column, text=w.text, expected="$0 or $-1")
+    notes.add("$ spindle selection (one spindle: $0)")
 
 
 def planner_word(seen, gcodes, mcodes, where: Where, notes: Notes) -> dict:

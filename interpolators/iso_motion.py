@@ -21,7 +21,7 @@ from interpolators.iso_decimal import decimal_literal
 from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_polar import POLAR_LETTERS, polar_xy
 from interpolators.iso_splines import bezier_chords
-from interpolators.iso_words import Word
+from interpolators.iso_words import Word, firmware_dwell_hint
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
@@ -528,7 +528,7 @@ def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: No
     if "motion" in gcodes:  # X belongs to the motion; the dwell time is P
         seen = {k: v for k, v in seen.items() if k != "X"}
     if ("P" in seen) == ("X" in seen):
-        where.fail("G04 needs exactly one of P or X", column=gw.column, text=gw.text,
+        where.fail(f"G04 needs exactly one of P or X{firmware_dwell_hint(seen)}", column=gw.column, text=gw.text,
                    expected=f"G04 P<{unit}> or G04 X<s>")
     w = seen["P"] if "P" in seen else seen["X"]
     seconds = w.value / 1000.0 if ("P" in seen and not dwell_p_seconds(w, st)) else w.value

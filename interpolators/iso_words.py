@@ -21,7 +21,7 @@ from collections.abc import Callable
 from interpolators._words import MAX_MAGNITUDE, Where, fence_hint, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
-           "WORD_LETTERS", "fail_words"]
+           "WORD_LETTERS", "SPINDLE_SELECT", "fail_words", "foreign_hint", "firmware_dwell_hint"]
 
 
 class WordError(ValueError):
@@ -37,6 +37,11 @@ class WordError(ValueError):
 #: Word letters the reader knows (axis letters A B C U V W are read and judged by the executor;
 #: ``@`` and ``^`` are LinuxCNC's polar distance and angle, :mod:`interpolators.iso_polar`).
 WORD_LETTERS = set("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^")
+
+#: LinuxCNC's spindle selection word, ``$`` and a number or an expression (``M3 $0 S1``, ``M5 $-1``; rs274 reads
+#: ``$`` as a word of its own, interp_read.cc ``read_dollar``), and not a grbl setting (``$32=1``), which a line of
+#: its own holds.
+SPINDLE_SELECT = re.compile(r"\$(?=[ \t]*(?:[-+]?[0-9.]|\[|#))(?![ \t]*[-+]?[0-9.]*[ \t]*=)")
 
 
 #: Change of the comment nesting depth at a character.
@@ -150,7 +155,7 @@ def block_comment(raw: str, where: Where) -> str | None:
     return raw[spans[-1][0] + 1:spans[-1][1] - 1] if spans else None
 
 
-def _foreign_hint(tok: str, *, first: bool = True) -> str:
+def foreign_hint(tok: str, *, first: bool = True) -> str:
     """What an unknown word is, when its text says: a RepRap/Marlin line checksum ``*57`` (the serial protocol
     of 3D printer hosts: "N<line> <command>*<checksum>", RepRap wiki "G-code", "Checking"), which no CNC control
     reads; a control character (rs274: "Bad character '\\001' used"): a damaged file or a binary header; a quoted
@@ -173,6 +178,17 @@ def _foreign_hint(tok: str, *, first: bool = True) -> str:
         return (" (a quoted text, as Centroid CNC12 macros write a prompt, M225 #100 \"text\", or a macro file, "
                 "G65 \"file\"; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)")
     return fence_hint(tok)
+
+
+def firmware_dwell_hint(letters) -> str:
+    """Why a G4 block has no P, when it has an S: ``G4 S<seconds>``, the dwell of RepRapFirmware (Duet G-code
+    reference, "G4: Dwell": "Pnnn Time to wait, in milliseconds; Snnn Time to wait, in seconds") and Marlin
+    (marlinfw.org/docs/gcode/G004.html "S<time(s)>"), which FreeCAD's RRF post writes after M3 (rrf_post.py:
+    "RRF: P for milliseconds, S for seconds, change P to S"); in ISO G-code S is the spindle speed."""
+    if "S" not in letters:
+        return ""
+    return (" (G4 S<seconds> is the dwell of RepRapFirmware and Marlin, as FreeCAD's rrf_post writes it; an ISO "
+            "control reads S as the spindle speed: write G4 P)")
 
 
 def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[float | None, int]] | None = None,
@@ -223,7 +239,9 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
                        column=i + 1, text=tok, expected="a word such as X12.5 or X[expression]")
         if ch == "/" and not words:
             _slash_comment_line(code, where, second=i)
-        if up not in WORD_LETTERS and up not in (",R", ",C"):
+        if ch == "$" and SPINDLE_SELECT.match(code, i):
+            up = "$"  # LinuxCNC's spindle selection; the dialects that do not read it refuse it (iso_mcodes)
+        elif up not in WORD_LETTERS and up not in (",R", ",C"):
             tok = token_at(code, i)
             if set(tok) == {"."}:
                 where.fail(f"{tok!r} where a word should start (an ellipsis: the program left incomplete here?)",
@@ -231,7 +249,7 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             if ch.isdigit() or ch in ".+-":
                 where.fail(f"number {tok!r} without its letter", column=i + 1, text=tok,
                            expected="a word: a letter and its number, such as G21 or X12.5")
-            where.fail(f"unknown word {tok!r}{_foreign_hint(tok, first=not code[:i].strip())}", column=i + 1,
+            where.fail(f"unknown word {tok!r}{foreign_hint(tok, first=not code[:i].strip())}", column=i + 1,
                        text=tok,
                        expected="a word of the letters " + " ".join(sorted(WORD_LETTERS)))
         if value is None:
