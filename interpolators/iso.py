@@ -307,6 +307,7 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
+    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80: the next G84/G74 turns the spindle itself
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
@@ -1099,6 +1100,7 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
+            st.rigid_tap = False
         else:
             if key >= 730 and not in_cycle:  # a new series of cycles: remember the initial level
                 # LinuxCNC keeps the last dwell P across series (settings->cycle_p; interp_cycles.cc
@@ -1109,6 +1111,7 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
             st.motion = key
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
+        st.rigid_tap = False
 
 
 def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:

@@ -31,6 +31,12 @@ _M_NOTES = {
 }
 
 
+#: Fanuc's rigid tapping M code (parameter No. 5210, M29 by default): Fanuc 0i-B connection manual (function)
+#: B-63833EN, "Rigid tapping": "M29 S1000 ; G84 Z-100. R-20. F1. ;" under G99 (feed per revolution), with no M03:
+#: the control drives the spindle in step with the tapping axis for the G84/G74 that follows, until G80.
+RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
+
+
 #: Haas M codes with a P word (Haas mill operator's manual, M codes "M59 Set Output Relay", "M69 Clear Output
 #: Relay": P the relay number, e.g. M59 P1103): no motion, noted (as other M codes).
 _HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
@@ -113,6 +119,9 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
         elif m == 6:
             st.tool_current = st.tool_selected
             notes.add("T/M6 tool change")
+        elif m == 29 and st.context.dialect.name == "fanuc":
+            st.rigid_tap = True
+            notes.add(RIGID_TAP_NOTE)
         elif m == 61:
             if "Q" in seen:
                 st.tool_current = int(seen["Q"].value)
