@@ -1,0 +1,93 @@
+"""Constructs Autodesk Fusion/HSM post processors write, read as the control reads them (session 36, cps36).
+
+Each program is hand-written in the output style of the post named in its test (formats, modal suppression and
+block order as the post prints them); the posts were read, not run: elcf-robot/autodesk-fanuc ``fanuc.cps``
+(Autodesk's Fanuc post, 2025/26), OpenPostProject/haas ``haas.cps`` (Autodesk's Haas post, 2023)."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
+
+FANUC = MachineContext(dialect=DIALECTS["fanuc"])
+HAAS = MachineContext(dialect=DIALECTS["haas"])
+
+#: fanuc.cps ``writeDrillCycle`` "tapping" with ``useG95`` (or ``usePitchForTapping``) and ``useRigidTapping``
+#: "without" (no spindle direction block): ``M29 S..`` then ``G84 .. P0 F<pitch>`` under G95, no M03 before it.
+FANUC_RIGID_TAP = ("%\nO1001 (TAP)\nN10 G90 G94 G17 G49 G40 G80\nN15 G21\nN20 G28 G91 Z0.\nN25 G90\n\n(TAP1)\n"
+                   "N30 T03 M06\nN35 G17 G90 G95\nN40 G54\nN45 M08\nN50 G00 X10. Y10.\nN55 G43 Z15. H03\n"
+                   "N60 G00 Z5.\nN65 G95\nN70 M29 S500\nN75 G98 G84 X10. Y10. Z-10. R5. P0 F1.25\nN80 X20.\n"
+                   "N85 G95 G80\nN90 M09\nN95 G28 G91 Z0.\nN100 G90\nN105 G49\nN110 M30\n%\n")
+
+
+def test_fanuc_rigid_tapping_after_m29_feeds_per_revolution_without_m03():
+    # Fanuc 0i-B connection manual (function) B-63833EN "Rigid tapping": "G99 ; M29 S1000 ; G84 Z-100. R-20. F1. ;"
+    # (Series 0i-M writes feed per revolution G95): the control turns the spindle in step with Z.
+    # Before: "G84 tapping cycle under G95 feed per revolution with the spindle stopped"
+    prog = checked_iso(FANUC_RIGID_TAP, FANUC)
+    feeds = [b for b in prog.blocks if b.kind == "line"]
+    assert [round(float(b.target[2]), 6) for b in feeds] == [-10.0, 5.0, -10.0, 5.0]  # in, out to R (G84), twice
+    assert feeds[0].feed * 60 == pytest.approx(1.25 * 500)  # F1.25 mm/rev x S500 [mm/min]; feed in mm/s
+    assert any(n.startswith("M29 S.. rigid tapping (Fanuc)") for n in prog.notes)
+
+
+def test_fanuc_per_revolution_tapping_without_m29_or_m03_stays_refused():
+    # without M29 a Fanuc G84 is a floating-holder tap whose spindle the program must start (M03)
+    with pytest.raises(GCodeError, match=r"G84 tapping cycle under G95 feed per revolution with the spindle stopped"):
+        parse_program(FANUC_RIGID_TAP.replace("N70 M29 S500\n", "N70 S500\n"), context=FANUC)
+    # and M29's rigid mode ends at G80: a later G84 under G95 needs M29 (or M03) again
+    again = FANUC_RIGID_TAP.replace("N90 M09\n", "N90 G98 G84 X30. Y10. Z-10. R5. P0 F1.25\n")
+    with pytest.raises(GCodeError, match=r":21:9: G84 tapping cycle under G95"):
+        parse_program(again, context=FANUC)
+
+
+#: haas.cps ``onCyclePoint`` "right-tapping" with ``useG95forTapping``: ``G95`` then ``G98 G84 .. F<pitch>``; the
+#: post starts the spindle in ``onSection``, but a tapping operation after an ``M05`` (or a program that stops the
+#: spindle before the tap, as shops edit them) reaches the G84 with it stopped.
+HAAS_TAP = ("%\nO01001 (TAP)\nN10 G90 G17\nN15 G21\nN20 G53 G00 Z0.\nN25 T3 M06\nN30 S500 M03\nN35 G54\n"
+            "N40 G00 G90 X40. Y30.\nN45 G43 Z15. H03\nN50 G00 Z5.\nN55 M05\nN60 G95\n"
+            "N65 G98 G84 X40. Y30. Z-10. R5. F1.25\nN70 G80\nN75 G94\nN80 G53 G00 Z0.\nN85 M30\n%\n")
+
+
+def test_haas_tapping_cycle_turns_the_spindle_itself():
+    # Haas mill operator's manual "G84 Tapping Canned Cycle": "It is not necessary to start the spindle CW before
+    # this canned cycle. The control does this automatically." Before: refused as a G95 feed with the spindle stopped
+    prog = checked_iso(HAAS_TAP, HAAS)
+    tap = [b for b in prog.blocks if b.kind == "line"]
+    assert [round(float(b.target[2]), 6) for b in tap] == [-10.0, 5.0]
+    assert tap[0].feed * 60 == pytest.approx(625.0)  # F1.25 x S500 [mm/min]
+    # a drilling cycle under G95 still needs the spindle turning
+    with pytest.raises(GCodeError, match=r"G81 drilling cycle under G95 feed per revolution with the spindle stop"):
+        parse_program(HAAS_TAP.replace("G84", "G81"), context=HAAS)
+
+
+#: A subprogram stored after the main program in the same file (haas.cps ``useSubroutines`` writes M97 local
+#: subprograms ``N<n> .. M99``; a shop's edit adds the branch ``M99 P<n>``). Both programs hold an N20.
+M99_P_IN_SUB = ("%\nO00001 (MAIN)\nG90 G17 G21\nG00 X0. Y0. Z10.\nM98 P1000\nN10 G00 X5.\nN20 G00 Y7.\nM30\n%\n"
+                "O01000 (SUB)\nG00 X1.\nM99 P20\nG00 X2.\nN20 G00 Z-1.\nM99\n%\n")
+
+
+def test_haas_m99_p_in_a_subprogram_branches_within_it():
+    # Haas mill operator's manual 96-8000 (June 1999) p. 376, "Conditional Expressions" (also haascnc.com
+    # "Conditional Expressions"): "M99 in the HAAS control has the ability to branch unconditionally to any line in
+    # the current subroutine by placing a P code on the same line ... N50 M99 P10 ; branches to line N10. It does not
+    # return control to the calling subroutine." Before: vcnc returned to the caller's N20 (Fanuc's rule)
+    prog = parse_program(M99_P_IN_SUB, context=HAAS)
+    assert [b.target.tolist() for b in prog.blocks] == [
+        [0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [1.0, 0.0, -1.0], [5.0, 0.0, -1.0], [5.0, 7.0, -1.0]]
+    # Fanuc's M99 P20 returns to the calling program's N20 (B-64304EN "Subprogram", "Special usage")
+    prog = parse_program(M99_P_IN_SUB, context=FANUC)
+    assert [b.target.tolist() for b in prog.blocks] == [[0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [1.0, 7.0, 10.0]]
+
+
+def test_haas_conditional_m99_p_loops_inside_a_local_subprogram():
+    # haas.cps writes "M97 P<n>" and the local subprogram "N<n> (comment) .. M99" after M30; a conditional
+    # "[cond] M99 P<n>" inside it loops within the subprogram, the final M99 returns to the block after the M97
+    text = ("%\nO01002 (LOOP)\nG90 G17 G21\n#100 = 0\nM97 P1000\nG00 X50.\nM30\n\nN1000 (SUB)\nN1001 #100 = #100 + 1\n"
+            "N1002 G00 X#100\nN1003 [#100 LT 3] M99 P1001\nN1004 M99\n%\n")
+    prog = parse_program(text, context=HAAS)
+    assert [float(b.target[0]) for b in prog.blocks] == [1.0, 2.0, 3.0, 50.0]
