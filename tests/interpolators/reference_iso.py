@@ -1556,9 +1556,15 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         # count in decimal: Q dividing R - Z exactly makes no peck at the bottom (our reading, the reader's too;
         # in mm the pecks of an inch program can land within rounding above it, fanuc_generator seed 501518)
         slack = _EPS * max(1.0, abs(bottom))
+        # Haas "G73": with K and Q (no I) the tool returns to R once the passes since the last return total K
+        every = m.sticky.get("k", 0.0) * m.scale if code == 73 and m.ctx.dialect.name == "haas" and not haas else 0.0
+        since = 0.0
         while depth > bottom + (slack if m.ctx.dialect.name in ("fanuc", "haas") else 0.0):
             rows = "optional" if depth - bottom <= slack else "one"
-            for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
+            since += delta
+            full = code == 83 or every > 0 and since >= every - slack
+            since = 0.0 if full else since
+            for kind, z in [("feed", depth), *([("rapid", r)] if full else []), ("rapid", depth + step)]:
                 m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
                 m.pos = m.out[-1].end.copy()
             if haas:  # the next peck is J shorter

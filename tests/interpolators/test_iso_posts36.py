@@ -91,3 +91,22 @@ def test_haas_conditional_m99_p_loops_inside_a_local_subprogram():
             "N1002 G00 X#100\nN1003 [#100 LT 3] M99 P1001\nN1004 M99\n%\n")
     prog = parse_program(text, context=HAAS)
     assert [float(b.target[0]) for b in prog.blocks] == [1.0, 2.0, 3.0, 50.0]
+
+
+#: haas.cps ``onCyclePoint`` "chip-breaking" with ``useG73Retract`` and an accumulated depth below the hole's depth:
+#: ``G98 G73 X.. Y.. Z.. R.. Q<incremental depth> K<accumulated depth> F..``.
+HAAS_G73_KQ = ("%\nO01003 (CHIP BREAK)\nN10 G90 G17\nN15 G21\nN20 T2 M06\nN25 S2000 M03\nN30 G54\n"
+               "N35 G00 G90 X10. Y10.\nN40 G43 Z15. H02\nN45 G00 Z5.\n"
+               "N50 G98 G73 X10. Y10. Z-12. R5. Q2. K6. F200.\nN55 G80\nN60 M30\n%\n")
+
+
+def test_haas_g73_with_k_and_q_returns_to_r_every_k():
+    # Haas mill operator's manual 96-8000 (June 1999) "G73": "If K and Q are both specified ... the tool is returned
+    # to the R plane after a number of passes totals up to the K amount". Before: K was ignored (chip breaks only)
+    prog = checked_iso(HAAS_G73_KQ, HAAS)
+    hole = [round(float(b.target[2]), 3) for b in prog.blocks if b.line == 11]
+    assert hole == [3.0, 3.254, 1.0, 1.254, -1.0, 5.0, -0.746, -3.0, -2.746, -5.0, -4.746, -7.0, 5.0, -6.746,
+                    -9.0, -8.746, -11.0, -10.746, -12.0, 5.0]
+    # Fanuc reads K as the repeat count (one hole here): no return to R between the pecks
+    fanuc = parse_program(HAAS_G73_KQ.replace("K6.", "K1"), context=FANUC)
+    assert [round(float(b.target[2]), 3) for b in fanuc.blocks if b.line == 11].count(5.0) == 1
