@@ -155,7 +155,7 @@ from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import io_words, m_codes, planner_word, user_m_file
+from interpolators.iso_mcodes import HAAS_OWN_M, io_words, m_codes, planner_word, user_m_file
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -557,7 +557,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             m = int(round(w.value))
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
-            if 100 <= m <= 199:
+            if 100 <= m <= 199 and not (m in HAAS_OWN_M and st.context.dialect.name == "haas"):
                 user_m_file(w, m, st, where, with_p=any(v.letter == "P" for v in words))
             if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere

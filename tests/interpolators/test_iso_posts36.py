@@ -110,3 +110,18 @@ def test_haas_g73_with_k_and_q_returns_to_r_every_k():
     # Fanuc reads K as the repeat count (one hole here): no return to R between the pecks
     fanuc = parse_program(HAAS_G73_KQ.replace("K6.", "K1"), context=FANUC)
     assert [round(float(b.target[2]), 3) for b in fanuc.blocks if b.line == 11].count(5.0) == 1
+
+
+def test_haas_display_media_m130_moves_nothing():
+    # Fusion's "HAAS - NGC M130" post (AntonTroskin/posts "haas_next_generation_m130(DPRINT).cps") writes
+    # "M130 (tool<n>.png)" before each tool change and DPRNT lines with the date and time; Haas NGC mill operator's
+    # manual "M130 Display Media / M131 Cancel Display Media". Before: refused as a machine builder's M code
+    text = ("%\nO01004 (NGC)\nM130 (part.png)\nG90 G17\nG21\nG187\nG53 G00 Z0.\n\n"
+            "DPRNT[1001**START*DATETIME****#3011[80]-#3012[60]]\n\nM130 (tool1.png)\nT1 M06\nS8000 M03\nG154 P1\n"
+            "G00 G90 X0. Y0.\nG43 Z15. H01\nG187 P1 E0.01\nG01 Z-1. F500.\nX10.\nG00 Z15.\nM131\nG187\nG53 G00 Z0.\n"
+            "M30\n%\n")
+    prog = checked_iso(text, HAAS)
+    assert prog.blocks[-1].target.tolist() == pytest.approx([10.0, 0.0, 0.0])
+    assert "M130/M131 display media (Haas) x3" in prog.notes
+    with pytest.raises(GCodeError, match=r"machine-specific M code 'M130'"):  # a Fanuc's M130 is its builder's
+        parse_program(text, context=FANUC)
