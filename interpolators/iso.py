@@ -149,6 +149,7 @@ from interpolators.iso_corners import PendingCorner, corner_after_block, corner_
 from interpolators.iso_cycle_blocks import cycle_block, pattern_or_pocket
 from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
+from interpolators.iso_dwo import dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
@@ -320,6 +321,7 @@ class State:
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
     tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
+    dwo: np.ndarray | None = None  # Haas G254: the shift of the work zero the table carried [mm] (iso_dwo)
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
 
@@ -374,7 +376,8 @@ class State:
         """Machine minus program coordinates [mm]."""
         o = self.offsets.get(self.wcs)
         base = self.context.offset(self.wcs) if o is None else o
-        return base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
+        shift = base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
+        return shift if self.dwo is None else shift + self.dwo
 
 
 def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
@@ -1031,8 +1034,13 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     if "length compensation" in gcodes:
         key, w = gcodes["length compensation"]
         tcp_switch((key, w), st, where, notes)  # G43.4 / G43.5 / G234: the length as G43 (interpolators.iso_tcp)
+        if st.tcp and st.dwo is not None:
+            where.fail("G234 tool centre point control under G254 dynamic work offset: not supported", column=w.column,
+                       text=w.text, expected="G255 before G234")
         length_compensation((430, w) if st.tcp else (key, w), seen, st, where, notes)
         st.length_code = key / 10
+    if "dwo" in gcodes:  # Haas G254 / G255 (interpolators.iso_dwo)
+        dwo_switch(gcodes["dwo"], st, where, notes)
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system

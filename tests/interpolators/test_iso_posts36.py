@@ -6,6 +6,7 @@ block order as the post prints them); the posts were read, not run: elcf-robot/a
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
@@ -125,3 +126,51 @@ def test_haas_display_media_m130_moves_nothing():
     assert "M130/M131 display media (Haas) x3" in prog.notes
     with pytest.raises(GCodeError, match=r"machine-specific M code 'M130'"):  # a Fanuc's M130 is its builder's
         parse_program(text, context=FANUC)
+
+
+#: haas.cps ``setWorkPlane`` with ``useMultiAxisFeatures`` (DWO) on a UMC (A about X, C about Z): ``G00 A.. C..``,
+#: ``G254``, the operation in the machine's axes, ``G255`` before the next indexing.
+HAAS_DWO = ("%\nO01005 (DWO)\nG90 G17\nG21\nG53 G00 Z0.\nT1 M06\nS8000 M03\nG54\nG00 G90 A0. C0.\n"
+            "G00 A30. C90.\nG254\nG00 G90 X0. Y0.\nG43 Z15. H01\nG01 Z0. F500.\nX10.\nG02 X20. Y0. I5. J0.\n"
+            "G98 G81 X20. Y0. Z-2. R3. F100.\nG80\nG00 Z15.\nG255\nG53 G00 Z0.\nG00 A0. C0.\nG00 X0. Y0.\nM30\n%\n")
+
+
+def _umc_context(**changes) -> MachineContext:
+    from interpolators.tilted import Kinematics, RotaryAxis
+    kin = Kinematics(axes=(RotaryAxis(name="a", direction="X", pivot=(0.0, 0.0, -50.0), limits=(-120.0, 120.0)),
+                           RotaryAxis(name="c")))
+    return MachineContext(dialect=DIALECTS["haas"], kinematics=kin, extra_axes=("a", "c"), **changes)
+
+
+def test_haas_dynamic_work_offset_carries_the_work_zero_with_the_table():
+    # Haas mill operator's manual (NGC) "G254 Dynamic Work Offset (DWO)": for 3+1 / 3+2 positioning the work offset
+    # follows the rotary axes about their centres. The work zero (G54 at the origin, 50 mm above the A pivot) at
+    # A30 is turned about X round (0, 0, -50): (0, 50 sin30, -50 + 50 cos30) = (0, 25, -6.699); C90 turns it about
+    # the C axis through it, which leaves it in place. Before: "G254 dynamic work offset ...: not supported"
+    prog = parse_program(HAAS_DWO, context=_umc_context())
+    zero = np.array([0.0, 25.0, -50.0 + 50.0 * np.cos(np.radians(30.0))])
+    ends = {b.line: b.target for b in prog.blocks}
+    assert ends[12][:2] == pytest.approx(zero[:2])  # X0 Y0: over the carried work zero
+    assert ends[13] == pytest.approx(zero + [0.0, 0.0, 15.0])
+    assert ends[15] == pytest.approx(zero + [10.0, 0.0, 0.0])
+    arc = next(b for b in prog.blocks if b.line == 16)
+    assert arc.target == pytest.approx(zero + [20.0, 0.0, 0.0])
+    drill = [b.target for b in prog.blocks if b.line == 17]
+    assert min(t[2] for t in drill) == pytest.approx(zero[2] - 2.0)
+    assert prog.blocks[-1].target == pytest.approx([0.0, 0.0, 0.0])  # G255: G54 itself again
+    assert "G254/G255 dynamic work offset x2" in prog.notes
+
+
+@pytest.mark.parametrize("change, message", [
+    ("G00 X10.\nG00 A40.\n", r"axis word A under G254 dynamic work offset: not supported"),
+    ("G234 H01\n", r"G234 tool centre point control under G254 dynamic work offset: not supported"),
+])
+def test_haas_dynamic_work_offset_refuses_turning_the_table_under_it(change, message):
+    text = HAAS_DWO.replace("G00 G90 X0. Y0.\n", "G00 G90 X0. Y0.\n" + change, 1)
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=_umc_context())
+
+
+def test_haas_dynamic_work_offset_needs_the_tables_kinematics():
+    with pytest.raises(GCodeError, match=r":11:1: G254 dynamic work offset needs the machine's kinematics"):
+        parse_program(HAAS_DWO, context=MachineContext(dialect=DIALECTS["haas"], extra_axes=("a", "c")))
