@@ -322,6 +322,10 @@ class State:
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
     tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
     dwo: np.ndarray | None = None  # Haas G254: the shift of the work zero the table carried [mm] (iso_dwo)
+    # a Fadal program (read under Fanuc's rules): its G73/G83 take Haas's I J K (Autodesk's Fusion Fadal post,
+    # fadal.cps "chip-breaking", "deep-drilling", writes the same G83 .. I.. J.. K.. as its Haas post; our
+    # reading, the Fadal manual's cycle section was not found), K no repeat count (Fadal repeats with L)
+    fadal: bool = False
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
 
@@ -410,7 +414,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
                 motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc",
-                modal_calls=ModalCalls() if dialect.name == "fanuc" else None)
+                modal_calls=ModalCalls() if dialect.name == "fanuc" else None, fadal=fadal)
     notes = Notes()
     raw_lines = lines_of(text)
     text, homing, wrapped = prepared_text(text, source, dialect.name, notes)

@@ -217,7 +217,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
-                            haas=st.context.dialect.name == "haas",
+                            haas=st.context.dialect.name == "haas" or st.fadal and code in (73, 83),
                             fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)

@@ -174,3 +174,16 @@ def test_haas_dynamic_work_offset_refuses_turning_the_table_under_it(change, mes
 def test_haas_dynamic_work_offset_needs_the_tables_kinematics():
     with pytest.raises(GCodeError, match=r":11:1: G254 dynamic work offset needs the machine's kinematics"):
         parse_program(HAAS_DWO, context=MachineContext(dialect=DIALECTS["haas"], extra_axes=("a", "c")))
+
+
+def test_fadal_peck_drilling_with_i_j_k_as_the_fusion_fadal_post_writes_it():
+    # 85vmh/LinuxCNCFusionPosts fadal.cps (Autodesk's Fadal post) "deep-drilling" with a peck reduction:
+    # "G98 G90 G83 X.. Y.. Z.. R+.. I<first peck> J<reduction> K<minimum peck> F..", as its Haas post writes it.
+    # Before: K0.05 was read as Fanuc's repeat count ("repeat count must be a whole number")
+    text = ("%\nN1 O1001 (FADAL)\nN2 G90 G94 G17 H0 E0\nN3 G20\nN4 G0 G90 H0 Z0.\nN5 T2 M6\nN6 S1000 M3\nN7 G17\n"
+            "N8 G0 G90 E1 X2. Y2.\nN9 G0 H2 Z0.6\nN10 G98 G90 G83 X2. Y2. Z-0.5 R+0.2 I0.2 J0.05 K0.05 F10.\n"
+            "N11 G80\nN12 G0 G90 H0 Z0.\nN13 M30\n%\n")
+    prog = checked_iso(text, MachineContext(dialect=DIALECTS["fadal"]))
+    bottoms = [round(float(b.target[2]) / 25.4, 4) for b in prog.blocks if b.kind == "line"]
+    # I0.2 from R0.2, then 0.15, 0.1, and 0.05 (K) onwards
+    assert bottoms == [0.0, -0.15, -0.25, -0.3, -0.35, -0.4, -0.45, -0.5]
