@@ -122,6 +122,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
 from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
+from interpolators.iso_arc3d import ARC3D_CODES, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, word_values
 from interpolators.iso_codes import (
@@ -326,6 +327,8 @@ class State:
     # fadal.cps "chip-breaking", "deep-drilling", writes the same G83 .. I.. J.. K.. as its Haas post; our
     # reading, the Fadal manual's cycle section was not found), K no repeat count (Fadal repeats with L)
     fadal: bool = False
+    arc3d_mid: np.ndarray | None = None  # Fanuc G02.4/G03.4: the intermediate point read [mm] (iso_arc3d)
+    arc3d_line: int = 0  # its line
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
 
@@ -477,6 +480,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if st.comp_start is not None:
         finish_compensation(st, blocks, source)
     expression_notes(text, params, dialect.name, notes)
+    unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = program_axes(used, blocks)
     if st.extra_used:
@@ -674,6 +678,8 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
             return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
+    if st.arc3d_mid is not None and st.motion not in ARC3D_CODES:
+        unfinished_arc3d(st, where)
     axis_words, arc_words, rot_words = ([w for w in g if w in seen] for g in ("XYZ", "IJK", EXTRA_LETTERS))
     if "position offset" in gcodes:
         _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)

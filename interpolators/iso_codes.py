@@ -86,6 +86,8 @@ G_UNSUPPORTED: dict[int, str] = {
     434: "G43.4 tool centre point control (5-axis; --dialect fanuc)",
     435: "G43.5 tool centre point control type 2 (5-axis; --dialect fanuc)",
     2340: "G234 tool centre point control (Haas 5-axis; --dialect haas)",
+    24: "G02.4 three-dimensional circular interpolation (Fanuc option; --dialect fanuc)",
+    34: "G03.4 three-dimensional circular interpolation (Fanuc option; --dialect fanuc)",
     2680: "G268 feature coordinate system (Haas 5-axis)",
     # Haas NGC mill operator's manual "G254 Dynamic Work Offset (DWO) (Group 23)": read under --dialect haas
     # (interpolators.iso_dwo). Fanuc "NURBS interpolation (G06.2)" (an option of the 30i series): control points,
@@ -138,6 +140,8 @@ NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 no
 #: bores with a manual retract).
 DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
+              24: ("motion", "G02.4 three-dimensional circular interpolation"),  # interpolators.iso_arc3d
+              34: ("motion", "G03.4 three-dimensional circular interpolation"),
               434: ("length compensation", "G43.4 tool centre point control"),  # interpolators.iso_tcp
               435: ("length compensation", "G43.5 tool centre point control type 2"),
               **{k: ("normal direction", n) for k, n in NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
+from interpolators.iso_arc3d import ARC3D_CODES, arc3d_block
 from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target
 from interpolators.iso_codes import G_CODES, PLANE_CODES
@@ -167,6 +168,10 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
         _spline(seen, target, st, blocks, where, common, mcol, mtok)
         return
     st.spline_pq = None
+    if motion in ARC3D_CODES:
+        used.update((0, 1, 2))
+        arc3d_block(seen, axis_words, target, st, blocks, where, common, mcol, mtok, move_feed)
+        return
     turn = np.zeros(6) if rot is None else rot - st.extra
     if motion in (0, 10):
         seg = Line(st.pos, target)

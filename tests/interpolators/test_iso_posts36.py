@@ -187,3 +187,63 @@ def test_fadal_peck_drilling_with_i_j_k_as_the_fusion_fadal_post_writes_it():
     bottoms = [round(float(b.target[2]) / 25.4, 4) for b in prog.blocks if b.kind == "line"]
     # I0.2 from R0.2, then 0.15, 0.1, and 0.05 (K) onwards
     assert bottoms == [0.0, -0.15, -0.25, -0.3, -0.35, -0.4, -0.45, -0.5]
+
+
+#: elcf-robot/autodesk-fanuc fanuc.cps ``onCircular`` with "Allow 3D arcs" for an arc in no axis plane:
+#: ``G02.4 X Y Z`` of the arc's middle (``getPositionU(0.5)``), then ``X Y Z`` of its end.
+FANUC_ARC3D = ("%\nO1003 (3D ARC)\nN10 G90 G94 G17 G49 G40 G80\nN15 G21\nN20 G54\nN25 S1000 M03\n"
+               "N30 G00 X0. Y0. Z10.\nN35 G01 X10. Y0. Z0. F500.\nN40 G02.4 X0. Y10. Z5.\nN45 X-10. Y0. Z0.\n"
+               "N50 G01 X-12.\nN55 M30\n%\n")
+
+
+def test_fanuc_three_dimensional_arc_runs_through_its_three_points():
+    # Mitsubishi M700V programming manual 6.14 (the Fanuc command's description found): "an arc shape determined by
+    # the three points (start point, intermediate point, end point)"; "G02.4 and G03.4 operations are the same".
+    # The circle through (10, 0, 0), (0, 10, 5) and (-10, 0, 0): centre on the perpendicular
+    # bisector of the first and last points, in their plane z = y / 2: |c - a| = |c - m| gives c = (0, 1, 0.5).
+    # Before: "unknown G code 'G02.4'"
+    prog = parse_program(FANUC_ARC3D, context=FANUC)
+    arc = [b for b in prog.blocks if b.line == 10]
+    points = np.array([b.target for b in arc])
+    a, m, e = np.array([10.0, 0.0, 0.0]), np.array([0.0, 10.0, 5.0]), np.array([-10.0, 0.0, 0.0])
+    normal = np.cross(m - a, e - a)
+    centre = np.array([0.0, 1.0, 0.5])
+    assert np.linalg.norm(a - centre) == pytest.approx(np.linalg.norm(m - centre))
+    radius = np.linalg.norm(a - centre)
+    assert np.allclose(np.linalg.norm(points - centre, axis=1), radius)  # every chord end on the circle
+    assert np.allclose((points - centre) @ normal, 0.0)  # in the plane of the three points
+    assert points[-1] == pytest.approx(e)
+    assert min(np.linalg.norm(points - m, axis=1)) < 0.2  # it passes the intermediate point
+    chords = np.linalg.norm(np.diff(np.vstack([a, points]), axis=0), axis=1)
+    assert radius * (1 - np.cos(np.max(chords) / radius / 2)) <= 0.001 + 1e-12  # within SPLINE_TOLERANCE
+    assert all(b.feed * 60 == pytest.approx(500.0) for b in arc)
+    assert prog.blocks[-1].target.tolist() == pytest.approx([-12.0, 0.0, 0.0])
+    # G03.4 is the same arc; an end block without Z keeps the intermediate point's Z
+    same = parse_program(FANUC_ARC3D.replace("G02.4", "G03.4"), context=FANUC)
+    assert np.allclose([b.target for b in same.blocks if b.line == 10], points)
+    flat = parse_program(FANUC_ARC3D.replace("N45 X-10. Y0. Z0.", "N45 X-10. Y0."), context=FANUC)
+    assert [b.target for b in flat.blocks if b.line == 10][-1] == pytest.approx([-10.0, 0.0, 5.0])
+
+
+def test_fanuc_three_dimensional_arc_through_points_on_a_line_runs_straight():
+    # M700V 6.14: three points on one line: "axes move in the order of start point, intermediate point, and end
+    # point"; under G91 the end point is relative to the intermediate point
+    text = FANUC_ARC3D.replace("N40 G02.4 X0. Y10. Z5.\nN45 X-10. Y0. Z0.",
+                               "N40 G91 G02.4 X-5. Y0. Z0.\nN45 X5. Y0. Z0.")  # back to the start: 10 - 5 + 5
+    prog = parse_program(text, context=FANUC)
+    assert [b.target.tolist() for b in prog.blocks if b.line == 10] == [[5.0, 0.0, 0.0], [10.0, 0.0, 0.0]]
+
+
+@pytest.mark.parametrize("change, context, message", [
+    ("N45 X-10. Y0. Z0.\n", FANUC, r":9:.*three-dimensional arc: the intermediate point of line 9 has no end point"),
+    ("N45 G01 X-10. Y0. Z0.\n", FANUC, r":10:1: three-dimensional arc: the intermediate point of line 9"),
+    ("N45 X-10. Y0. Z0. A5.\n", MachineContext(dialect=DIALECTS["fanuc"], extra_axes=("a",)),
+     r"G02.4 three-dimensional arc with axis word A: not supported"),
+    (None, HAAS, r"G02.4 three-dimensional circular interpolation \(Fanuc option; --dialect fanuc\)"),
+])
+def test_fanuc_three_dimensional_arc_refusals(change, context, message):
+    text = FANUC_ARC3D if change is None else FANUC_ARC3D.replace("N45 X-10. Y0. Z0.\n", change)
+    if change == "N45 X-10. Y0. Z0.\n":
+        text = FANUC_ARC3D.replace("N45 X-10. Y0. Z0.\nN50 G01 X-12.\n", "")
+    with pytest.raises(GCodeError, match=message):
+        parse_program(text, context=context)
