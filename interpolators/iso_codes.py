@@ -95,6 +95,10 @@ G_UNSUPPORTED: dict[int, str] = {
     2540: "G254 dynamic work offset (Haas DWO; --dialect haas)",
     2550: "G255 dynamic work offset cancel (Haas DWO; --dialect haas)", 62: "G06.2 NURBS interpolation (Fanuc option)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
+    # FANUC Series 30i-B operator's manual (B-64484EN), "Workpiece setting error compensation (G54.4)": an option
+    # whose error data the machine's probing stores; Fusion's fanuc.cps writes "G54.4 P<n>" after its probing
+    # macros (G65 P98xx, refused by name) and "G54.4 P0" at the end
+    544: "G54.4 workpiece setting error compensation (Fanuc option: its data comes from the machine's probing)",
     401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
     # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:

@@ -247,3 +247,17 @@ def test_fanuc_three_dimensional_arc_refusals(change, context, message):
         text = FANUC_ARC3D.replace("N45 X-10. Y0. Z0.\nN50 G01 X-12.\n", "")
     with pytest.raises(GCodeError, match=message):
         parse_program(text, context=context)
+
+
+@pytest.mark.parametrize("line, message", [
+    # fanuc.cps onOpen on a head machine with tilted planes: parameter No. 5006 bit 6 must be set (before: "unknown
+    # function 'PRM'", which read as a typo)
+    ("IF[PRM[5006,6]NE1]THEN#3000=91(PARAMETER_5006_BIT_6_MUST_BE_SET_TO_1)",
+     r":3:4: malformed value: PRM\[..\] reads a parameter of the control \(Fanuc 30i 'Reading parameters'\)"),
+    # fanuc.cps setProbeAngle / onClose with probeAngleMethod "G54.4" (before: "unknown G code 'G54.4'")
+    ("G54.4 P1", r":3:1: G54.4 workpiece setting error compensation \(Fanuc option: its data comes from the "
+                 r"machine's probing\): not supported"),
+])
+def test_fanuc_post_constructs_that_read_the_machine_are_named(line, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(f"%\nO1002\n{line}\nG21\nG00 X1.\nM30\n%\n", context=FANUC)
