@@ -261,3 +261,15 @@ def test_fanuc_three_dimensional_arc_refusals(change, context, message):
 def test_fanuc_post_constructs_that_read_the_machine_are_named(line, message):
     with pytest.raises(GCodeError, match=message):
         parse_program(f"%\nO1002\n{line}\nG21\nG00 X1.\nM30\n%\n", context=FANUC)
+
+
+def test_fanuc_smooth_tolerance_control_names_its_axes_without_moving_them():
+    # fanuc.cps setSmoothing with useNanoSmoothing: "G05.1 Q3 X0 Y0 Z0 R<level>" (A0 B0 C0 on a 5-axis operation),
+    # "G05.1 Q0" to end it. Before: "G05.1 needs Q0 or Q1 or Q2"
+    text = ("%\nO1005\nG90 G94 G17 G49 G40 G80\nG21\nG54\nS1000 M03\nG00 X10. Y10. Z10.\n"
+            "G05.1 Q3 X0 Y0 Z0 A0 R5\nG01 X20. F500.\nG05.1 Q0\nM30\n%\n")
+    prog = checked_iso(text.replace(" A0", ""), FANUC)
+    assert [b.target.tolist() for b in prog.blocks] == [[10.0, 10.0, 10.0], [20.0, 10.0, 10.0]]
+    assert "G05.1 Q3 smooth tolerance+ control" in prog.notes
+    five = parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"], extra_axes=("a",)))
+    assert [b.target.tolist() for b in five.blocks] == [[10.0, 10.0, 10.0], [20.0, 10.0, 10.0]]
