@@ -122,6 +122,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
 from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
+from interpolators.iso_arc3d import ARC3D_CODES, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, word_values
 from interpolators.iso_codes import (
@@ -149,13 +150,14 @@ from interpolators.iso_corners import PendingCorner, corner_after_block, corner_
 from interpolators.iso_cycle_blocks import cycle_block, pattern_or_pocket
 from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
+from interpolators.iso_dwo import dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import io_words, m_codes, planner_word, spindle_select, user_m_file
+from interpolators.iso_mcodes import HAAS_OWN_M, io_words, m_codes, planner_word, spindle_select, user_m_file
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -307,6 +309,7 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
+    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80: the next G84/G74 turns the spindle itself
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
@@ -319,6 +322,13 @@ class State:
     parameter_input: bool = False  # Fanuc G10 L50 .. G11: the lines are parameter data
     modal_states: ModalStates = dataclasses.field(default_factory=ModalStates)  # LinuxCNC M70-M73
     tcp: int = 0  # round(10 x G) of Fanuc G43.4 / G43.5, Haas G234 tool centre point control, 0 off (iso_tcp)
+    dwo: np.ndarray | None = None  # Haas G254: the shift of the work zero the table carried [mm] (iso_dwo)
+    # a Fadal program (read under Fanuc's rules): its G73/G83 take Haas's I J K (Autodesk's Fusion Fadal post,
+    # fadal.cps "chip-breaking", "deep-drilling", writes the same G83 .. I.. J.. K.. as its Haas post; our
+    # reading, the Fadal manual's cycle section was not found), K no repeat count (Fadal repeats with L)
+    fadal: bool = False
+    arc3d_mid: np.ndarray | None = None  # Fanuc G02.4/G03.4: the intermediate point read [mm] (iso_arc3d)
+    arc3d_line: int = 0  # its line
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
 
@@ -373,7 +383,8 @@ class State:
         """Machine minus program coordinates [mm]."""
         o = self.offsets.get(self.wcs)
         base = self.context.offset(self.wcs) if o is None else o
-        return base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
+        shift = base + self.g92 + np.array([self.tool_xy[0], self.tool_xy[1], self.tool_length])
+        return shift if self.dwo is None else shift + self.dwo
 
 
 def parse_iso(text: str, *, source: str | None = None, context: MachineContext = DEFAULT_CONTEXT,
@@ -406,7 +417,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 inch=dialect.default_units == "inch", exact_stop=not dialect.continuous_path,
                 tolerance=dialect.tolerance, home=np.array(context.home), reference2=np.array(context.reference2),
                 motion=_POWER_ON_MOTION.get(dialect.name), retract_r=dialect.name == "linuxcnc",
-                modal_calls=ModalCalls() if dialect.name == "fanuc" else None)
+                modal_calls=ModalCalls() if dialect.name == "fanuc" else None, fadal=fadal)
     notes = Notes()
     raw_lines = lines_of(text)
     text, homing, wrapped = prepared_text(text, source, dialect.name, notes)
@@ -469,6 +480,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     if st.comp_start is not None:
         finish_compensation(st, blocks, source)
     expression_notes(text, params, dialect.name, notes)
+    unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = program_axes(used, blocks)
     if st.extra_used:
@@ -561,7 +573,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
             m = int(round(w.value))
             if m != w.value or m < 0:
                 where.fail(f"unknown M code {w.text!r}", column=w.column, text=w.text, expected="M0 .. M99")
-            if 100 <= m <= 199:
+            if 100 <= m <= 199 and not (m in HAAS_OWN_M and st.context.dialect.name == "haas"):
                 user_m_file(w, m, st, where, with_p=any(v.letter == "P" for v in words))
             if m > 199:  # no standard meaning: a LinuxCNC configuration's remap (REMAP=M428 in its INI), or a
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
@@ -672,6 +684,8 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
             return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
+    if st.arc3d_mid is not None and st.motion not in ARC3D_CODES:
+        unfinished_arc3d(st, where)
     axis_words, arc_words, rot_words = ([w for w in g if w in seen] for g in ("XYZ", "IJK", EXTRA_LETTERS))
     if "position offset" in gcodes:
         _check_position_offset(gcodes["position offset"], seen, st, where, rot_words + polar)
@@ -1036,8 +1050,13 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     if "length compensation" in gcodes:
         key, w = gcodes["length compensation"]
         tcp_switch((key, w), st, where, notes)  # G43.4 / G43.5 / G234: the length as G43 (interpolators.iso_tcp)
+        if st.tcp and st.dwo is not None:
+            where.fail("G234 tool centre point control under G254 dynamic work offset: not supported", column=w.column,
+                       text=w.text, expected="G255 before G234")
         length_compensation((430, w) if st.tcp else (key, w), seen, st, where, notes)
         st.length_code = key / 10
+    if "dwo" in gcodes:  # Haas G254 / G255 (interpolators.iso_dwo)
+        dwo_switch(gcodes["dwo"], st, where, notes)
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
@@ -1105,6 +1124,7 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
+            st.rigid_tap = False
         else:
             if key >= 730 and not in_cycle:  # a new series of cycles: remember the initial level
                 # LinuxCNC keeps the last dwell P across series (settings->cycle_p; interp_cycles.cc
@@ -1115,6 +1135,7 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
             st.motion = key
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
+        st.rigid_tap = False
 
 
 def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:

@@ -86,15 +86,19 @@ G_UNSUPPORTED: dict[int, str] = {
     434: "G43.4 tool centre point control (5-axis; --dialect fanuc)",
     435: "G43.5 tool centre point control type 2 (5-axis; --dialect fanuc)",
     2340: "G234 tool centre point control (Haas 5-axis; --dialect haas)",
+    24: "G02.4 three-dimensional circular interpolation (Fanuc option; --dialect fanuc)",
+    34: "G03.4 three-dimensional circular interpolation (Fanuc option; --dialect fanuc)",
     2680: "G268 feature coordinate system (Haas 5-axis)",
-    # Haas NGC mill operator's manual "G254 Dynamic Work Offset (DWO) (Group 23)": for 3+1 / 3+2 positioning, the
-    # control moves the work offset with the rotary axes about the machine's centres of rotation (MRZP); G255
-    # cancels it. Fanuc "NURBS interpolation (G06.2)" (an option of the 30i series): control points, weights,
-    # knots. Neither runs here: their motion needs the machine's rotary centres or the curve's knots as the
-    # control reads them.
-    2540: "G254 dynamic work offset (Haas DWO: the work offset follows the rotary axes)",
-    2550: "G255 dynamic work offset cancel (Haas DWO)", 62: "G06.2 NURBS interpolation (Fanuc option)",
+    # Haas NGC mill operator's manual "G254 Dynamic Work Offset (DWO) (Group 23)": read under --dialect haas
+    # (interpolators.iso_dwo). Fanuc "NURBS interpolation (G06.2)" (an option of the 30i series): control points,
+    # weights, knots; its motion needs the curve's knots as the control reads them.
+    2540: "G254 dynamic work offset (Haas DWO; --dialect haas)",
+    2550: "G255 dynamic work offset cancel (Haas DWO; --dialect haas)", 62: "G06.2 NURBS interpolation (Fanuc option)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
+    # FANUC Series 30i-B operator's manual (B-64484EN), "Workpiece setting error compensation (G54.4)": an option
+    # whose error data the machine's probing stores; Fusion's fanuc.cps writes "G54.4 P<n>" after its probing
+    # macros (G65 P98xx, refused by name) and "G54.4 P0" at the end
+    544: "G54.4 workpiece setting error compensation (Fanuc option: its data comes from the machine's probing)",
     401: "G40.1 normal direction control cancel (Fanuc; --dialect fanuc)",
     1540: "G154 P additional work offsets (Haas; --dialect haas)",
     # named after the Haas mill operator's manual (G codes), Fanuc 0i-MF and TinyG/g2core:
@@ -140,6 +144,8 @@ NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 no
 #: bores with a manual retract).
 DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
+              24: ("motion", "G02.4 three-dimensional circular interpolation"),  # interpolators.iso_arc3d
+              34: ("motion", "G03.4 three-dimensional circular interpolation"),
               434: ("length compensation", "G43.4 tool centre point control"),  # interpolators.iso_tcp
               435: ("length compensation", "G43.5 tool centre point control type 2"),
               **{k: ("normal direction", n) for k, n in NORMAL_DIRECTION.items()}, **EXTENDED_CODES["fanuc"],
@@ -148,6 +154,7 @@ DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
               700: ("units", "inch"), 710: ("units", "mm")},  # read leniently: see interpolators.iso ``_g70_g71_units``
     "haas": {770: ("motion", "G77 back boring cycle"), **{k: ("pattern", n) for k, n in PATTERN_CODES.items()},
              2340: ("length compensation", "G234 tool centre point control"),  # interpolators.iso_tcp
+             2540: ("dwo", "G254 dynamic work offset"), 2550: ("dwo", "G255 dynamic work offset cancel"),  # iso_dwo
              120: ("pocket", "G12 circular pocket milling"), 130: ("pocket", "G13 circular pocket milling"),
              1010: ("mirror", "G101 mirror image"), 1000: ("mirror", "G100 mirror image cancel"),
              **EXTENDED_CODES["haas"]},

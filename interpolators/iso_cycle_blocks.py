@@ -159,6 +159,19 @@ def _fagor_drilling(seen, st: State, where: Where, notes: Notes) -> dict:
     return out
 
 
+def cycle_turns_spindle(st: State) -> bool:
+    """Whether the tapping cycle in force turns the spindle itself, so that it feeds per revolution (G95) with
+    no M3/M4 before it: Haas's G84/G74 always (Haas mill operator's manual, "G84 Tapping Canned Cycle": "It is
+    not necessary to start the spindle CW before this canned cycle. The control does this automatically"; our
+    reading is the same for G74's CCW), Fanuc's after M29 S.. (rigid tapping,
+    :data:`interpolators.iso_mcodes.RIGID_TAP_NOTE`). Other cycles under G95 need the spindle turning,
+    :func:`interpolators.iso_motion.per_rev_spindle`."""
+    if st.motion not in (740, 840):
+        return False
+    dialect = st.context.dialect.name
+    return dialect == "haas" or dialect == "fanuc" and st.rigid_tap
+
+
 def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes | None = None) -> None:
     """One canned-cycle block: its holes as ordinary rapid, feed and dwell blocks."""
     if st.motion == 810 and st.context.dialect.name == "fanuc" and notes is not None and (
@@ -180,7 +193,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if st.feed is None and st.motion != 0 and not initial_feed(st, where):
         where.fail(f"{name}: no feed rate" + (" (G95: F and S > 0 per revolution)" if st.per_rev else ""),
                    column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
-    if st.per_rev and st.motion != 0:
+    if st.per_rev and st.motion != 0 and not cycle_turns_spindle(st):
         per_rev_spindle(st, where, name, mw.column, mw.text)
     tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)
     if tap is not None and st.context.dialect.name == "linuxcnc":  # LinuxCNC check_g74_g84_spindle
@@ -204,7 +217,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                             offset=off, scale=st.scale, incremental=st.incremental, retract_r=st.retract_r,
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
-                            haas=st.context.dialect.name == "haas",
+                            haas=st.context.dialect.name == "haas" or st.fadal and code in (73, 83),
                             fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)

@@ -49,6 +49,13 @@ other things or errors):
   first peck depth, J amount to reduce each peck, K minimum peck depth"): the pecks are I, I - J,
   I - 2 J, ... but never less than K (used instead of Q when I is given); under the ``haas`` dialect
   K is never a repeat count (Haas repeats with L), as it is on Fanuc.
+* **Haas G73 with K and Q** (Haas mill operator's manual 96-8000, June 1999, "G73 High-Speed Peck Drilling
+  Canned Cycle": "If K and Q are both specified, a different operating mode is selected for this canned cycle.
+  In this mode, the tool is returned to the R plane after a number of passes totals up to the K amount"; Fusion's
+  haas.cps writes ``G73 .. Q<peck> K<accumulated depth>`` for chip breaking with a full retract): pecks of Q
+  with the chip-break retract, and a rapid to R and back (to the clearance above the last depth, as G83 comes
+  back) after the peck at which the depth drilled since the last return to R reaches K (our reading of
+  "totals up to"). Setting 52 (a clear move above R) is taken as 0, its default.
 * **No R in the first block of a series** (``fanuc_rules``, the ``fanuc`` and ``haas`` dialects): the R
   plane is the initial level. Haas Mill Operator's Manual (NGC, 2017), "G81 Drill Canned Cycle (Group
   09)" (and G73, G74, G84 ...): "*R - Position of the R plane", "* indicates optional"; Fanuc Series
@@ -244,6 +251,8 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
                          letter="Q" if pecks > 1 and "Q" in words else next((c for c in "LK" if c in words), None),
                          expected="a larger peck depth Q or fewer repeats L")
     delta = RAPID_DELTA_INCH * 25.4
+    # Haas G73 with K and Q (and no I): back to R each time the pecks since the last return total K
+    clear_every = cycle.k * scale if haas and g == 73 and not cycle.i and cycle.k and cycle.k > 0 else 0.0
     out: list[HoleMove] = []
     cur = pos.astype(float).copy()
 
@@ -272,10 +281,13 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
         else:  # the tool is at the clear level (or below it): over at the clear level
             go("rapid", x, y, clear)
         go("rapid", x, y, r)
+        cleared = r  # the depth of the last return to R (Haas G73 with K and Q)
         for depth in depths:
             go("line", x, y, depth, feed)
-            go("rapid", x, y, r if g == 83 else depth + delta)
-            if g == 83:
+            full = g == 83 or clear_every > 0 and cleared - depth >= clear_every - 1e-9 * max(1.0, abs(depth))
+            go("rapid", x, y, r if full else depth + delta)
+            if full:
+                cleared = depth
                 go("rapid", x, y, depth + delta)
         go("line", x, y, bottom, feed)
         if dwell > 0:

@@ -812,7 +812,7 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
     if not frames and back_to is not None:
         if rest:
             yield FlowLine(where.line, where.text, rest, where.file)
-        return _branch_in_main(prog, pc, back_to, where)
+        return _branch_here(prog, pc, back_to, where)
     if not frames:
         if on_note is not None:
             on_note(_main_m99_note(prog, pc))
@@ -823,6 +823,8 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
     frame = frames[-1]
     if frame.kind == "oword":
         prog.fail(pc, "M99 inside an O-word subroutine", "o<name> endsub or return")
+    if back_to is not None and params.macro_b and not params.fanuc:  # Haas: a branch within the subprogram
+        return _branch_here(prog, pc, back_to, where)
     if frame.repeats > 0:  # a G65 repetition keeps the locals as the last one left them (Haas manual)
         frame.repeats -= 1
         return frame.start_pc
@@ -859,12 +861,15 @@ def _conditional_m99(prog: _Program, pc: int, params: Parameters) -> str | None:
     return code[:start] + " " * (end - start) + code[end:] if holds else None
 
 
-def _branch_in_main(prog: _Program, pc: int, p: Word, where: Where) -> int:
-    """``M99 P<n>`` in the main program (``fanuc``, ``haas``): go on at its block ``N<n>`` (Haas mill operator's
-    manual 96-8000, "Macros", "Conditional Expressions": "M99 in the HAAS control has the ability to branch
-    unconditionally to any line in the current subroutine by placing a P code on the same line ... N50 M99 P10 ;
-    branches to line N10"; in a main program, whose M99 alone loops back to its start, our reading is the same
-    branch within it), found as a macro B GOTO finds it and counted as a backward GOTO is."""
+def _branch_here(prog: _Program, pc: int, p: Word, where: Where) -> int:
+    """``M99 P<n>`` in the main program (``fanuc``, ``haas``) and, under ``haas``, in a subprogram: go on at the
+    block ``N<n>`` of the program it stands in, the call (if any) still open (Haas mill operator's manual 96-8000,
+    June 1999, "Macros", "Conditional Expressions", p. 376, and haascnc.com "Conditional Expressions": "M99 in the
+    HAAS control has the ability to branch unconditionally to any line in the current subroutine by placing a P
+    code on the same line ... N50 M99 P10 ; branches to line N10. It does not return control to the calling
+    subroutine"; Fanuc's M99 P<n> in a subprogram returns to the caller's N<n>, :func:`_return_to`. In a main
+    program, whose M99 alone loops back to its start, our reading is the same branch within it), found as a
+    macro B GOTO finds it and counted as a backward GOTO is."""
     n = round(p.value)
     target = prog.macro.find(n, pc) if p.value == n else None
     if target is None:
@@ -898,9 +903,11 @@ def _no_return(prog: _Program, frames: list[_Frame]) -> None:
 
 
 def _return_to(prog: _Program, frame: _Frame, p: Word, where: Where) -> int:
-    """``M99 P<n>`` in a subprogram: return to the block ``N<n>`` of the calling program instead of
-    the block after the call (Haas mill operator's manual, "M99 Subprogram Return or Loop": "M99 P
-    ... jumps to the N number in the calling program"), found as a macro B GOTO finds it."""
+    """``M99 P<n>`` in a subprogram (``fanuc``; under ``haas`` it branches within the subprogram,
+    :func:`_branch_here`): return to the block ``N<n>`` of the calling program instead of the block after the
+    call (Fanuc 0i-MD B-64304EN, "Subprogram", "Special usage": "If P is used to specify a sequence number when a
+    subprogram is terminated, control does not return to the block after the calling block, but returns to the
+    block with the sequence number specified by P"), found as a macro B GOTO finds it."""
     n = round(p.value)
     target = prog.macro.find(n, frame.return_pc - 1) if p.value == n else None
     if target is None:

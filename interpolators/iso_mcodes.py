@@ -31,6 +31,20 @@ _M_NOTES = {
 }
 
 
+#: Fanuc's rigid tapping M code (parameter No. 5210, M29 by default): Fanuc 0i-B connection manual (function)
+#: B-63833EN, "Rigid tapping": "M29 S1000 ; G84 Z-100. R-20. F1. ;" under G99 (feed per revolution), with no M03:
+#: the control drives the spindle in step with the tapping axis for the G84/G74 that follows, until G80.
+RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
+
+
+#: Haas's own M codes above M99 that move nothing (Haas mill operator's manual, NGC, "M-codes": "M130 Display
+#: Media / M131 Cancel Display Media" (``M130 (file.png)`` shows a picture or a video on the pendant, as Fusion's
+#: Haas Next Generation post writes for each tool), "M138 / M139 Spindle Speed Variation On / Off"): noted, where
+#: other codes M100-M199 are the machine tool builder's (:func:`user_m_file`).
+HAAS_OWN_M = {130: "M130/M131 display media (Haas)", 131: "M130/M131 display media (Haas)",
+              138: "M138/M139 spindle speed variation (Haas)", 139: "M138/M139 spindle speed variation (Haas)"}
+
+
 #: Haas M codes with a P word (Haas mill operator's manual, M codes "M59 Set Output Relay", "M69 Clear Output
 #: Relay": P the relay number, e.g. M59 P1103): no motion, noted (as other M codes).
 _HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
@@ -113,6 +127,9 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
         elif m == 6:
             st.tool_current = st.tool_selected
             notes.add("T/M6 tool change")
+        elif m == 29 and st.context.dialect.name == "fanuc":
+            st.rigid_tap = True
+            notes.add(RIGID_TAP_NOTE)
         elif m == 61:
             if "Q" in seen:
                 st.tool_current = int(seen["Q"].value)
@@ -121,6 +138,8 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
             _modal_state(m, st, where, notes)
         elif m in _M_NOTES:
             notes.add(_M_NOTES[m])
+        elif m in HAAS_OWN_M and st.context.dialect.name == "haas":
+            notes.add(HAAS_OWN_M[m])
         elif 100 <= m <= 199:
             notes.add(f"user M code M{m} (an external program of the user M path: no motion)")
         elif st.context.dialect.name == "linuxcnc" and m not in LINUXCNC_M:

@@ -13,11 +13,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
+from interpolators.iso_arc3d import ARC3D_CODES, arc3d_block
 from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target
 from interpolators.iso_codes import G_CODES, PLANE_CODES
 from interpolators.iso_corners import finish_corner, start_corner
 from interpolators.iso_decimal import decimal_literal
+from interpolators.iso_dwo import refuse_rotary_under_dwo
 from interpolators.iso_nurbs import nurbs_chords
 from interpolators.iso_polar import POLAR_LETTERS, polar_xy
 from interpolators.iso_splines import bezier_chords
@@ -166,6 +168,10 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
         _spline(seen, target, st, blocks, where, common, mcol, mtok)
         return
     st.spline_pq = None
+    if motion in ARC3D_CODES:
+        used.update((0, 1, 2))
+        arc3d_block(seen, axis_words, target, st, blocks, where, common, mcol, mtok, move_feed)
+        return
     turn = np.zeros(6) if rot is None else rot - st.extra
     if motion in (0, 10):
         seg = Line(st.pos, target)
@@ -279,6 +285,8 @@ def _extra_words(seen, motion: int, st: State, where: Where, used: set[int], *, 
     if st.comp_side is not None:
         where.fail(f"axis word {w.letter} under cutter compensation ({st.comp_code}): not supported",
                    column=w.column, text=w.text, expected="G40 before A, B, C, U, V, W motion")
+    if st.dwo is not None:
+        refuse_rotary_under_dwo(st, letters, seen, where)
     st.extra_used = True
     used.update(3 + EXTRA_LETTERS.index(letter) for letter in letters)
     return extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(), incremental=st.incremental,

@@ -166,6 +166,13 @@ _FOREIGN_STATEMENTS = (
 )
 
 
+#: Fanuc macro functions that read the control itself, named in the error (fanuc, haas): FANUC Series 30i-B
+#: operator's manual B-64484EN, "Custom macro", "Reading parameters": "PRM[n]" and "PRM[n, bit]" read the
+#: parameter No. n (Fusion's fanuc.cps writes "IF[PRM[5006,6]NE1]THEN#3000=91" on head machines).
+_MACHINE_FUNCTIONS = {"PRM": "PRM[..] reads a parameter of the control (Fanuc 30i 'Reading parameters'), which "
+                             "vcnc does not model"}
+
+
 def _foreign_statement(code: str, p: int) -> str:
     """Why the name at ``p`` of ``code`` is no value, when the address letter before it starts a statement of
     another control's language (:data:`_FOREIGN_STATEMENTS`); else the placeholder hint."""
@@ -476,7 +483,9 @@ class _Reader:
                 and self.code[self.skip(p + 2):].startswith("["):
             return self.abbreviated(word.group(0).upper(), p)
         if word and self.code[self.skip(p + word.end()):].startswith("["):
-            self.fail(f"malformed value: unknown function {word.group(0)!r}", p,
+            known = _MACHINE_FUNCTIONS.get(word.group(0).upper()) if self.params.macro_b else None
+            self.fail(f"malformed value: {known}: not supported" if known else
+                      f"malformed value: unknown function {word.group(0)!r}", p,
                       "a function of " + ", ".join(_FUNCTIONS))
         if word:
             self.fail(f"malformed value: '{word.group(0)}' is neither a number, a parameter nor a function"

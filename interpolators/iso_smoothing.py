@@ -12,7 +12,10 @@ is a note, and Haas G187 E also sets the path tolerance as ``G64 P`` does:
 ``G103 P0-P15``     Haas "G103 Limit Block Lookahead": how many blocks the control reads ahead.
 ``G05.1 Q1 / Q0``   Fanuc AI contour control on / off (R1-R10 the level); ``Q2`` nano smoothing,
                     whose axis words name the axes (no motion) (Fanuc 0i-MF operator's manual,
-                    "AI contour control", "Nano smoothing").
+                    "AI contour control", "Nano smoothing"); ``Q3`` the 30i's smooth tolerance+
+                    control, written as Fusion's fanuc.cps writes it: ``G05.1 Q3 X0 Y0 Z0 [A0 B0 C0]
+                    R<level>``, the axis words again naming the axes (our reading of the post; the
+                    30i-B manual's section was not in our index).
 ``G08 P1 / P0``     Fanuc AI advanced preview control (look-ahead feed-forward) on / off.
 ``G05 P10000 / P0`` Fanuc high-precision contour control (HPCC) on / off.
 =================== ===============================================================================
@@ -87,9 +90,10 @@ def smoothing(key: int, words: dict[str, float]) -> Smoothing:
             raise WordError("G103 P (blocks of look-ahead) must be 0-15", letter="P", expected="P0 .. P15")
         return Smoothing(note=name, consumed=("P",))
     if key == 51:
-        q = _choice(words, "Q", (0.0, 1.0, 2.0), "G05.1")
-        consumed = ("Q", "R", "X", "Y", "Z") if q == 2.0 else ("Q", "R")
-        return Smoothing(note="G05.1 Q2 nano smoothing" if q == 2.0 else name, consumed=consumed)
+        q = _choice(words, "Q", (0.0, 1.0, 2.0, 3.0), "G05.1")
+        consumed = ("Q", "R", "X", "Y", "Z", "A", "B", "C") if q >= 2.0 else ("Q", "R")
+        note = {2.0: "G05.1 Q2 nano smoothing", 3.0: "G05.1 Q3 smooth tolerance+ control"}.get(q, name)
+        return Smoothing(note=note, consumed=consumed)
     if key == 80:
         _choice(words, "P", (0.0, 1.0), "G08")
         return Smoothing(note=name, consumed=("P",))

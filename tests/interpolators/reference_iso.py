@@ -1513,7 +1513,8 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     bottom = r + m.sticky["z"] * s if m.incremental else m.sticky["z"] * s
     clear = max(m.cycle_clear, r) if m.retract == 98 else r
     # Fanuc repeats a cycle K times (0i-MF "Canned cycle": "K: number of repeats"); LinuxCNC and Haas with L
-    fanuc_k = m.ctx.dialect.name == "fanuc" and "k" in words and "l" not in words
+    # (Fadal's G73/G83 read K as Haas's minimum peck: Fusion's fadal.cps writes "G83 .. I.. J.. K..")
+    fanuc_k = m.ctx.dialect.name == "fanuc" and "k" in words and "l" not in words and not (m.fadal and code in (73, 83))
     repeats = int(words["k"][-1]) if fanuc_k else int(words["l"][-1]) if "l" in words else 1
     if code == 87:
         _back_bore(m, line, words, cur, r, bottom, prog)
@@ -1548,7 +1549,7 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
     dwell = m.sticky.get("p", 0.0)
     if code in (73, 83):
         # Haas "G83": I the first peck, each next J less, never below K (instead of Q)
-        haas = m.ctx.dialect.name == "haas" and bool(m.sticky.get("i"))
+        haas = (m.ctx.dialect.name == "haas" or m.fadal) and bool(m.sticky.get("i"))  # fadal.cps writes them too
         delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
@@ -1556,9 +1557,16 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         # count in decimal: Q dividing R - Z exactly makes no peck at the bottom (our reading, the reader's too;
         # in mm the pecks of an inch program can land within rounding above it, fanuc_generator seed 501518)
         slack = _EPS * max(1.0, abs(bottom))
+        # Haas "G73": with K and Q (no I) the tool returns to R once the passes since the last return total K
+        every = m.sticky.get("k", 0.0) * m.scale if code == 73 and (m.ctx.dialect.name == "haas" or m.fadal) \
+            and not haas else 0.0
+        since = 0.0
         while depth > bottom + (slack if m.ctx.dialect.name in ("fanuc", "haas") else 0.0):
             rows = "optional" if depth - bottom <= slack else "one"
-            for kind, z in [("feed", depth), *([("rapid", r)] if code == 83 else []), ("rapid", depth + step)]:
+            since += delta
+            full = code == 83 or every > 0 and since >= every - slack
+            since = 0.0 if full else since
+            for kind, z in [("feed", depth), *([("rapid", r)] if full else []), ("rapid", depth + step)]:
                 m.out.append(Expected(line=line, kind=kind, end=m.to_machine(at(z)), rows=rows))
                 m.pos = m.out[-1].end.copy()
             if haas:  # the next peck is J shorter

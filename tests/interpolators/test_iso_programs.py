@@ -844,8 +844,9 @@ def test_unsupported_control_specific_g_codes_are_named(code, name):
 
 
 @pytest.mark.parametrize("dialect, code, name", [
-    # Haas NGC mill manual "G254 Dynamic Work Offset (DWO)": 3+2 positioning about the machine's rotary centres
-    ("haas", "G254", "G254 dynamic work offset (Haas DWO"), ("haas", "G255", "G255 dynamic work offset cancel"),
+    # Haas NGC mill manual "G254 Dynamic Work Offset (DWO)": read under haas on a table's kinematics (session 36,
+    # test_iso_posts36.py), named elsewhere
+    ("fanuc", "G254", "G254 dynamic work offset (Haas DWO"), ("fanuc", "G255", "G255 dynamic work offset cancel"),
     # Fanuc "NURBS interpolation (G06.2)", as an industrial post (PowerMill, NX) writes it
     ("fanuc", "G06.2 P3 K0. X0 Y0 Z0 R1.", "G06.2 NURBS interpolation (Fanuc option)")])
 def test_industrial_post_codes_without_known_motion_are_named(dialect, code, name):
