@@ -548,12 +548,24 @@ def _normal_offset(seen: dict[str, Word], m: Machine, where: Where, blk: SourceB
     the direction of the surface-normal vectors by the sum of the delta values (tool table and TOOL CALL)";
     without M128 / FUNCTION TCPM "the TNC ignores the direction vector T" (iTNC 530 user's manual
     60642x-03 p. 519, "3-D compensation without tool orientation"). vcnc's tool table holds no delta
-    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine]."""
+    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine].
+
+    ``LN X.. Y.. Z.. TX.. TY.. TZ..`` without N (Autodesk Fusion's ``heidenhain.cps`` writes it for 5-axis
+    work) is the "block format with tool orientation" of peripheral milling (TNC 620 user's manual 81760x-02,
+    12.6 "Three-dimensional tool compensation", "Peripheral milling: 3-D radius compensation with TCPM"):
+    the TNC displaces the tool square to the motion and to the tool only with RL/RR, by DR; under R0 the
+    point is not displaced. Its 3-D radius compensation under RL/RR is not modelled: an error."""
     missing = [k for k in ("NX", "NY", "NZ") if k not in seen]
+    if len(missing) == 3 and all(k in seen for k in ("TX", "TY", "TZ")):
+        if m.comp != "R0":
+            where.fail("LN with the tool orientation TX TY TZ under RL/RR (3-D radius compensation, peripheral "
+                       "milling) is not supported", column=blk.column, text=where.text,
+                       expected="LN .. TX.. TY.. TZ.. R0, or LN .. NX.. NY.. NZ.. (face milling)")
+        return np.zeros(3)
     normal = np.array([seen[k].value for k in ("NX", "NY", "NZ") if k in seen], dtype=float)
     if missing or not np.linalg.norm(normal) > 0:
         where.fail("LN without a surface-normal vector", column=blk.column, text=where.text,
-                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length)")
+                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length), or TX.. TY.. TZ.. alone")
     if not m.transform.identity:
         where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
                    text=where.text, expected="LN without mirror, rotation or scaling")

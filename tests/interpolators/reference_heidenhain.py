@@ -588,7 +588,7 @@ def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
     (:func:`_solve`), the table carrying the point there; the reader's chords, the last one's end checked."""
     if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any() or t.tilt is not None:
         raise ReferenceError("LN under M128 with RL/RR, a transformation or a tilted plane")
-    n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+    n = _surface_normal(w)
     p = t.prog()  # where the tip is on the part, before the axes turn
     for i, a in enumerate("XYZ"):
         if a in w:
@@ -598,8 +598,17 @@ def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
         for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool / np.linalg.norm(tool)]),
                                   0, nearest=True).items():
             t.extra["ABC".index(name.upper())] = value
-    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n / np.linalg.norm(n)),
-           extra=t.extra.copy(), rows="last")
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n), extra=t.extra.copy(), rows="last")
+
+
+def _surface_normal(w: dict) -> np.ndarray:
+    """The unit surface normal N of an ``LN`` block; zero for ``LN X Y Z TX TY TZ`` without N, the peripheral
+    milling form (TNC 620 user's manual 81760x-02, 12.6, "Block format with tool orientation": the tool is
+    displaced only under RL/RR, which this reference does not model), not displaced."""
+    if not any(k in w for k in ("NX", "NY", "NZ")) and all(k in w for k in ("TX", "TY", "TZ")):
+        return np.zeros(3)
+    n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+    return n / np.linalg.norm(n)
 
 
 def _function_tcpm(t: _Tnc, up: str) -> None:
@@ -2894,7 +2903,9 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("FUNCTION DWELL"):
             _function_dwell(t, line, up)
         elif up.startswith(("PLANE", "FUNCTION")):
-            if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL"))
+            # the file functions FILECOPY / FILEMOVE / FILEDELETE (TNC 640 user's manual) move nothing
+            if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
+                                   "FUNCTION FILEDELETE"))
                     or up.startswith("PLANE")
                     and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
                 raise ReferenceError(up)
@@ -3029,10 +3040,10 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _tool_vector_line(t, line, _words(rest, t.q))
     elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
         w = _words(rest, t.q)
-        n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+        n = _surface_normal(w)
         if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
             raise ReferenceError("LN under RL/RR or a transformation")
-        t.emit(line, "rapid" if "FMAX" in w else "feed", t.target(w) + t.delta * n / np.linalg.norm(n))
+        t.emit(line, "rapid" if "FMAX" in w else "feed", t.target(w) + t.delta * n)
     elif head == "CC":
         _pole(t, _words(rest, t.q))
     elif head in ("C", "CP"):

@@ -1,0 +1,84 @@
+"""Heidenhain forms the post processors write that vcnc refused or ran otherwise than a TNC (session 36). Each
+program is hand-written in the style of the post it names (repository, path) and checked against the independent
+reference (``reference_heidenhain``), its end points worked out by hand where they say more."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import MachineContext, Tool
+from interpolators.heidenhain import parse_heidenhain
+from interpolators.tilted import Kinematics, RotaryAxis, Solution
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks, reader_rows
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
+LENGTH = 20.0
+#: A table tilting about Y round (0, 0, -50) (B) and turning about Z (C), as in test_tcp5x.
+BC = Kinematics(axes=(RotaryAxis(name="b", pivot=(0.0, 0.0, -50.0), limits=(-120.0, 120.0)), RotaryAxis(name="c")))
+TNC5X = MachineContext(extra_axes=("b", "c"), kinematics=BC, tools={1: Tool(number=1, length=LENGTH)},
+                       work_offsets={"G54": (10.0, 5.0, 0.0)})
+
+
+def checked(body: str, context: MachineContext = CTX):
+    """The reader's program of ``body`` in a BEGIN/END PGM frame, every block checked against the reference."""
+    text = "0 BEGIN PGM 1001 MM\n" + body + "END PGM 1001 MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=context)
+    match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
+    assert match.mismatch is None, match.mismatch
+    assert match.exact + match.within == len(prog.blocks)
+    return prog
+
+
+def machine(kin: Kinematics, part, angles: Solution) -> np.ndarray:
+    """Where the machine's linear axes put the tool holder for the tip at ``part`` (tool length added)."""
+    return np.asarray(kin.place(np.asarray(part, float), angles)) + [0.0, 0.0, LENGTH]
+
+
+# -- Autodesk Fusion heidenhain.cps (OpenPostProject/heidenhain, heidenhain.cps) -------------------------------------
+
+def test_fusion_ln_with_the_tool_orientation_alone_turns_the_axes_and_keeps_the_point():
+    # onLinear5D / onRapid5D without a machine configuration: "LN" + X Y Z + TX TY TZ + R0 + F, no NX NY NZ. TNC 620
+    # user's manual 81760x-02, 12.6 "Block format with tool orientation": LN X Y Z TX TY TZ; under R0 the point is
+    # not displaced. T = (sin 30, 0, cos 30) is B+30 C+0; the tip at (30, 0, 0) on the part. Refused before as
+    # 'LN without a surface-normal vector'.
+    prog = checked("1 TOOL CALL 1 Z S8000\n2 L X+0 Y+0 Z+50 R0 FMAX\n3 FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS\n"
+                   "4 LN X+10 Y+0 Z+20 TX+0 TY+0 TZ+1 R0 FMAX\n"
+                   "5 LN X+30 Y+0 Z+0 TX+0.5 TY+0 TZ+0.8660254 R0 F600\n6 FUNCTION RESET TCPM\n", TNC5X)
+    last = [b for b in prog.blocks if b.number == 5][-1]
+    assert last.extra_target[1:3] == pytest.approx([30.0, 0.0], abs=1e-6)
+    assert last.target == pytest.approx(machine(BC, [40.0, 5.0, 0.0], Solution(30.0, 0.0)), abs=1e-6)
+
+
+def test_fusion_ln_with_the_tool_orientation_without_tcpm_is_a_line_to_the_point():
+    # without M128 / FUNCTION TCPM the TNC ignores T (iTNC 530 user's manual, "3-D compensation without tool
+    # orientation"): a line to X Y Z, the tool length 10 added along Z
+    prog = checked("1 TOOL CALL 1 Z S8000\n2 L X+0 Y+0 Z+50 R0 FMAX\n3 LN X+5 Y+6 Z+7 TX+0 TY+0 TZ+1 R0 F1000\n")
+    assert prog.blocks[-1].target == pytest.approx([5.0, 6.0, 17.0])
+
+
+def test_ln_with_the_tool_orientation_under_rl_names_the_3d_radius_compensation():
+    # the peripheral milling form under RL/RR (here from the L before it) displaces the tool square to motion and
+    # tool: not modelled
+    with pytest.raises(GCodeError, match="3-D radius compensation"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+5 R0 FMAX\n3 L X+5 RL F100\n"
+                         "4 LN X+10 Y+0 Z+0 TX+0 TY+0 TZ+1 F100\n5 END PGM T MM\n", source="t.h", context=CTX)
+
+
+def test_fusion_file_functions_after_a_probing_cycle_move_nothing():
+    # onCyclePoint of a probing cycle with printResults: "FUNCTION FILECOPY" "TCHPRnnn.TXT" TO "<comment>" and
+    # "FUNCTION FILEDELETE" (the TNC 640 user's manual's file functions). Refused before as 'FUNCTION FILECOPY is
+    # not supported' with a hint about TCPM.
+    prog = checked("1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+50 R0 FMAX\n"
+                   '3 FUNCTION FILECOPY "TNC:\\TCHPR427.TXT" TO "TNC:\\PART1.TXT"\n'
+                   '4 FUNCTION FILEDELETE "TNC:\\TCHPR427.TXT"\n5 L X+10 FMAX\n')
+    assert [list(b.target) for b in prog.blocks] == [[0.0, 0.0, 60.0], [10.0, 0.0, 60.0]]
+    assert any("FUNCTION FILECOPY" in n for n in prog.notes)
+
+
+def test_an_unknown_function_names_the_functions_vcnc_runs():
+    with pytest.raises(GCodeError, match="FUNCTION MODE is not supported.*FILECOPY"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 FUNCTION MODE TURN\n2 END PGM T MM\n", source="t.h", context=CTX)
