@@ -1341,10 +1341,11 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) 
                     tip_radius=m.tool_radius if tip is None else tip, scale=m.scale,
                     probe=m.context.touch_probe, where=where, column=col)
     sets_datum = not np.all(np.isnan(run.datum_from))  # a datum cycle (the measuring cycles set none)
-    if sets_datum and m.tilt is not None and run.q305 != 0:
-        where.fail(f"TCH PROBE {number} in the tilted plane of {m.tilt.what} writing row {run.q305} of a table is "
-                   "not modelled", column=blk.column, text=blk.code,
-                   expected="Q305=0 (the active datum) in a tilted plane, or PLANE RESET before the cycle")
+    if sets_datum and m.tilt is not None and run.q305 != 0 and run.q303 == 1:
+        where.fail(f"TCH PROBE {number} in the tilted plane of {m.tilt.what} writing row {run.q305} of the preset "
+                   "table (Q303=1) is not modelled", column=blk.column, text=blk.code,
+                   expected="Q305=0 (the active datum) or Q303=0 (the datum table) in a tilted plane, or PLANE RESET "
+                            "before the cycle")
     for move in run.moves:
         target = m.to_machine(move.target)
         if move.centre is None:
@@ -1373,7 +1374,10 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
     holds the datum, active once cycle 247 selects it; Q303=0: row n of the datum table ("Write determined datum
     in the active datum table. The reference system is the active workpiece coordinate system", iTNC 530 cycle
     manual 15.6, Q303), the shift from the preset that puts the probed point at ``origin_to``, active once
-    ``CYCL DEF 7.1 #n`` selects it; Q303=-1 (entered by the TNC in old programs, "do not use"): noted."""
+    ``CYCL DEF 7.1 #n`` selects it; in a tilted plane, the active workpiece coordinate system of that page, the
+    shift is one in the plane's axes from its zero, as cycle 7 shifts there (:func:`_tilt_to`), so that the row
+    selected in the same plane puts the probed point at ``origin_to``; Q303=-1 (entered by the TNC in old
+    programs, "do not use"): noted."""
     delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
     if row == 0 and m.tilt is not None:  # the datum set in the tilted plane, the preset kept untilted
         machine = m.to_machine(delta) - m.to_machine(np.zeros(3))

@@ -86,15 +86,20 @@ __all__ = ["heidenhain_reference"]
 _EPS = 1e-9
 
 
+#: The items of PATTERN DEF (TNC 640 cycle programming manual, "PATTERN DEF": POS, ROW, CIRC, PITCHCIRC, PAT, FRAME),
+#: a line of their own after it without a number or ``~`` as older TNCs save them.
+_PATTERN_ITEM = r"(POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\("
+
+
 def _blocks(text: str) -> list[tuple[int, str]]:
     """(first line, text) of each block: comments removed, continuations joined (``~``; and the
-    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx``, ``POSn (`` lines after ``PATTERN DEF``, as
-    older TNCs save them), numbers and the block skip mark ``/`` dropped."""
+    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx``, ``POSn (`` / ``PAT1 (`` .. lines after
+    ``PATTERN DEF``, as older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
     in_comment = False  # the previous line of this block ended in "~" inside a ";" comment
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
-        if first is not None and in_comment and not re.match(r"\s*(Q\d+\s*=|POS\d+\s*\()", raw):
+        if first is not None and in_comment and not re.match(r"\s*(Q\d+\s*=|" + _PATTERN_ITEM + ")", raw):
             code = ""  # a long comment wrapped over lines ending in "~": still comment
         else:
             in_comment = ";" in raw
@@ -103,7 +108,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
                 code = re.sub(r"(\d),(\d)", r"\1.\2", code)
         if first is None and out and (
                 (re.match(r"(CYCLE? DEF\s*2|TCH PROBE\s*4)\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
-                or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
+                or (out[-1][1].startswith("PATTERN DEF") and re.match(_PATTERN_ITEM, code))):
             out[-1] = (out[-1][0], out[-1][1] + " " + code)
             continue
         if first is None:
@@ -1144,13 +1149,14 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
     move = np.nan_to_num(move)
     presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
     row = int(p["Q305"])
-    if t.tilt is not None and row != 0:
-        raise ReferenceError("a probed datum written to a table row in a tilted plane")
+    if t.tilt is not None and row != 0 and p["Q303"] != 0:
+        raise ReferenceError("a probed datum written to a preset table row in a tilted plane")
     if row == 0:  # in a tilted plane: the move in the plane's axes, the preset in the part's (untilted) ones
         t.overrides[t.preset] = t.preset_point() + (move if t.tilt is None else t.tilt @ move)
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
-    elif p["Q303"] == 0:  # row of the datum table: the shift from the preset that puts the probed point there
+    elif p["Q303"] == 0:  # row of the datum table: the shift from the zero that puts the probed point there (in a
+        # tilted plane a shift in its axes, as cycle 7's there: "the active workpiece coordinate system", Q303)
         t.datum_rows[row] = t.shift + move
 
 

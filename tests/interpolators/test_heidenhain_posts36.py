@@ -82,3 +82,32 @@ def test_fusion_file_functions_after_a_probing_cycle_move_nothing():
 def test_an_unknown_function_names_the_functions_vcnc_runs():
     with pytest.raises(GCodeError, match="FUNCTION MODE is not supported.*FILECOPY"):
         parse_heidenhain("0 BEGIN PGM T MM\n1 FUNCTION MODE TURN\n2 END PGM T MM\n", source="t.h", context=CTX)
+
+
+# -- leftovers of session 35 --------------------------------------------------------------------------------------
+
+def test_pattern_def_pat1_on_a_line_of_its_own_without_a_tilde():
+    # 'PATTERN DEF' / 'PAT1 (..)' on the next line without '~', as the POSn lines of older TNCs (iTNC 530 cycle
+    # examples): it was refused as "unknown or unsupported block 'PAT1'". The grid of test_heidenhain_sl35.
+    prog = checked("1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+50 R0 FMAX\n3 PATTERN DEF\n"
+                   "PAT1 (X+10 Y+20 DX+5 DY+8 NUMX3 NUMY2 ROT+0 ROTX+0 ROTY+0 Z+0)\n"
+                   "4 CYCL DEF 200 DRILLING Q200=+2 Q201=-5 Q206=+150 Q202=+5 Q210=+0 Q203=+0 Q204=+10 Q211=+0\n"
+                   "5 CYCL CALL PAT FMAX\n")
+    drilled = [b.target[:2].tolist() for b in prog.blocks if b.target[2] < b.start[2] and b.kind != "rapid"
+               and np.allclose(b.target[:2], b.start[:2])]
+    assert drilled == [[10, 20], [15, 20], [20, 20], [20, 28], [15, 28], [10, 28]]
+
+
+def test_a_probed_datum_written_to_the_datum_table_in_a_tilted_plane():
+    # TCH PROBE 412 with Q303=0 writes row Q305 of the datum table: "The reference system is the active workpiece
+    # coordinate system" (iTNC 530 cycle manual 15.6, Q303), here the plane of PLANE SPATIAL SPB+30; it was refused
+    # as 'writing row 3 of a table'. Cycle 7 #3 in the same plane then puts the probed centre (10, 5) at Q331, Q332
+    # = (2, -1): X+2 Y-1 after it is where X+10 Y+5 was before.
+    prog = checked("1 TOOL CALL 1 Z S1000\n2 L X+0 Y+0 Z+100 R0 FMAX\n3 PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX\n"
+                   "4 L X+10 Y+5 Z+20 R0 FMAX\n"
+                   "5 TCH PROBE 412 DATUM INSIDE CIRCLE Q321=+10 Q322=+5 Q262=+20 Q325=+0 Q247=+90 Q261=-5 Q320=+2 "
+                   "Q260=+20 Q301=+0 Q305=+3 Q331=+2 Q332=-1 Q303=+0 Q381=+0 Q423=+4 Q365=+1\n"
+                   "6 CYCL DEF 7.0 DATUM SHIFT\n7 CYCL DEF 7.1 #3\n8 L X+2 Y-1 Z+20 R0 FMAX\n", TNC5X)
+    before, after = (next(b for b in prog.blocks if b.number == n) for n in (4, 8))
+    assert after.target == pytest.approx(before.target, abs=1e-9)
+    assert after.extra_target[1] == pytest.approx(30.0)
