@@ -353,6 +353,8 @@ class Machine:
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
         self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
+        # FUNCTION TCPM .. AXIS SPAT: the spatial angles A, B, C [deg] last written; None: rotary words are positions
+        self.tcpm_spatial: np.ndarray | None = None
         self.retract_feed = math.inf  # the feed of the block's M140 retraction (the F after MB) [mm/s]
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
         self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)

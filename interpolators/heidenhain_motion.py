@@ -37,7 +37,14 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_targets import plane_coords, program_target
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line, tilt_turns, tool_vector
+from interpolators.heidenhain_tcpm import (
+    TCPM_EXPECTED,
+    check_tcpm_on,
+    spatial_axes,
+    tcpm_line,
+    tilt_turns,
+    tool_vector,
+)
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
@@ -204,7 +211,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
         check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where,
                       column=w.column, text=w.text)
-        m.tcpm = True
+        m.tcpm, m.tcpm_spatial = True, None  # M128's rotary words are axis positions
         m.note("M128: TCPM (lines of the tool tip on the turned part)")
         return False
     if w.value == 129:
@@ -389,7 +396,8 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
         target = target + shift
     m.used.update(written)
     feed = math.inf if rapid else m.feed
-    extra = _extra_axes(seen, m, where) if kw == "L" else None
+    spatial = m.tcpm and m.tcpm_spatial is not None and m9x is None  # FUNCTION TCPM .. AXIS SPAT
+    extra = (spatial_axes(seen, m, where) if spatial else _extra_axes(seen, m, where)) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
     if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
         waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"

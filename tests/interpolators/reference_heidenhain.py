@@ -304,6 +304,7 @@ class _Tnc:
         self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
         self.shifted = False  # cycle 7 programmed in the tilted plane: its values stand after the reset
         self.tcpm = False  # M128: program points are the tool tip on the part, carried where the table holds it
+        self.spat: np.ndarray | None = None  # FUNCTION TCPM .. AXIS SPAT: the spatial angles A, B, C last written
         self.fk = FkReference()  # FK free contour programming (reference_heidenhain_fk)
         self.fk_end = -1  # len(self.out) after the last FK element: the last motion was FK while it is so
         self.raw: list[str] = []  # the running program's lines (FK relative data name block numbers)
@@ -427,11 +428,15 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
     # program's unit), I words incremental; others of value 0 are ignored
     others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k) and k[-1].lower() in t.ctx.extra_axes]
+    spat = t.tcpm and t.spat is not None and any(re.fullmatch(r"I?[ABCUVW]", k) for k in w)
     _reduce_display(t, w.get("MARGS", {}))
     # M128 with the rotary axes moving: the tip's program point from where it is before they turn, carried to
     # where the table holds it at their new positions; the reader's chords, the last one's end checked
-    base = t.prog() if t.tcpm and any(k[-1] in "ABC" for k in others) else None
-    for k in others:
+    base = t.prog() if t.tcpm and (spat or any(k[-1] in "ABC" for k in others)) else None
+    if spat:
+        others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k)]
+        _spatial_angles(t, w)
+    for k in [] if spat else others:
         i = "ABCUVW".index(k[-1])
         v = w[k] * (1.0 if i < 3 else t.scale)
         t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
@@ -450,6 +455,21 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     if "MB" in w:  # M140 at the block's end, after the block's cycle
         _retract(t, line, w["MB"], w.get("MBF", "MAX"))
     _tcpm_switch(t, [129] if 129 in ms else [])
+
+
+def _spatial_angles(t: _Tnc, w: dict) -> None:
+    """The A, B, C words of a line under FUNCTION TCPM .. AXIS SPAT (TNC7 basic user's manual 81762x-19, "Difference
+    between spatial angles and axis angles"): spatial angles as PLANE SPATIAL's, about the fixed X, then Y, then Z;
+    the tool's direction they give (+Z turned) is made the spindle's by the nearest solution (as LN's T); an
+    angle not written keeps its last value (0 at first)."""
+    for k in w:
+        if re.fullmatch(r"I?[ABCUVW]", k):
+            if k[0] == "I" or k[-1] not in "ABC":
+                raise ReferenceError(f"{k} under AXIS SPAT")
+            t.spat["ABC".index(k)] = w[k]
+    tool = _spatial(*t.spat)[:, 2]
+    for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool]), 0, nearest=True).items():
+        t.extra["ABC".index(name.upper())] = value
 
 
 def _retract(t: _Tnc, line: int, mb: float | str, feed: float | str) -> None:
@@ -581,7 +601,7 @@ def _tcpm_switch(t: _Tnc, ms: list) -> None:
         if t.tilt is not None and (not np.allclose(t.tilt, np.eye(3))
                                    or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in t.tilt_angles.values())):
             raise ReferenceError("M128 in a tilted plane that turns the workpiece coordinates")
-        t.tcpm = True
+        t.tcpm, t.spat = True, None
     if 129 in ms:
         t.tcpm = False
 
@@ -621,12 +641,14 @@ def _function_tcpm(t: _Tnc, up: str) -> None:
     feed of the tip on the part, rotary words as positions, the tip on a straight line): as M128; FUNCTION RESET
     TCPM ends it. Any other choice is not modelled here."""
     if up.startswith("FUNCTION RESET TCPM"):
-        t.tcpm = False
+        t.tcpm, t.spat = False, None
         return
-    if re.sub(r"\s+", " ", up[len("FUNCTION TCPM"):]).strip() not in (
+    words = re.sub(r"\s+", " ", up[len("FUNCTION TCPM"):]).strip()
+    if words.replace("AXIS SPAT", "AXIS POS") not in (
             "F TCP AXIS POS PATHCTRL AXIS", "F TCP AXIS POS PATHCTRL AXIS REFPNT TIP-TIP"):
         raise ReferenceError(up)
     _tcpm_switch(t, [128])
+    t.spat = np.zeros(3) if "AXIS SPAT" in words else None  # A, B, C spatial angles (_spatial_angles)
 
 
 def _pole(t: _Tnc, w: dict) -> None:

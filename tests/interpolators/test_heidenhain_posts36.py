@@ -68,6 +68,30 @@ def test_ln_with_the_tool_orientation_under_rl_names_the_3d_radius_compensation(
                          "4 LN X+10 Y+0 Z+0 TX+0 TY+0 TZ+1 F100\n5 END PGM T MM\n", source="t.h", context=CTX)
 
 
+@pytest.mark.parametrize("angles, direction", [
+    ("B+20 C+0", [np.sin(np.radians(20)), 0.0, np.cos(np.radians(20))]),  # SPB+20 turns +Z toward +X
+    ("A+20", [0.0, -np.sin(np.radians(20)), np.cos(np.radians(20))]),  # SPA+20: about X, on a B/C table too
+])
+def test_function_tcpm_axis_spat_reads_a_b_c_as_spatial_angles(angles, direction):
+    # HSMWorks' generic Heidenhain post (2011, 'FUNCTION TCPM F TCP AXIS SPAT PATHCTRL AXIS', then its 5-axis lines
+    # L X Y Z A B C) and NX TNC posts: AXIS SPAT was refused ('is not modelled'). TNC7 basic user's manual
+    # 81762x-19: spatial angles "define the angle of the tool relative to the workpiece"; PLANE SPATIAL's rotations,
+    # A about X, then B about Y, then C about Z, of the tool axis +Z. The table turns the part so that this direction
+    # is the spindle's: rotation(B, C) @ direction = +Z; the tip stays on the programmed point.
+    prog = checked("1 TOOL CALL 1 Z S8000\n2 L X+0 Y+0 Z+50 R0 FMAX\n3 FUNCTION TCPM F TCP AXIS SPAT PATHCTRL AXIS\n"
+                   f"4 L X+10 Y+0 Z+5 {angles} F1000\n5 FUNCTION RESET TCPM\n", TNC5X)
+    last = [b for b in prog.blocks if b.number == 4][-1]
+    b, c = last.extra_target[1:3]
+    assert BC.rotation(Solution(b, c)) @ np.array(direction) == pytest.approx([0.0, 0.0, 1.0], abs=1e-9)
+    assert last.target == pytest.approx(machine(BC, [20.0, 5.0, 5.0], Solution(b, c)), abs=1e-6)
+
+
+def test_function_tcpm_axis_spat_names_an_incremental_angle():
+    with pytest.raises(GCodeError, match="'IB\\+5' under FUNCTION TCPM AXIS SPAT"):
+        parse_heidenhain("0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000\n2 FUNCTION TCPM F TCP AXIS SPAT PATHCTRL AXIS\n"
+                         "3 L X+0 IB+5 F100\n4 END PGM T MM\n", source="t.h", context=TNC5X)
+
+
 def test_fusion_file_functions_after_a_probing_cycle_move_nothing():
     # onCyclePoint of a probing cycle with printResults: "FUNCTION FILECOPY" "TCHPRnnn.TXT" TO "<comment>" and
     # "FUNCTION FILEDELETE" (the TNC 640 user's manual's file functions). Refused before as 'FUNCTION FILECOPY is
