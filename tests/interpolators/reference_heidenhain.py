@@ -2818,7 +2818,7 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
 def _plane(t: _Tnc, line: int, up: str) -> None:
     """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE EULER EULPR EULNU EULROT``
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
-    ``PLANE RESET ..``."""
+    ``PLANE RELATIV SPA|SPB|SPC`` (the active plane turned about its own axis), ``PLANE RESET ..``."""
     w = {k: _val(v, t.q)
          for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
@@ -2834,7 +2834,14 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
         b = np.array([w.get("BX", 0.0), w.get("BY", 0.0), w.get("BZ", 0.0)])
         x = (b - (b @ n) * n) / np.linalg.norm(b - (b @ n) * n)
         plane = np.column_stack([x, np.cross(n, x), n])
-    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")):
+    elif up.startswith("PLANE RELATIV"):  # one incremental angle about the active plane's own axis (iTNC 530
+        # user's manual, "Incremental tilting: PLANE RELATIVE": it "acts in relation to the active input coordinate
+        # system")
+        turns = [k for k in ("SPA", "SPB", "SPC") if k in w]
+        if len(turns) != 1:
+            raise ReferenceError(up)
+        plane = (np.eye(3) if t.tilt is None else t.tilt) @ _turn("XYZ"["ABC".index(turns[0][-1])], w[turns[0]])
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR", "PLANE RELATIV")):
         raise ReferenceError(up)
     mb = re.search(r"\bMB\s*(MAX|\+?\d+\.?\d*)", up)
     up_to = None if not mb else max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else \

@@ -135,3 +135,17 @@ def test_a_probed_datum_written_to_the_datum_table_in_a_tilted_plane():
     before, after = (next(b for b in prog.blocks if b.number == n) for n in (4, 8))
     assert after.target == pytest.approx(before.target, abs=1e-9)
     assert after.extra_target[1] == pytest.approx(30.0)
+
+
+def test_nx_plane_relativ_chain_is_checked_by_the_reference():
+    # An NX TNC post (its PLANE RELATIV list: "PLANE RELATIV $res TURN MB MAX FMAX", then TRANS DATUM AXIS) turns the
+    # active plane about its own axes; the reader ran it, the reference did not model it (now: the active plane
+    # times the turn about its own X, Y or Z, iTNC 530 user's manual, "Incremental tilting: PLANE RELATIVE").
+    # SPB+20 then RELATIV SPB+10 is SPB+30: the same machine point as PLANE SPATIAL SPB+30.
+    relative = checked("1 TOOL CALL 1 Z S5000\n2 L X+0 Y+0 Z+100 R0 FMAX\n"
+                       "3 PLANE SPATIAL SPA+0 SPB+20 SPC+0 TURN MB MAX FMAX\n4 PLANE RELATIV SPB+10 TURN MB MAX FMAX\n"
+                       "5 L X+5 Y+0 Z+20 FMAX\n", TNC5X)
+    direct = checked("1 TOOL CALL 1 Z S5000\n2 L X+0 Y+0 Z+100 R0 FMAX\n"
+                     "3 PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN MB MAX FMAX\n5 L X+5 Y+0 Z+20 FMAX\n", TNC5X)
+    assert relative.blocks[-1].target == pytest.approx(direct.blocks[-1].target, abs=1e-9)
+    assert relative.blocks[-1].extra_target == pytest.approx(direct.blocks[-1].extra_target, abs=1e-9)
