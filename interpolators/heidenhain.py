@@ -87,7 +87,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L M128 ... M129                 TCPM on a tilting table: lines of the tool tip on the turned part,
     FUNCTION TCPM F TCP AXIS POS    their rotary words moving too (chords within the tolerance, F the
       PATHCTRL AXIS .. RESET TCPM   tip's feed on the part: heidenhain_tcpm, tcp); the F right after
-                                    M128 is its compensation feed (noted)
+                                    M128 is its compensation feed (noted); AXIS SPAT: A B C are
+                                    spatial angles, the tool's direction (heidenhain_tcpm.spatial_axes)
+    LN X.. Y.. Z.. TX.. TY.. TZ..   the tool orientation alone (peripheral milling): no displacement
+                                    under R0; FUNCTION FILECOPY/FILEMOVE/FILEDELETE: no motion, noted
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
