@@ -87,7 +87,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     L M128 ... M129                 TCPM on a tilting table: lines of the tool tip on the turned part,
     FUNCTION TCPM F TCP AXIS POS    their rotary words moving too (chords within the tolerance, F the
       PATHCTRL AXIS .. RESET TCPM   tip's feed on the part: heidenhain_tcpm, tcp); the F right after
-                                    M128 is its compensation feed (noted)
+                                    M128 is its compensation feed (noted); AXIS SPAT: A B C are
+                                    spatial angles, the tool's direction (heidenhain_tcpm.spatial_axes)
+    LN X.. Y.. Z.. TX.. TY.. TZ..   the tool orientation alone (peripheral milling): no displacement
+                                    under R0; FUNCTION FILECOPY/FILEMOVE/FILEDELETE: no motion, noted
     M2, M30                         end of the main program (subprograms follow)
     FN 0: Q1 = +5, Q2 = SQRT(Q1)    Q parameters (FN 0-8, 13, formulas)
     FN 9: IF +Q1 EQU +0 GOTO LBL 2  conditional jumps (FN 9-12)
@@ -353,6 +356,8 @@ class Machine:
         self.tilt: TiltedPlane | None = None  # the tilted working plane (PLANE, cycle 19) on a tilting table
         self.tcpm = False  # M128 on (interpolators.heidenhain_tcpm): lines are the tool tip on the turned part
         self.tcpm_move = False  # the block being emitted is one M128 reads (a line, an M140 retract)
+        # FUNCTION TCPM .. AXIS SPAT: the spatial angles A, B, C [deg] last written; None: rotary words are positions
+        self.tcpm_spatial: np.ndarray | None = None
         self.retract_feed = math.inf  # the feed of the block's M140 retraction (the F after MB) [mm/s]
         self.fk = FreeContour()  # FK free contour programming (interpolators.heidenhain_fk)
         self.plain: PlainBlocks | None = None  # the shortcut for plain L/CC/C/CR blocks (heidenhain_fast)
@@ -1341,10 +1346,11 @@ def _touch_probe(kw: str, blk: SourceBlock, pos: int, m: Machine, where: Where) 
                     tip_radius=m.tool_radius if tip is None else tip, scale=m.scale,
                     probe=m.context.touch_probe, where=where, column=col)
     sets_datum = not np.all(np.isnan(run.datum_from))  # a datum cycle (the measuring cycles set none)
-    if sets_datum and m.tilt is not None and run.q305 != 0:
-        where.fail(f"TCH PROBE {number} in the tilted plane of {m.tilt.what} writing row {run.q305} of a table is "
-                   "not modelled", column=blk.column, text=blk.code,
-                   expected="Q305=0 (the active datum) in a tilted plane, or PLANE RESET before the cycle")
+    if sets_datum and m.tilt is not None and run.q305 != 0 and run.q303 == 1:
+        where.fail(f"TCH PROBE {number} in the tilted plane of {m.tilt.what} writing row {run.q305} of the preset "
+                   "table (Q303=1) is not modelled", column=blk.column, text=blk.code,
+                   expected="Q305=0 (the active datum) or Q303=0 (the datum table) in a tilted plane, or PLANE RESET "
+                            "before the cycle")
     for move in run.moves:
         target = m.to_machine(move.target)
         if move.centre is None:
@@ -1373,7 +1379,10 @@ def _probed_datum(origin_from: np.ndarray, origin_to: np.ndarray, row: int, tabl
     holds the datum, active once cycle 247 selects it; Q303=0: row n of the datum table ("Write determined datum
     in the active datum table. The reference system is the active workpiece coordinate system", iTNC 530 cycle
     manual 15.6, Q303), the shift from the preset that puts the probed point at ``origin_to``, active once
-    ``CYCL DEF 7.1 #n`` selects it; Q303=-1 (entered by the TNC in old programs, "do not use"): noted."""
+    ``CYCL DEF 7.1 #n`` selects it; in a tilted plane, the active workpiece coordinate system of that page, the
+    shift is one in the plane's axes from its zero, as cycle 7 shifts there (:func:`_tilt_to`), so that the row
+    selected in the same plane puts the probed point at ``origin_to``; Q303=-1 (entered by the TNC in old
+    programs, "do not use"): noted."""
     delta = np.where(np.isnan(origin_from), 0.0, origin_from - np.nan_to_num(origin_to))
     if row == 0 and m.tilt is not None:  # the datum set in the tilted plane, the preset kept untilted
         machine = m.to_machine(delta) - m.to_machine(np.zeros(3))

@@ -37,7 +37,14 @@ from interpolators.heidenhain_paths import (
 )
 from interpolators.heidenhain_splines import SPLINE_START_TOLERANCE, read_spline, spline_points
 from interpolators.heidenhain_targets import plane_coords, program_target
-from interpolators.heidenhain_tcpm import TCPM_EXPECTED, check_tcpm_on, tcpm_line, tilt_turns, tool_vector
+from interpolators.heidenhain_tcpm import (
+    TCPM_EXPECTED,
+    check_tcpm_on,
+    spatial_axes,
+    tcpm_line,
+    tilt_turns,
+    tool_vector,
+)
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
@@ -204,7 +211,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
         check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where,
                       column=w.column, text=w.text)
-        m.tcpm = True
+        m.tcpm, m.tcpm_spatial = True, None  # M128's rotary words are axis positions
         m.note("M128: TCPM (lines of the tool tip on the turned part)")
         return False
     if w.value == 129:
@@ -389,7 +396,8 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
         target = target + shift
     m.used.update(written)
     feed = math.inf if rapid else m.feed
-    extra = _extra_axes(seen, m, where) if kw == "L" else None
+    spatial = m.tcpm and m.tcpm_spatial is not None and m9x is None  # FUNCTION TCPM .. AXIS SPAT
+    extra = (spatial_axes(seen, m, where) if spatial else _extra_axes(seen, m, where)) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
     if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
         waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
@@ -548,12 +556,24 @@ def _normal_offset(seen: dict[str, Word], m: Machine, where: Where, blk: SourceB
     the direction of the surface-normal vectors by the sum of the delta values (tool table and TOOL CALL)";
     without M128 / FUNCTION TCPM "the TNC ignores the direction vector T" (iTNC 530 user's manual
     60642x-03 p. 519, "3-D compensation without tool orientation"). vcnc's tool table holds no delta
-    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine]."""
+    values: the sum is the DR of the last TOOL CALL. Returns that displacement [mm, machine].
+
+    ``LN X.. Y.. Z.. TX.. TY.. TZ..`` without N (Autodesk Fusion's ``heidenhain.cps`` writes it for 5-axis
+    work) is the "block format with tool orientation" of peripheral milling (TNC 620 user's manual 81760x-02,
+    12.6 "Three-dimensional tool compensation", "Peripheral milling: 3-D radius compensation with TCPM"):
+    the TNC displaces the tool square to the motion and to the tool only with RL/RR, by DR; under R0 the
+    point is not displaced. Its 3-D radius compensation under RL/RR is not modelled: an error."""
     missing = [k for k in ("NX", "NY", "NZ") if k not in seen]
+    if len(missing) == 3 and all(k in seen for k in ("TX", "TY", "TZ")):
+        if m.comp != "R0":
+            where.fail("LN with the tool orientation TX TY TZ under RL/RR (3-D radius compensation, peripheral "
+                       "milling) is not supported", column=blk.column, text=where.text,
+                       expected="LN .. TX.. TY.. TZ.. R0, or LN .. NX.. NY.. NZ.. (face milling)")
+        return np.zeros(3)
     normal = np.array([seen[k].value for k in ("NX", "NY", "NZ") if k in seen], dtype=float)
     if missing or not np.linalg.norm(normal) > 0:
         where.fail("LN without a surface-normal vector", column=blk.column, text=where.text,
-                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length)")
+                   expected="LN X.. Y.. Z.. NX.. NY.. NZ.. (a vector of non-zero length), or TX.. TY.. TZ.. alone")
     if not m.transform.identity:
         where.fail("LN under a coordinate transformation (cycles 8, 10, 11, 26) is not supported", column=blk.column,
                    text=where.text, expected="LN without mirror, rotation or scaling")

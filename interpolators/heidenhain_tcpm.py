@@ -36,26 +36,26 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
+from interpolators.iso_axes import EXTRA_LETTERS
 from interpolators.tcp import ChordsError, block_time, part_point, tcp_chords, tool_vector_extra
-from interpolators.tilted import Kinematics, TiltError
+from interpolators.tilted import Kinematics, TiltError, spatial
 from toolpaths.geometry import Line
 
 if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
     from interpolators.heidenhain_transforms import TiltedPlane
 
-__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "tcpm_line", "tilt_turns", "tool_vector"]
+__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "spatial_axes", "tcpm_line", "tilt_turns", "tool_vector"]
 
 #: What M128 / FUNCTION TCPM need here.
 TCPM_EXPECTED = ("M128 or FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS on a machine whose rotary axes turn the part "
                  "([program.kinematics] kind = \"table\"), tool axis Z, no tilted plane that turns the "
                  "workpiece coordinates, straight lines L until M129 / FUNCTION RESET TCPM")
 
-#: The words of FUNCTION TCPM and what vcnc reads of each (None: read as M128 does).
+#: The words of FUNCTION TCPM and what vcnc reads of each (None: read as M128 does; AXIS SPAT: :func:`spatial_axes`).
 _TCPM_WORDS = {
-    "F TCP": None, "AXIS POS": None, "PATHCTRL AXIS": None, "REFPNT TIP-TIP": None,
+    "F TCP": None, "AXIS POS": None, "PATHCTRL AXIS": None, "REFPNT TIP-TIP": None, "AXIS SPAT": None,
     "F CONT": "F CONT (the feed as the contouring feed of the programmed axes) is not modelled",
-    "AXIS SPAT": "AXIS SPAT (rotary words as spatial angles) is not modelled",
     "PATHCTRL VECTOR": "PATHCTRL VECTOR (the tool vector interpolated in a plane) is not modelled",
     "REFPNT TIP-CENTER": "REFPNT TIP-CENTER (the tool's centre as the point of rotation) is not modelled",
     "REFPNT CENTER-CENTER": "REFPNT CENTER-CENTER (the tool's centre as the programmed point) is not modelled",
@@ -102,16 +102,18 @@ def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
     (tool center point) and the workpiece", AXIS POS "the programmed coordinates of rotary axes as the nominal
     position of the respective axis", PATHCTRL AXIS "the tool tip moves on a straight line between the starting
     and end position of the respective NC block"; REFPNT TIP-TIP (TNC 640) the tool tip as the programmed point
-    and the point of rotation. That is what vcnc reads (as M128); F CONT, AXIS SPAT, PATHCTRL VECTOR and the
-    other REFPNT are errors naming them. A word left out is read as M128 acts (our reading: the manuals show
-    the three groups always given)."""
+    and the point of rotation. That is what vcnc reads (as M128); AXIS SPAT, the rotary words as spatial angles,
+    is :func:`spatial_axes`; F CONT, PATHCTRL VECTOR and the other REFPNT are errors naming them. A word left out
+    is read as M128 acts (our reading: the manuals show the three groups always given)."""
     if re.match(r"\s*RESET\s+TCPM\s*$", rest, re.I):
         m.tcpm = False
+        m.tcpm_spatial = None
         return
     tm = re.match(r"\s*TCPM\b", rest, re.I)
     if tm is None:
         where.fail("malformed FUNCTION RESET TCPM", column=column, text=rest.strip(), expected="FUNCTION RESET TCPM")
     pos = tm.end()
+    spat = False
     while rest[pos:].strip():
         wm = _TCPM_WORD_RE.match(rest, pos)
         if wm is None:
@@ -121,11 +123,14 @@ def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
         if _TCPM_WORDS[word] is not None:
             where.fail(f"FUNCTION TCPM {word}: {_TCPM_WORDS[word]}", column=column + wm.start(1), text=wm.group(1),
                        expected=TCPM_EXPECTED)
+        spat = spat or word == "AXIS SPAT"
         pos = wm.end()
     check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where, column=column,
                   text="FUNCTION TCPM")
     m.tcpm = True
-    m.note("FUNCTION TCPM: lines of the tool tip on the turned part (as M128)")
+    m.tcpm_spatial = np.zeros(3) if spat else None
+    m.note("FUNCTION TCPM: lines of the tool tip on the turned part (as M128)"
+           + (", A B C spatial angles (AXIS SPAT)" if spat else ""))
 
 
 def tool_vector(seen: dict, m: Machine, where: Where) -> np.ndarray | None:
@@ -144,13 +149,45 @@ def tool_vector(seen: dict, m: Machine, where: Where) -> np.ndarray | None:
         w = seen[keys[0]]
         where.fail("LN with only part of the tool orientation TX TY TZ", column=w.column, text=w.text,
                    expected="LN .. TX.. TY.. TZ.. (all three components)")
+    return _turn_tool_to([seen[k].value for k in ("TX", "TY", "TZ")], m, where, seen["TX"],
+                         what="LN tool orientation TX TY TZ under M128")
+
+
+def spatial_axes(seen: dict, m: Machine, where: Where) -> np.ndarray | None:
+    """``L X.. Y.. Z.. A.. B.. C..`` under ``FUNCTION TCPM .. AXIS SPAT``: the rotary positions [deg] (``m.extra``
+    changed) that give the tool the orientation of the spatial angles A, B, C, None without them (the axes stay).
+
+    TNC7 basic user's manual 81762x-19, "Difference between spatial angles and axis angles": with spatial angles
+    "you can define the angle of the tool relative to the workpiece ... The control takes care of calculating the
+    required axis positions", in "FUNCTION TCPM with AXIS SPAT selected" as in the PLANE functions; PLANE SPATIAL's
+    rotations about the machine-fixed axes, first A, then B, then C (iTNC 530 user's manual 340 422, 9.2), turn
+    the tool axis +Z (:func:`interpolators.tilted.spatial`). Our reading: the tool's direction is what they give
+    (the tip on the part is X, Y, Z whatever the turn about it), the axes' solution nearest where they are (as
+    ``LN .. TX TY TZ``); an angle not written keeps its last value under this FUNCTION TCPM, 0 at first; an
+    incremental IA/IB/IC or a U, V, W word is an error."""
+    words = [k for k in seen if len(k) <= 2 and k[-1] in EXTRA_LETTERS and k[:-1] in ("", "I")]
+    if not words:
+        return None
+    angles = m.tcpm_spatial.copy()
+    for key in words:
+        w = seen[key]
+        if key[0] == "I" or key[-1] not in "ABC":
+            where.fail(f"{w.text!r} under FUNCTION TCPM AXIS SPAT (A, B, C spatial angles) is not modelled",
+                       column=w.column, text=w.text, expected="A, B, C absolute spatial angles [deg]")
+        angles["ABC".index(key[-1])] = w.value
+    m.tcpm_spatial = angles
+    return _turn_tool_to(spatial(*angles)[:, 2], m, where, seen[words[0]],
+                         what="FUNCTION TCPM AXIS SPAT spatial angles")
+
+
+def _turn_tool_to(direction, m: Machine, where: Where, w, *, what: str) -> np.ndarray:
+    """The rotary positions [deg] that turn the tool direction ``direction`` (workpiece coordinates) onto the
+    spindle (:func:`interpolators.tcp.tool_vector_extra`), the axes marked used; an error at the word ``w``."""
     kin = m.context.kinematics
     try:
-        extra = tool_vector_extra(kin, [seen[k].value for k in ("TX", "TY", "TZ")], m.extra)
+        extra = tool_vector_extra(kin, direction, m.extra)
     except TiltError as exc:
-        w = seen["TX"]
-        where.fail(f"LN tool orientation TX TY TZ under M128: {exc.message}", column=w.column, text=w.text,
-                   expected=exc.expected)
+        where.fail(f"{what}: {exc.message}", column=w.column, text=w.text, expected=exc.expected)
     m.extra_used = True
     m.used.update(3 + "abc".index(name) for name in kin.names)
     return extra

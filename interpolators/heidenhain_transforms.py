@@ -266,7 +266,8 @@ def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0
         if form in _NO_MOTION_FUNCTIONS:
             return f"{kw} {form}: {_NO_MOTION_FUNCTIONS[form]} (no motion)"
         where.fail(f"{what} is not supported", column=column0, text=what,
-                   expected="3-axis machining or 3+2 (FUNCTION TCPM, simultaneous 5-axis motion, is not modelled)")
+                   expected="a FUNCTION vcnc runs: TCPM, RESET TCPM, DWELL, FEED DWELL, MODE MILL, "
+                            + ", ".join(_NO_MOTION_FUNCTIONS))
     if form == "RESET":
         return "PLANE RESET: no tilted working plane (no motion)"
     if form in ("SPATIAL", "PROJECTED", "EULER", "RELATIVE", "RELATIV", "AXIAL"):
@@ -284,6 +285,11 @@ _NO_MOTION_FUNCTIONS = {
     "LIFTOFF": "the lift-off of the tool at an NC stop",  # "Lifting off the tool at an NC stop: FUNCTION LIFTOFF"
     "S-PULSE": "a pulsing spindle speed",  # "Pulsing spindle speed FUNCTION S-PULSE"
     "COUNT": "the machining counter",  # "Defining a counter: FUNCTION COUNT"
+    # "File functions": copy, move or delete a file from the NC program (TNC 640 / TNC 620 user's manuals,
+    # special functions; Autodesk Fusion's heidenhain.cps copies a probing cycle's TCHPRnnn.TXT log this way)
+    "FILECOPY": "a file copied",
+    "FILEMOVE": "a file moved",
+    "FILEDELETE": "a file deleted",
 }
 
 

@@ -99,7 +99,9 @@ def _strip_comment(line: str) -> str:
 
 _DEFINITION_RE = re.compile(r"\s*\d*\s*(?:((?:CYCLE?\s+DEF|TCH\s+PROBE)\s*\d{3})|(PATTERN\s+DEF))(?![\d.])", re.I)
 _Q_LINE_RE = re.compile(r"\s*Q\d+\s*=", re.I)
-_POS_LINE_RE = re.compile(r"\s*POS\d+\s*\(", re.I)
+#: A pattern's item line after ``PATTERN DEF``: ``POS1 (``, and the forms ``ROW1``, ``CIRC1``, ``PITCHCIRC1``, ``PAT1``,
+#: ``FRAME1`` (TNC 640 cycle programming manual, "PATTERN DEF"), each on a line of its own as the TNC saves them.
+_POS_LINE_RE = re.compile(r"\s*(?:POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\(", re.I)
 #: ``Q206 FAUTO``: a parameter line missing its ``=`` (a TNC simulator's test program): kept with its definition, so
 #: that the cycle's reader names it (:func:`interpolators.heidenhain_cycles.q_assignments`).
 _Q_WITHOUT_EQUALS_RE = re.compile(r"\s*Q\d+\s+[A-Z+\-\d]", re.I)
@@ -108,6 +110,7 @@ _Q_WITHOUT_EQUALS_RE = re.compile(r"\s*Q\d+\s+[A-Z+\-\d]", re.I)
 def _continues(first: str, line: str) -> bool:
     """True when ``line`` is a parameter line of the definition that ``first`` begins: the
     ``Qnnn=value ;comment`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx`` and the ``POSn (...)`` lines
+    (``PAT1 (..)``, ``ROW1 (..)``, every item of :data:`_POS_LINE_RE`)
     after ``PATTERN DEF``, written without a block number and without ``~`` as the iTNC 530 and TNC
     426/430 save them (iTNC 530 user's manual, cycle examples: "11 CYCL DEF 200 DRILLING /
     Q200=2 ;SET-UP CLEARANCE / ..."; the touch probe cycles' examples alike: "5 TCH PROBE 412 DATUM INSIDE

@@ -86,15 +86,20 @@ __all__ = ["heidenhain_reference"]
 _EPS = 1e-9
 
 
+#: The items of PATTERN DEF (TNC 640 cycle programming manual, "PATTERN DEF": POS, ROW, CIRC, PITCHCIRC, PAT, FRAME),
+#: a line of their own after it without a number or ``~`` as older TNCs save them.
+_PATTERN_ITEM = r"(POS|ROW|PITCHCIRC|CIRC|PAT|FRAME)\d+\s*\("
+
+
 def _blocks(text: str) -> list[tuple[int, str]]:
     """(first line, text) of each block: comments removed, continuations joined (``~``; and the
-    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx``, ``POSn (`` lines after ``PATTERN DEF``, as
-    older TNCs save them), numbers and the block skip mark ``/`` dropped."""
+    un-numbered ``Qnnn=`` lines after ``CYCL DEF 2xx`` or ``TCH PROBE 4xx``, ``POSn (`` / ``PAT1 (`` .. lines after
+    ``PATTERN DEF``, as older TNCs save them), numbers and the block skip mark ``/`` dropped."""
     out, buf, first = [], [], None
     in_comment = False  # the previous line of this block ended in "~" inside a ";" comment
     for no, raw in enumerate(text.lstrip("\ufeff").split("\n"), start=1):  # a lone CR is no line end
         cont = raw.rstrip().endswith("~")
-        if first is not None and in_comment and not re.match(r"\s*(Q\d+\s*=|POS\d+\s*\()", raw):
+        if first is not None and in_comment and not re.match(r"\s*(Q\d+\s*=|" + _PATTERN_ITEM + ")", raw):
             code = ""  # a long comment wrapped over lines ending in "~": still comment
         else:
             in_comment = ";" in raw
@@ -103,7 +108,7 @@ def _blocks(text: str) -> list[tuple[int, str]]:
                 code = re.sub(r"(\d),(\d)", r"\1.\2", code)
         if first is None and out and (
                 (re.match(r"(CYCLE? DEF\s*2|TCH PROBE\s*4)\d\d\b", out[-1][1]) and re.match(r"Q\d+\s*=", code))
-                or (out[-1][1].startswith("PATTERN DEF") and re.match(r"POS\d+\s*\(", code))):
+                or (out[-1][1].startswith("PATTERN DEF") and re.match(_PATTERN_ITEM, code))):
             out[-1] = (out[-1][0], out[-1][1] + " " + code)
             continue
         if first is None:
@@ -299,6 +304,7 @@ class _Tnc:
         self.base = np.zeros(3)  # the datum shift when the plane was tilted (untilted coordinates) [mm]
         self.shifted = False  # cycle 7 programmed in the tilted plane: its values stand after the reset
         self.tcpm = False  # M128: program points are the tool tip on the part, carried where the table holds it
+        self.spat: np.ndarray | None = None  # FUNCTION TCPM .. AXIS SPAT: the spatial angles A, B, C last written
         self.fk = FkReference()  # FK free contour programming (reference_heidenhain_fk)
         self.fk_end = -1  # len(self.out) after the last FK element: the last motion was FK while it is so
         self.raw: list[str] = []  # the running program's lines (FK relative data name block numbers)
@@ -422,11 +428,15 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     # the rotary / secondary axes the machine has: absolute machine positions (A B C [deg], U V W in the
     # program's unit), I words incremental; others of value 0 are ignored
     others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k) and k[-1].lower() in t.ctx.extra_axes]
+    spat = t.tcpm and t.spat is not None and any(re.fullmatch(r"I?[ABCUVW]", k) for k in w)
     _reduce_display(t, w.get("MARGS", {}))
     # M128 with the rotary axes moving: the tip's program point from where it is before they turn, carried to
     # where the table holds it at their new positions; the reader's chords, the last one's end checked
-    base = t.prog() if t.tcpm and any(k[-1] in "ABC" for k in others) else None
-    for k in others:
+    base = t.prog() if t.tcpm and (spat or any(k[-1] in "ABC" for k in others)) else None
+    if spat:
+        others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k)]
+        _spatial_angles(t, w)
+    for k in [] if spat else others:
         i = "ABCUVW".index(k[-1])
         v = w[k] * (1.0 if i < 3 else t.scale)
         t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
@@ -445,6 +455,21 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     if "MB" in w:  # M140 at the block's end, after the block's cycle
         _retract(t, line, w["MB"], w.get("MBF", "MAX"))
     _tcpm_switch(t, [129] if 129 in ms else [])
+
+
+def _spatial_angles(t: _Tnc, w: dict) -> None:
+    """The A, B, C words of a line under FUNCTION TCPM .. AXIS SPAT (TNC7 basic user's manual 81762x-19, "Difference
+    between spatial angles and axis angles"): spatial angles as PLANE SPATIAL's, about the fixed X, then Y, then Z;
+    the tool's direction they give (+Z turned) is made the spindle's by the nearest solution (as LN's T); an
+    angle not written keeps its last value (0 at first)."""
+    for k in w:
+        if re.fullmatch(r"I?[ABCUVW]", k):
+            if k[0] == "I" or k[-1] not in "ABC":
+                raise ReferenceError(f"{k} under AXIS SPAT")
+            t.spat["ABC".index(k)] = w[k]
+    tool = _spatial(*t.spat)[:, 2]
+    for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool]), 0, nearest=True).items():
+        t.extra["ABC".index(name.upper())] = value
 
 
 def _retract(t: _Tnc, line: int, mb: float | str, feed: float | str) -> None:
@@ -576,7 +601,7 @@ def _tcpm_switch(t: _Tnc, ms: list) -> None:
         if t.tilt is not None and (not np.allclose(t.tilt, np.eye(3))
                                    or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in t.tilt_angles.values())):
             raise ReferenceError("M128 in a tilted plane that turns the workpiece coordinates")
-        t.tcpm = True
+        t.tcpm, t.spat = True, None
     if 129 in ms:
         t.tcpm = False
 
@@ -588,7 +613,7 @@ def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
     (:func:`_solve`), the table carrying the point there; the reader's chords, the last one's end checked."""
     if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any() or t.tilt is not None:
         raise ReferenceError("LN under M128 with RL/RR, a transformation or a tilted plane")
-    n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+    n = _surface_normal(w)
     p = t.prog()  # where the tip is on the part, before the axes turn
     for i, a in enumerate("XYZ"):
         if a in w:
@@ -598,8 +623,17 @@ def _tool_vector_line(t: _Tnc, line: int, w: dict) -> None:
         for name, value in _solve(t, np.column_stack([np.zeros(3), np.zeros(3), tool / np.linalg.norm(tool)]),
                                   0, nearest=True).items():
             t.extra["ABC".index(name.upper())] = value
-    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n / np.linalg.norm(n)),
-           extra=t.extra.copy(), rows="last")
+    t.emit(line, "rapid" if "FMAX" in w else "feed", t.machine(p + t.delta * n), extra=t.extra.copy(), rows="last")
+
+
+def _surface_normal(w: dict) -> np.ndarray:
+    """The unit surface normal N of an ``LN`` block; zero for ``LN X Y Z TX TY TZ`` without N, the peripheral
+    milling form (TNC 620 user's manual 81760x-02, 12.6, "Block format with tool orientation": the tool is
+    displaced only under RL/RR, which this reference does not model), not displaced."""
+    if not any(k in w for k in ("NX", "NY", "NZ")) and all(k in w for k in ("TX", "TY", "TZ")):
+        return np.zeros(3)
+    n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+    return n / np.linalg.norm(n)
 
 
 def _function_tcpm(t: _Tnc, up: str) -> None:
@@ -607,12 +641,14 @@ def _function_tcpm(t: _Tnc, up: str) -> None:
     feed of the tip on the part, rotary words as positions, the tip on a straight line): as M128; FUNCTION RESET
     TCPM ends it. Any other choice is not modelled here."""
     if up.startswith("FUNCTION RESET TCPM"):
-        t.tcpm = False
+        t.tcpm, t.spat = False, None
         return
-    if re.sub(r"\s+", " ", up[len("FUNCTION TCPM"):]).strip() not in (
+    words = re.sub(r"\s+", " ", up[len("FUNCTION TCPM"):]).strip()
+    if words.replace("AXIS SPAT", "AXIS POS") not in (
             "F TCP AXIS POS PATHCTRL AXIS", "F TCP AXIS POS PATHCTRL AXIS REFPNT TIP-TIP"):
         raise ReferenceError(up)
     _tcpm_switch(t, [128])
+    t.spat = np.zeros(3) if "AXIS SPAT" in words else None  # A, B, C spatial angles (_spatial_angles)
 
 
 def _pole(t: _Tnc, w: dict) -> None:
@@ -1135,13 +1171,14 @@ def _touch_probe(t: _Tnc, line: int, up: str) -> None:
     move = np.nan_to_num(move)
     presets = ("G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3")
     row = int(p["Q305"])
-    if t.tilt is not None and row != 0:
-        raise ReferenceError("a probed datum written to a table row in a tilted plane")
+    if t.tilt is not None and row != 0 and p["Q303"] != 0:
+        raise ReferenceError("a probed datum written to a preset table row in a tilted plane")
     if row == 0:  # in a tilted plane: the move in the plane's axes, the preset in the part's (untilted) ones
         t.overrides[t.preset] = t.preset_point() + (move if t.tilt is None else t.tilt @ move)
     elif p["Q303"] == 1 and row <= len(presets):
         t.overrides[presets[row - 1]] = t.preset_point() + t.shift + move
-    elif p["Q303"] == 0:  # row of the datum table: the shift from the preset that puts the probed point there
+    elif p["Q303"] == 0:  # row of the datum table: the shift from the zero that puts the probed point there (in a
+        # tilted plane a shift in its axes, as cycle 7's there: "the active workpiece coordinate system", Q303)
         t.datum_rows[row] = t.shift + move
 
 
@@ -2781,7 +2818,7 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
 def _plane(t: _Tnc, line: int, up: str) -> None:
     """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE EULER EULPR EULNU EULROT``
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
-    ``PLANE RESET ..``."""
+    ``PLANE RELATIV SPA|SPB|SPC`` (the active plane turned about its own axis), ``PLANE RESET ..``."""
     w = {k: _val(v, t.q)
          for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
@@ -2797,7 +2834,14 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
         b = np.array([w.get("BX", 0.0), w.get("BY", 0.0), w.get("BZ", 0.0)])
         x = (b - (b @ n) * n) / np.linalg.norm(b - (b @ n) * n)
         plane = np.column_stack([x, np.cross(n, x), n])
-    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR")):
+    elif up.startswith("PLANE RELATIV"):  # one incremental angle about the active plane's own axis (iTNC 530
+        # user's manual, "Incremental tilting: PLANE RELATIVE": it "acts in relation to the active input coordinate
+        # system")
+        turns = [k for k in ("SPA", "SPB", "SPC") if k in w]
+        if len(turns) != 1:
+            raise ReferenceError(up)
+        plane = (np.eye(3) if t.tilt is None else t.tilt) @ _turn("XYZ"["ABC".index(turns[0][-1])], w[turns[0]])
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR", "PLANE RELATIV")):
         raise ReferenceError(up)
     mb = re.search(r"\bMB\s*(MAX|\+?\d+\.?\d*)", up)
     up_to = None if not mb else max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else \
@@ -2894,7 +2938,9 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("FUNCTION DWELL"):
             _function_dwell(t, line, up)
         elif up.startswith(("PLANE", "FUNCTION")):
-            if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL"))
+            # the file functions FILECOPY / FILEMOVE / FILEDELETE (TNC 640 user's manual) move nothing
+            if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
+                                   "FUNCTION FILEDELETE"))
                     or up.startswith("PLANE")
                     and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
                 raise ReferenceError(up)
@@ -3029,10 +3075,10 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
         _tool_vector_line(t, line, _words(rest, t.q))
     elif head == "LN":  # iTNC 530 manual: the end point displaced along N by the delta values; T ignored
         w = _words(rest, t.q)
-        n = np.array([w["NX"], w["NY"], w["NZ"]], float)
+        n = _surface_normal(w)
         if t.comp or t.turns_over() or t.rot or t.scl != 1 or (t.factors != 1).any():
             raise ReferenceError("LN under RL/RR or a transformation")
-        t.emit(line, "rapid" if "FMAX" in w else "feed", t.target(w) + t.delta * n / np.linalg.norm(n))
+        t.emit(line, "rapid" if "FMAX" in w else "feed", t.target(w) + t.delta * n)
     elif head == "CC":
         _pole(t, _words(rest, t.q))
     elif head in ("C", "CP"):

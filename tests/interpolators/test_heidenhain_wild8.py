@@ -163,8 +163,8 @@ def test_a_touch_probe_cycle_in_a_tilted_plane_sets_the_datum_of_the_plane():
                                                    [10, 20, 50]])
     assert np.allclose(next(b for b in prog.blocks if b.number == 6).target, [10, 20, 5])
     assert np.allclose(prog.blocks[-1].target, [0, 5, 50])
-    with pytest.raises(GCodeError, match=r"TCH PROBE 417 in the tilted plane of PLANE SPATIAL .* writing row 3 of a "
-                                         r"table is not modelled"):
+    with pytest.raises(GCodeError, match=r"TCH PROBE 417 in the tilted plane of PLANE SPATIAL .* writing row 3 of the "
+                                         r"preset table \(Q303=1\) is not modelled"):
         parse_heidenhain(text.replace("Q305=+0", "Q305=+3"), source="t.h", context=AC_TABLE)
 
 
