@@ -103,6 +103,8 @@ __all__ = [
     "with_coulomb_mean",
     "stribeck_static_ratios",
     "no_stribeck_curve",
+    "beats_the_model_without",
+    "adds_no_parameter",
     "before_after_rows",
     "format_before_after",
     "samples_note",
@@ -920,7 +922,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
             r_null = null.held_out_rms_um
             nested = _gain(r_null, r_va)
-            ok = beats_the_model_without(c.effect, null, r_va, j.fold_rms_um, opt)
+            ok = beats_the_model_without(c.effect, (r_null, null.fold_rms_um), (r_va, j.fold_rms_um), opt)
             record.setdefault("nested", {})[c.effect.NAME] = {"null_validation_rms_um": r_null,
                                                               "gain_pct": 100.0 * nested}
         if ok:
@@ -979,7 +981,8 @@ def _unneeded(final: Stage, without: _Judged, name: str, data: Data, plan: FoldP
     must still be coherent with a force of the commanded motion in the residual it explains
     (:data:`_MIN_MODE_COHERENCE`)."""
     w, f = without.held_out_rms_um, final.validation_rms_um
-    if not beats_the_model_without(final.full_model.element(name), without, f, final.fold_rms_um, opt):
+    if not beats_the_model_without(final.full_model.element(name), (w, without.fold_rms_um), (f, final.fold_rms_um),
+                                   opt):
         return (f"the final model refitted without it predicts the held-out folds {w:.4g} um against {f:.4g} um "
                 f"with it: it no longer lowers that error by {gain_required(final.full_model.element(name), opt)}")
     if name == "resonance":
@@ -1235,10 +1238,10 @@ def adds_no_parameter(effect) -> bool:
     return effect.KIND == "element" and not effect.free()
 
 
-def beats_the_model_without(effect, without: _Judged, rms_um: float, fold_rms_um: list[float],
+def beats_the_model_without(effect, without: tuple[float, list[float]], with_: tuple[float, list[float]],
                             opt: DiagnosisOptions) -> bool:
-    """Does the model with ``effect`` (pooled held-out RMS ``rms_um``, per fold ``fold_rms_um`` [um]) beat
-    ``without``, the model refitted without it (an element's null, :func:`_null_of`) and judged on the same folds?
+    """Does the model with ``effect`` beat the model refitted without it (an element's null, :func:`_null_of`), each
+    judged on the same folds: ``with_`` and ``without`` are (pooled held-out RMS, held-out RMS per fold) [um]?
 
     An effect with parameters of its own must bring the gain an effect must bring (:func:`_lowers`). An element
     that adds none (:func:`adds_no_parameter`) is a choice between two models of one size, which the held-out folds
@@ -1248,12 +1251,12 @@ def beats_the_model_without(effect, without: _Judged, rms_um: float, fold_rms_um
     one-sample delay: held out 1.54 um with it, 1.73 um refitted without it, lower on 3 of 4 folds, where the
     same record without the delay predicts 2.30 um with one and 1.03 um without, worse on every fold).
     """
-    w = without.held_out_rms_um
+    (w, w_folds), (rms_um, folds_um) = without, with_
     if not adds_no_parameter(effect):
         return _lowers(w, rms_um, opt)
-    lower = sum(a < b for a, b in zip(fold_rms_um, without.fold_rms_um))
-    return (w - rms_um >= opt.min_gain_um and 2 * lower > len(fold_rms_um)
-            and not _contradicting_folds(without.fold_rms_um, fold_rms_um, opt))
+    lower = sum(a < b for a, b in zip(folds_um, w_folds))
+    return (w - rms_um >= opt.min_gain_um and 2 * lower > len(folds_um)
+            and not _contradicting_folds(w_folds, folds_um, opt))
 
 
 def gain_required(effect, opt: DiagnosisOptions) -> str:
