@@ -33,11 +33,12 @@ Procedure (forward selection judged on held-out data)
    must carry the gain), nor the error on the whole record, idle stretches included
    (:func:`_worse_on_the_record`: a model that moves where the axis rests; judged with the mean of its Coulomb
    levels, which no moving sample determines, where the whole record puts it: :func:`coulomb_mean_at_rest`, and
-   kept so when accepted). An element must
-   also beat its own null (the sampled split form without
-   it); any other effect must itself carry the refit's gain (the refitted model without it predicts worse by
-   as much: :func:`_idle_effect`). A mode must lie below the record's Nyquist frequency 1/(2T)
-   (:func:`_unphysical_mode`). Steps 2-4 repeat (at most ``max_effects`` times) until no proposal passes.
+   kept so when accepted). An element must also beat its own null (the sampled split form without it; one that
+   adds no fitted parameter to it, a whole-sample delay, by the folds as they stand:
+   :func:`beats_the_model_without`); any other effect must itself carry the refit's gain (the refitted model
+   without it predicts worse by as much: :func:`_idle_effect`). A mode must lie below the record's Nyquist
+   frequency 1/(2T) (:func:`_unphysical_mode`). Steps 2-4 repeat (at most ``max_effects`` times) until no
+   proposal passes.
 5. **Check backward.** The final model faces every accepted effect again: one no longer physical (a mode above
    the Nyquist frequency or damped beyond 1/sqrt(2), a Stribeck term without its static excess) or no longer
    needed (the final model refitted without it predicts the held-out folds within ``min_gain``, a mode no longer
@@ -1248,8 +1249,9 @@ def beats_the_model_without(effect, without: tuple[float, list[float]], with_: t
     decide as they stand: it must lower the pooled error by ``min_gain_um``, on more than half of the folds, and
     raise none by the gain (:func:`_contradicting_folds`). The relative gain would ask of it what the null's loop
     parameters leave: they imitate most of a short delay's lag (ident_fuzz seed 71 case 29, fadal-smc/x with a
-    one-sample delay: held out 1.54 um with it, 1.73 um refitted without it, lower on 3 of 4 folds, where the
-    same record without the delay predicts 2.30 um with one and 1.03 um without, worse on every fold).
+    one-sample delay: held out 1.54 um with it, 1.73 um refitted without it, lower on 3 of 4 folds; the same
+    program on the machine without the delay is predicted 2.30 um with one and 1.03 um without, worse on every
+    fold).
     """
     (w, w_folds), (rms_um, folds_um) = without, with_
     if not adds_no_parameter(effect):
