@@ -471,7 +471,9 @@ def move_feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> flo
     tangential feed in the plane R x F. A move with X, Y, Z still (``seg`` of length
     0, ``turn`` the motion of a, b, c, u, v, w [deg, mm]) runs along its U V W distance at the feed
     [mm/s], or with U, V, W still too along its rotary distance in deg/s (RS274/NGC 3,
-    Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`)."""
+    Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`). No floor: LinuxCNC 2.9.0 and later take
+    ``rate = length * F`` however short the move (rs274ngc interp_inverse.cc, commit b244b375dd for issue #2410), where
+    earlier versions, the Debian 12 rs274 among them, raised it to 0.1 units/min."""
     if seg.length == 0 and turn is not None and np.any(turn != 0):
         linear = bool(np.any(turn[3:] != 0))
         length = float(np.linalg.norm(turn[3:] if linear else turn[:3]))

@@ -74,6 +74,9 @@ PROGRAMS = {
     "G94 twice, an F after the second": "G21 G90 F500.\nG93 G1 X1. F2.\nG94 G1 X2. F300.\nG94 G1 X3. F200.\nX4.\n",
     # LinuxCNC's note on a G1 alone reads the modal feed, which a G93 F leaves as it was
     "a G1 alone after a G93 move": "G21 G90\nG93 G1 X1. F2.\nG1\nG94 F300.\nG1 X2.\n",
+    # length x F far under 0.1 mm/min (rs274 before 2.9.0 raised it to 0.1): test_no_floor_under_the_inverse_time_rate
+    "short moves at a small F": "G21 G90 G93\nG0 X0. Y0. Z0. A0.\nG1 X.001 F1.\nG1 X1. F.01\nG1 Z-.0002 A178.639 F5.\n"
+                                "G2 X1.002 Y0. I.001 J0. F.5\n",
 }
 
 #: Programs the general path refuses (the same error and line both ways) or reads with a note.
@@ -186,6 +189,22 @@ def test_inverse_time_moves_are_taken_by_the_shortcut(monkeypatch):
     assert rot.length == 0.0 and rot.feed == pytest.approx(15.0 * 3 / 60)
     assert by_line[12].feed == np.inf  # N110 G0 .. F99.: a rapid, its F ignored
     assert by_line[15].length == by_line[15].feed == 0.0  # N130: the point again, no motion
+
+
+@pytest.mark.parametrize("shortcuts", [True, False])
+def test_no_floor_under_the_inverse_time_rate(shortcuts):
+    """LinuxCNC 2.9.0 and later (rs274ngc interp_inverse.cc ``inverse_time_rate_straight`` / ``_arc``: ``rate =
+    length * block->f_number``, 0.1 only for a zero-length move; commit b244b375dd for LinuxCNC issue #2410, "G93
+    rotary moves with a very small linear move run too fast") run every G93 move in 1/F minutes however short it is.
+    Earlier versions took ``MAX(0.1, length * F)`` units/min, so a move shorter than 0.1/F ran faster than asked
+    (the Debian 12 rs274, a 2.9.0 pre-release of 2023-02-08, prints SET_FEED_RATE(0.1000) for each move below, and
+    the issue's 0.0002 mm Z with 178.8 deg of A ran at A's velocity limit). vcnc follows the release."""
+    text = PROGRAMS["short moves at a small F"] + "M2\n"
+    short, slow, tilt, arc = parse_iso(text, context=FIVE_AXIS, shortcuts=shortcuts).blocks[1:]
+    assert short.length / short.feed == pytest.approx(60.0)  # 1 um in 1 min (0.001 mm/min), not 0.6 s
+    assert slow.length / slow.feed == pytest.approx(6000.0)  # 0.999 mm at F.01: 100 min, not 9.99 min
+    assert tilt.length == pytest.approx(0.0002) and tilt.length / tilt.feed == pytest.approx(12.0)  # 1/5 min
+    assert arc.length == pytest.approx(math.pi * 0.001) and arc.length / arc.feed == pytest.approx(120.0)
 
 
 def _random_g93_move(rng: random.Random, inverse: bool) -> list[str]:
