@@ -119,7 +119,8 @@ class PlainMoves:
         st = self.st
         self.ready = (not st.per_rev and not st.fanuc_polar and st.frame is None
                       and not st.rotation and st.comp_side is None and st.comp_start is None
-                      and st.comp_close_at is None and st.corner is None and st.corner_word is None and not st.tcp)
+                      and st.comp_close_at is None and st.corner is None and st.corner_word is None and not st.tcp
+                      and not st.length_pending)
         if self.ready:
             self.offset = st.offset().tolist()
             self.extra_offset = st.extra_offset().tolist()
