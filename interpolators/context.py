@@ -294,6 +294,24 @@ class Dialect:
         manuals give G94 as the feed-per-minute mode and G93's cancel ("G93, Inverse Time Mode OFF and G94, Feed
         Per Minute ON", http://diy.haascnc.com/reference-docs/inverse-time-and-feed-minute-modes), naming no reset
         of a modal F (our reading: the F stays).
+    length_offset_motion : bool
+        Whether a change of the tool length offset (G43/G44 H.., a new H under G43, G49; Fadal's H word) is an axis
+        movement of the control (True: Fanuc, Haas, Fadal) or a shift of the program's coordinates (False: LinuxCNC,
+        grbl). Fanuc performs tool length compensation "by an axis movement" unless parameter TOS (No. 5006#6) is
+        1, which shifts the coordinate system instead (FANUC Series 30i/31i/32i-MODEL A connection manual
+        (function) B-63943EN-1/02, 12.5.2 "Tool Length Compensation Shift Types", which under TOS = 1 says "If no
+        move command is specified together with the G43, G44, or G49 command, the tool will not move along the
+        axis", http://cncmanuals.com/fanuc/529/30i-300i-300is-model-a-31i-310i-310is-model-a-and-a5-32i-320i-320is-model-a-connection-manual-function/page/1682):
+        the change of the offset vector is added to the programmed travel, so a ``G91 Z-50.`` in the block that
+        applies a 50 mm tool length (FreeCAD's Fanuc post: ``G91 G0 G43 G54 Z-[#[2000+#4120]] H#4120``) leaves
+        the machine where it was, where LinuxCNC moves it 50 mm down (g-code.adoc "G43": "The next time a
+        compensated axis is moved, that axis's endpoint is the compensated location"). Under G90 both end at the
+        programmed Z plus the new offset. vcnc adds the change not yet travelled to the next incremental Z word of a
+        G00-G03 block (:func:`interpolators.iso_offsets.length_travel`); an absolute Z word takes it up; a block
+        without a Z word leaves Z where it is (the Fanuc control, TOS = 0, moves Z by the change in the G43/G49
+        block itself: the end points of the blocks between it and the next Z word differ by the change, those
+        after it do not). Haas (its G43 "Tool Length Compensation + (Add)" takes the Fanuc words) and Fadal (its
+        Format 2 is Fanuc's) follow Fanuc's default here: no Haas or Fadal text we found says otherwise.
     """
 
     name: str = "linuxcnc"
@@ -308,6 +326,7 @@ class Dialect:
     initial_feed: float | None = None
     rapid_feed_stop: bool = True
     feed_mode_clears_feed: bool = True
+    length_offset_motion: bool = False
 
     def __post_init__(self) -> None:
         if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
@@ -329,13 +348,16 @@ class Dialect:
 #: in milliseconds without a decimal point); grbl wiki (G4 P in seconds).
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
-    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False),
-    "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False),
+    "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False,
+                     length_offset_motion=True),
+    "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False,
+                    length_offset_motion=True),
     "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl", rapid_feed_stop=False,
                     feed_mode_clears_feed=False),
     # Fadal VMC (interpolators.iso_fadal): Format 2 (Fanuc-like) with Fadal's own words; units and path mode
     # are machine settings there (G20/G21 only check them), vcnc's defaults (mm, continuous path) apply
-    "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False),
+    "fadal": Dialect(name="fadal", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False,
+                     length_offset_motion=True),
     "heidenhain": Dialect(name="heidenhain", dwell_p_unit="s", rapid_feed_stop=False, feed_mode_clears_feed=False),
 })
 

@@ -172,6 +172,7 @@ from interpolators.iso_offsets import (
     g10,
     g54_takes_p,
     length_compensation,
+    length_travel,
     local_offset,
     reference_p,
     selected_offset,
@@ -274,6 +275,7 @@ class State:
     external: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))  # Fanuc G10 L2 P0's part of g92
     external_extra: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(6))  # its part of g92_extra
     tool_length: float = 0.0  # along Z [mm]
+    length_pending: float = 0.0  # a tool length change not yet travelled along Z [mm] (Dialect.length_offset_motion)
     tool_xy: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(2))  # the tool's X Y offsets [mm]
     tool_selected: int | None = None
     tool_current: int | None = None
@@ -722,7 +724,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         where.fail("axis words before any motion code", column=w.column, text=w.text,
                    expected="G00, G01, G02 or G03 before the first axis word")
     try:
-        target = block_target(seen, axis_words, st, machine=False)
+        target = length_travel(block_target(seen, axis_words, st, machine=False), axis_words, st)
     except PolarError as exc:
         w = seen["@"] if "@" in seen else seen["^"]
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")

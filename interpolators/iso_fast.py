@@ -40,7 +40,8 @@ every block in a modal state it does not model: no motion mode, a motion other t
 axis words after G80 with no motion code (a note), G95 feed per revolution, Fanuc G16 polar coordinates, a rotated
 system (G10 L2 R, G68), a tilted working plane (G68.2), G51 scaling and G51.1 mirroring, tool centre point control
 (G43.4, G43.5, Haas G234: the rotary words then move the tool tip on the part, :mod:`interpolators.iso_tcp`), cutter
-compensation (on, or its exit move pending), a Fanuc ``,R``/``,C`` corner pending. Units (G20/G21), G90/G91,
+compensation (on, or its exit move pending), a Fanuc ``,R``/``,C`` corner pending, a Fanuc/Haas/Fadal tool length
+change not yet travelled (:func:`interpolators.iso_offsets.length_travel`). Units (G20/G21), G90/G91,
 G90.1/G91.1, the plane, the work and G92 offsets (of the extra axes too), the tool length, the G61/G64 path mode and
 G93/G94 are modelled as the general path has set them.
 
@@ -120,7 +121,7 @@ class PlainMoves:
         self.ready = (not st.per_rev and not st.fanuc_polar and st.frame is None
                       and not st.rotation and st.comp_side is None and st.comp_start is None
                       and st.comp_close_at is None and st.corner is None and st.corner_word is None and not st.tcp
-                      and st.dwo is None)
+                      and st.dwo is None and not st.length_pending)
         if self.ready:
             self.offset = st.offset().tolist()
             self.extra_offset = st.extra_offset().tolist()

@@ -87,8 +87,8 @@ if TYPE_CHECKING:
 
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
-           "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "reference_p",
-           "local_offset", "g10"]
+           "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "length_travel",
+           "reference_p", "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -391,6 +391,30 @@ def set_tool_offset(level: int, p: float | None, words: dict[str, float], st: To
 
 
 def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> None:
+    """G43, G43.1, G43.2, G44, G49: the tool length offset set (:func:`_set_length`); where the control moves the
+    axis by its change (:attr:`interpolators.context.Dialect.length_offset_motion`: Fanuc, Haas, Fadal), the change
+    is kept for :func:`length_travel`."""
+    before = st.tool_length
+    _set_length(entry, seen, st, where, notes)
+    if st.context.dialect.length_offset_motion:
+        st.length_pending += st.tool_length - before
+
+
+def length_travel(target: np.ndarray, axis_words: list[str], st: State) -> np.ndarray:
+    """The end point [mm, machine] ``target`` of a G00-G03 block with the tool length change not yet travelled
+    added to an incremental Z word (Fanuc, tool length compensation by an axis movement, parameter TOS = 0: the
+    change of the offset is added to the block's travel, B-63943EN-1/02 12.5.2; LinuxCNC and grbl never set it).
+    An absolute Z word ends at the programmed Z plus the offset, as ``target`` has it; either takes the change up."""
+    if not st.length_pending or "Z" not in axis_words:
+        return target
+    if st.incremental:
+        target = target.copy()
+        target[2] += st.length_pending
+    st.length_pending = 0.0
+    return target
+
+
+def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:
     key, w = entry
     if st.comp_side is not None and st.context.dialect.name == "linuxcnc":
         # LinuxCNC interp_convert.cc convert_tool_length_offset, for G43, G43.1, G43.2 and G49 alike: "Cannot

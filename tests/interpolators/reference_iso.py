@@ -703,6 +703,12 @@ class _Machine:
         self.tool_lengths: dict[int, tuple[float, float]] = {}  # Fanuc/Haas G10 L10/L11: (geometry, wear) [mm]
         self.tool_radii: dict[int, tuple[float, float]] = {}  # G10 L12/L13
         self.tool_length = 0.0
+        # Fanuc (parameter TOS = 0), Haas, Fadal: the change of the length offset is an axis movement, added to
+        # the next incremental Z travel (B-63943EN-1/02 12.5.2 "Tool Length Compensation Shift Types" tells the
+        # other way, TOS = 1: "If no move command is specified together with the G43, G44, or G49 command, the
+        # tool will not move along the axis"); LinuxCNC and grbl shift the coordinates (g-code.adoc "G43")
+        self.length_moves = self.ctx.dialect.name in ("fanuc", "haas", "fadal")
+        self.length_change = 0.0  # [mm] not yet travelled
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.tcp = False  # Fanuc G43.4 / Haas G234 tool centre point control on the machine's tilting table
         self.tcp_vector = False  # Fanuc G43.5: the tool direction I J K instead of rotary words
@@ -963,6 +969,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.comp_entry, m.comp_side = True, "left" if code == 410 else "right"
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
+    before = m.tool_length
     for code in g:
         if code in (430, 431, 432, 440, 490):
             m.tcp = False
@@ -996,6 +1003,8 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.tool_length += add[2]
         elif code in (431, 432, 440):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
+    if m.length_moves:
+        m.length_change += m.tool_length - before
     if m.fadal and "e" in words:  # Fadal fixture offset E<n>: E1-E6 are G54-G59, E0 none
         n = int(words.pop("e")[-1])
         m.wcs = "E0" if n == 0 else _WCS[530 + 10 * n] if n <= 6 else f"E{n}"
@@ -1375,6 +1384,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         _tcp_move(m, line, words)
         return
     end = m.to_machine(m.target(words))
+    if "z" in words and m.length_change:  # Fanuc: an incremental Z travels the offset's change too
+        end[2] += m.length_change if m.incremental else 0.0
+        m.length_change = 0.0
     shift = [c for c in g if c in _POSITION_OFFSET]
     if shift and m.ctx.dialect.name == "fanuc":
         end = _position_offset(m, shift[0], words, end)
