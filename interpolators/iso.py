@@ -704,20 +704,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         w = gcodes["motion"][1]
         where.fail(f"{G_CODES[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
-    if not axis_words and not rot_words and not arc_words and "R" not in seen:
-        _arc_code_alone(gcodes, st, where)
-    # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
-    # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
-    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix); LinuxCNC
-    # too (interp_internal.cc enhance_block: "a block like simply "i1" [..] accepted if we're in arc mode")
-    modal_circle = st.context.dialect.name in ("fanuc", "linuxcnc") and "R" not in seen
-    if not axis_words and not rot_words and not (st.motion in (20, 30) and arc_words
-                                                 and ("motion" in gcodes or modal_circle)):
-        for letter in ("I", "J", "K", "R"):
-            if letter in seen:
-                w = seen[letter]
-                where.fail(f"word {letter} without an arc motion", column=w.column, text=w.text,
-                           expected="G02 or G03 with X/Y/Z")
+    if not axis_words and not rot_words and _no_move(seen, gcodes, arc_words, st, where):
         return ended  # a motion code alone sets the mode (LinuxCNC: "G0 G17 G40 G49 G80 G90")
     if st.motion is None:
         w = seen[(axis_words or rot_words)[0]]
@@ -732,6 +719,26 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _no_move(seen, gcodes, arc_words: list[str], st: State, where: Where) -> bool:
+    """True if a block without axis words moves nothing (its motion code only sets the mode); an arc's I J K
+    or R without an arc that runs them is an error. A full circle from I J K alone is a move."""
+    if not arc_words and "R" not in seen:
+        _arc_code_alone(gcodes, st, where)
+    # Fanuc 0i-MD operator's manual (B-64304EN) II-4.4 "Circular interpolation": "When X_, Y_, and Z_ are
+    # all omitted (the end point is the same as the start point) and the center is specified with I_, J_,
+    # and K_, a 360 deg arc (circle) is specified" -- also in the modal G02/G03 ("I-15. J0" after a helix); LinuxCNC
+    # too (interp_internal.cc enhance_block: "a block like simply "i1" [..] accepted if we're in arc mode")
+    modal_circle = st.context.dialect.name in ("fanuc", "linuxcnc") and "R" not in seen
+    if st.motion in (20, 30) and arc_words and ("motion" in gcodes or modal_circle):
+        return False
+    for letter in ("I", "J", "K", "R"):
+        if letter in seen:
+            w = seen[letter]
+            where.fail(f"word {letter} without an arc motion", column=w.column, text=w.text,
+                       expected="G02 or G03 with X/Y/Z")
+    return True
 
 
 def _check_position_offset(entry, seen, st: State, where: Where, other_axes: list[str]) -> None:

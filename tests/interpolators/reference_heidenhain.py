@@ -2938,12 +2938,7 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("FUNCTION DWELL"):
             _function_dwell(t, line, up)
         elif up.startswith(("PLANE", "FUNCTION")):
-            # the file functions FILECOPY / FILEMOVE / FILEDELETE (TNC 640 user's manual) move nothing
-            if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
-                                   "FUNCTION FILEDELETE"))
-                    or up.startswith("PLANE")
-                    and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
-                raise ReferenceError(up)
+            _without_motion(t, up)
         elif re.match(r"CYCLE? DEF", up):
             _cycle_def(t, line, up)
         elif re.match(r"TCH\s*PROBE", up):
@@ -2985,6 +2980,17 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         for k in [k for k in t.q if k.startswith("QL")]:
             del t.q[k]
         t.q.update(local)
+
+
+def _without_motion(t: _Tnc, up: str) -> None:
+    """A PLANE or FUNCTION block the reference knows to move nothing (PLANE RESET, a plane of no rotation on a
+    machine without kinematics, FUNCTION MODE MILL, the file functions FILECOPY / FILEMOVE / FILEDELETE of the TNC
+    640 user's manual); any other is not modelled."""
+    if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
+                           "FUNCTION FILEDELETE"))
+            or up.startswith("PLANE")
+            and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
+        raise ReferenceError(up)
 
 
 def _cycl_call(t: _Tnc, line: int, up: str) -> None:
