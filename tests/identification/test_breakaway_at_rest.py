@@ -7,9 +7,10 @@ friction given a Stribeck curve (static / Coulomb 2.0, Stribeck velocity 1 mm/s)
 
 - the reduced model predicts the held-out folds at 4.167 um and the diagnosis names nothing: the Stribeck term
   screened in the exact loop, where friction switches on the sampled sign of the velocity and nothing holds a
-  stopped mass, predicts worse (11.7 um); the elements (backlash, resonance, saturation) refit to 1.28-1.36 um
-  and are refused, rightly, against their own null (the sampled split form without them, 1.29-1.40 um): the gain
-  is the split form's Karnopp stick, which holds the mass at rest until the law's force breaks it away;
+  stopped mass, predicts worse (11.7 um); backlash and saturation refit to 1.36 and 1.29 um and are refused,
+  rightly, against their own null (the sampled split form without them: 1.40, 1.29 um), the resonance refits to
+  1.28 um at 1345 Hz, damping 1.0 (beyond 1/(2T), coherence 0.08): each gain is the split form's Karnopp stick,
+  which holds the mass at rest until the law's force breaks it away;
 - the split form with the Stribeck term, refitted from symmetric Coulomb levels, recovers the truth: 0.174 um
   held out, Stribeck velocity 0.962 mm/s, static ratios 1.97 / 1.95, Coulomb levels 444.8 / -302.8 mm/s^2
   (the thesis' Table 3.4 "Actual": d0 441, d1 -302; identification.synthetic.FADAL_PID_X).
