@@ -281,7 +281,7 @@ class AugmentedAxisModel(ReducedAxisModel):
     @property
     def structured(self) -> bool:
         """True when an element needs the split (plant + controller) form."""
-        return any(e.KIND == "element" for e in self.elements)
+        return any(e.in_loop for e in self.elements)
 
     def spec(self, n: int, sample_time: float | None = None, *, disturbance: np.ndarray | None = None) -> SimSpec:
         """The kernel specification for ``n`` samples at ``sample_time`` [s] (default the model's)."""
@@ -339,7 +339,7 @@ class AugmentedAxisModel(ReducedAxisModel):
         out = []
         for e in self.elements:
             rec = e.record()
-            if e.KIND == "element":
+            if e.in_loop:
                 rec["parameters"]["plant_viscous_rate_1_s"] = self.viscous_rate
             out.append(rec)
         return out
@@ -408,6 +408,6 @@ def from_model(model: ReducedAxisModel) -> ReducedAxisModel:
     for rec in model.effects:
         e = effect_from_record(rec)
         elements.append(e)
-        if e.KIND == "element":
+        if e.in_loop:
             vr = float(rec.get("parameters", {}).get("plant_viscous_rate_1_s", vr))
     return augment(model, elements, viscous_rate=vr)
