@@ -15,7 +15,10 @@ from the model's own velocity v_k, position x_k and time t_k::
 They are linear in their coefficients given the nonlinear parameter (v_s, P_x, P_t), so the
 equation error of Eq. (3.11) takes them as extra columns. With only such effects the model is
 simulated by the exact sampled form of :mod:`identification.reduced_model` (FOH on x_r, ZOH on w),
-so an augmented model with zero coefficients reproduces the reduced model bit for bit.
+so an augmented model with zero coefficients reproduces the reduced model bit for bit. A
+``friction_stribeck`` with ``stick`` (JSON ``stick_at_rest``) is simulated in the split form below instead,
+where its static band holds a stopped mass (stiction at each move's start from rest); the diagnosis judges it
+as an element, against that form without it.
 
 **element** (``delay``, ``saturation``, ``backlash``, ``resonance``): a structured element inside
 the loop. The closed loop of Eq. (3.3) is split into a rigid plant and a controller (derivation:
