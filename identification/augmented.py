@@ -15,7 +15,10 @@ from the model's own velocity v_k, position x_k and time t_k::
 They are linear in their coefficients given the nonlinear parameter (v_s, P_x, P_t), so the
 equation error of Eq. (3.11) takes them as extra columns. With only such effects the model is
 simulated by the exact sampled form of :mod:`identification.reduced_model` (FOH on x_r, ZOH on w),
-so an augmented model with zero coefficients reproduces the reduced model bit for bit.
+so an augmented model with zero coefficients reproduces the reduced model bit for bit. A
+``friction_stribeck`` with ``stick`` (JSON ``stick_at_rest``) is simulated in the split form below instead,
+where its static band holds a stopped mass (stiction at each move's start from rest); the diagnosis judges it
+as an element, against that form without it.
 
 **element** (``delay``, ``saturation``, ``backlash``, ``resonance``): a structured element inside
 the loop. The closed loop of Eq. (3.3) is split into a rigid plant and a controller (derivation:
@@ -281,7 +284,7 @@ class AugmentedAxisModel(ReducedAxisModel):
     @property
     def structured(self) -> bool:
         """True when an element needs the split (plant + controller) form."""
-        return any(e.KIND == "element" for e in self.elements)
+        return any(e.in_loop for e in self.elements)
 
     def spec(self, n: int, sample_time: float | None = None, *, disturbance: np.ndarray | None = None) -> SimSpec:
         """The kernel specification for ``n`` samples at ``sample_time`` [s] (default the model's)."""
@@ -339,7 +342,7 @@ class AugmentedAxisModel(ReducedAxisModel):
         out = []
         for e in self.elements:
             rec = e.record()
-            if e.KIND == "element":
+            if e.in_loop:
                 rec["parameters"]["plant_viscous_rate_1_s"] = self.viscous_rate
             out.append(rec)
         return out
@@ -408,6 +411,6 @@ def from_model(model: ReducedAxisModel) -> ReducedAxisModel:
     for rec in model.effects:
         e = effect_from_record(rec)
         elements.append(e)
-        if e.KIND == "element":
+        if e.in_loop:
             vr = float(rec.get("parameters", {}).get("plant_viscous_rate_1_s", vr))
     return augment(model, elements, viscous_rate=vr)

@@ -922,7 +922,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
                 if not ok:
                     record.setdefault("refused_at_the_mean_at_rest", {})[c.effect.NAME] = {
                         "validation_rms_um": r_va, "fold_rms_um": list(j.fold_rms_um)}
-        if ok and c.effect.KIND != "element":
+        if ok and not j.model.element(c.effect.NAME).in_loop:
             idle = _idle_effect(j, c.effect.NAME, data, opt)
             if idle is not None:
                 record.setdefault("no_contribution_um", {})[c.effect.NAME] = list(idle)
@@ -942,7 +942,7 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             ratios = stribeck_static_ratios(j.model)
             record["stribeck_static_ratios"] = list(ratios)
             ok = no_stribeck_curve(ratios) is None
-        if ok and c.effect.KIND == "element":
+        if ok and j.model.element(c.effect.NAME).in_loop:
             # the element must beat its own null (the sampled split form without it), refitted
             null = _judge(_null_of(j.model, c.effect.NAME), data, plan, opt)
             r_null = null.held_out_rms_um
@@ -994,9 +994,9 @@ def _unphysical(model: AugmentedAxisModel, name: str, data: Data) -> str | None:
 def _without(model: AugmentedAxisModel, name: str) -> AugmentedAxisModel:
     """``model`` without the effect ``name`` as :func:`_choose` judged it: an element against its null
     (:func:`_null_of`), any other effect against the model without it."""
-    kind = model.element(name).KIND
-    return _null_of(model, name) if kind == "element" else augment(model, [e for e in model.elements
-                                                                           if e.NAME != name])
+    in_loop = model.element(name).in_loop
+    return _null_of(model, name) if in_loop else augment(model, [e for e in model.elements
+                                                                 if e.NAME != name])
 
 
 def _unneeded(final: Stage, without: _Judged, name: str, data: Data, plan: FoldPlan,
@@ -1314,7 +1314,7 @@ def _null_of(model: AugmentedAxisModel, name: str) -> AugmentedAxisModel:
     from identification.effects import Delay
 
     rest = [e for e in model.elements if e.NAME != name]
-    if not any(e.KIND == "element" for e in rest):
+    if not any(e.in_loop for e in rest):
         rest.append(Delay(samples=0, sample_time=model.sample_time))
     return augment(model, rest)
 

@@ -8,7 +8,7 @@ One class per effect, one file each, sharing :class:`Effect` (``NAME``, ``KIND``
 =============================  ===========  ===  =============================================
 name                           kind         FMU  enters as
 =============================  ===========  ===  =============================================
-friction_stribeck              disturbance  yes  (PV s+ + NV s-) exp(-(v/v_s)^2) in w
+friction_stribeck              disturbance  yes  (PV s+ + NV s-) exp(-(v/v_s)^2) in w (``stick``: split loop)
 friction_viscous_asymmetric    disturbance  yes  k_a |v| in w
 position_periodic              disturbance  yes  Fourier series in x (period P_x) in w
 time_periodic                  disturbance  yes  Fourier series in t (period P_t) in w

@@ -78,6 +78,12 @@ class Effect:
         """Short text for tables, e.g. ``delay 2 samples``."""
         return self.NAME
 
+    @property
+    def in_loop(self) -> bool:
+        """True when the model needs the split (plant + sampled controller) form for this effect: an element, or
+        a term that holds a stopped mass (:class:`identification.effects.FrictionStribeck` with ``stick``)."""
+        return self.KIND == "element"
+
     def unpinned(self, *, travel: float, duration: float) -> dict[str, str]:
         """The parameters a record of ``travel`` [mm or deg] and ``duration`` [s] does not pin, each with why
         (``{}`` when it pins them all): the model still simulates with the fitted value, but the report must not

@@ -9,6 +9,7 @@ from typing import ClassVar
 import numpy as np
 
 from identification.effects._base import Effect, Free
+from vcnc.core.errors import InputError
 
 __all__ = ["FrictionStribeck"]
 
@@ -23,16 +24,24 @@ class FrictionStribeck(Effect):
         Stribeck velocity v_s [mm/s] (nonlinear: found by a 1-D search).
     excess_positive, excess_negative : float
         Static minus Coulomb level for + / - motion [mm/s^2] (linear: s+, s-; same signs as d0, d1).
+    stick : bool
+        Simulate it in the split form (:mod:`identification.augmented`), where a stopped mass stays at rest
+        until the force on it leaves the static band ``d1 + s-`` .. ``d0 + s+`` (Karnopp): stiction that holds
+        each move's start from rest. False: the exact loop, whose friction switches on the sampled sign of the
+        velocity and holds nothing. JSON ``stick_at_rest`` (written only when true; a record without it is the
+        exact form).
 
     Notes
     -----
     The thesis' model has Coulomb friction only (Eq. 3.2, Sec. 3.2). Static/Coulomb ratio is
-    ``(d0 + s+) / d0``. Representable in an FMU (a smooth term of w).
+    ``(d0 + s+) / d0``. Representable in an FMU in either form (a smooth term of w; the split form with
+    ``stick``, with the plant's viscous rate).
     """
 
     velocity: float
     excess_positive: float = 0.0
     excess_negative: float = 0.0
+    stick: bool = False
 
     NAME: ClassVar[str] = "friction_stribeck"
     KIND: ClassVar[str] = "disturbance"
@@ -42,17 +51,28 @@ class FrictionStribeck(Effect):
     DESCRIPTION: ClassVar[str] = "friction changes near standstill (Stribeck curve)"
 
     def parameters(self):
-        return {"stribeck_velocity_mm_s": self.velocity, "excess_positive_mm_s2": self.excess_positive,
-                "excess_negative_mm_s2": self.excess_negative}
+        out = {"stribeck_velocity_mm_s": self.velocity, "excess_positive_mm_s2": self.excess_positive,
+               "excess_negative_mm_s2": self.excess_negative}
+        if self.stick:
+            out["stick_at_rest"] = True
+        return out
 
     @classmethod
     def from_parameters(cls, p):
+        stick = p.get("stick_at_rest", False)
+        if not isinstance(stick, bool):
+            raise InputError(f"effect parameter 'stick_at_rest' must be true or false (got {stick!r})")
         return cls(velocity=cls._require(p, "stribeck_velocity_mm_s", "mm/s"),
                    excess_positive=cls._require(p, "excess_positive_mm_s2", "mm/s^2"),
-                   excess_negative=cls._require(p, "excess_negative_mm_s2", "mm/s^2"))
+                   excess_negative=cls._require(p, "excess_negative_mm_s2", "mm/s^2"), stick=stick)
 
     def summary(self):
-        return f"v_s {self.velocity:.3g} mm/s, +{self.excess_positive:.4g}/{self.excess_negative:.4g} mm/s^2"
+        held = ", stick at rest" if self.stick else ""
+        return f"v_s {self.velocity:.3g} mm/s, +{self.excess_positive:.4g}/{self.excess_negative:.4g} mm/s^2{held}"
+
+    @property
+    def in_loop(self):
+        return self.stick
 
     @staticmethod
     def basis(velocity: np.ndarray, vs: float) -> np.ndarray:
@@ -69,6 +89,7 @@ class FrictionStribeck(Effect):
         return dataclasses.replace(self, excess_positive=float(coef[0]), excess_negative=float(coef[1]))
 
     def pack(self, spec, *, model_sample_time):
+        spec.structured = spec.structured or self.stick
         spec.stribeck = np.array([self.velocity, self.excess_positive, self.excess_negative])
 
     def free(self):

@@ -48,7 +48,9 @@ def test_friction_falling_near_standstill_is_not_named_stribeck():
     held-out error was itself inflated by its first fold's refit (2.03 um there for 0.51 to 0.66 on the others,
     1.18 pooled): that fold is now judged by a refit that keeps the Coulomb levels' common mode, which the other
     folds hardly determine, at the full fit (diagnosis._damped_refit): 0.57 um pooled, and the Stribeck refit
-    (0.55 um) no longer gains enough to be chosen; no effect is kept."""
+    (0.55 um) no longer gains enough to be chosen; no effect is kept. stick36: the Stribeck term is refitted in the
+    split form too (``FrictionStribeck.stick``, a stopped mass held) and that refit is kept, 0.340 um; the split form
+    without it predicts as well (0.340 um, gain 0.04 %): refused against its null."""
     import toolpaths
 
     m = vcnc.machine("fadal-pid").with_axis_options("x", noise=3e-4, encoder=5e-5)
@@ -57,7 +59,8 @@ def test_friction_falling_near_standstill_is_not_named_stribeck():
     model = identify(cap, axis="x")
     first = model.validation["rounds"][0]
     assert first["current_validation_rms_um"] == pytest.approx(0.568, abs=0.02)
-    assert first["refitted"]["friction_stribeck"]["validation_rms_um"] == pytest.approx(0.545, abs=0.02)
+    assert first["refitted"]["friction_stribeck"]["validation_rms_um"] == pytest.approx(0.340, abs=0.02)
+    assert first["nested"]["friction_stribeck"]["gain_pct"] < 25.0
     assert model.effects == []
     assert first["accepted"] is None
 

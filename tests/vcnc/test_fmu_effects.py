@@ -70,6 +70,10 @@ COMBINED = {
     # this limit its response differs from the unclamped form's by 0.55 mm on the check reference
     "saturation_anti_windup": [Delay(samples=1, sample_time=TS), Saturation(limit=4e4, anti_windup=True,
                                                                           integral_lead=0.01)],
+    # the Stribeck term in the split form, which holds a stopped mass (stick36): the split loop with
+    # plant_viscous_rate, as for the elements
+    "friction_stribeck_stick": [FrictionStribeck(velocity=2.0, excess_positive=30.0, excess_negative=-25.0,
+                                                 stick=True)],
 }
 CASES = {**EFFECT_CASES, **COMBINED}
 
@@ -77,7 +81,7 @@ CASES = {**EFFECT_CASES, **COMBINED}
 def build(name: str) -> AugmentedAxisModel:
     elements = CASES[name]
     base = ReducedAxisModel(parameters=PARAMETERS, sample_time=TS, axis="y")
-    structured = any(e.KIND == "element" for e in elements)
+    structured = any(e.in_loop for e in elements)
     return augment(base, elements, viscous_rate=VISCOUS_RATE if structured else 0.0)
 
 
@@ -190,6 +194,14 @@ def test_saturation_anti_windup_is_exported_as_a_switch_fixed_at_export(built, r
     assert np.max(np.abs(got - unclamped.simulate(reference))) > 0.1
     md = read_model_description(str(built("saturation_anti_windup")))
     assert "saturation_limit" in {v.name for v in md.modelVariables}
+
+
+def test_stribeck_stick_is_exported_in_the_split_form(built, reference):
+    """The split form's stick (``stick_at_rest``) is the FMU's split loop with its viscous rate, not the exact loop."""
+    md = read_model_description(str(built("friction_stribeck_stick")))
+    assert "plant_viscous_rate" in {v.name for v in md.modelVariables}
+    exact = augment(build("friction_stribeck_stick"), list(EFFECT_CASES["friction_stribeck"]), viscous_rate=0.0)
+    assert np.max(np.abs(build("friction_stribeck_stick").simulate(reference) - exact.simulate(reference))) > 1e-4
 
 
 def test_model_file_with_diagnosed_effects_round_trips(tmp_path):

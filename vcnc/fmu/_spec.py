@@ -66,7 +66,7 @@ class ExportSpec:
     @property
     def structured(self) -> bool:
         """True when an element needs the split (plant + sampled controller) form."""
-        return any(e.KIND == "element" for e in self.elements)
+        return any(e.in_loop for e in self.elements)
 
     def effect(self, name: str) -> Any:
         """The element called ``name``, or None."""
