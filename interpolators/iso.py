@@ -150,7 +150,7 @@ from interpolators.iso_corners import PendingCorner, corner_after_block, corner_
 from interpolators.iso_cycle_blocks import cycle_block, pattern_or_pocket
 from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
-from interpolators.iso_dwo import dwo_switch
+from interpolators.iso_dwo import carry_work_zero, dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
@@ -1055,8 +1055,6 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
                        text=w.text, expected="G255 before G234")
         length_compensation((430, w) if st.tcp else (key, w), seen, st, where, notes)
         st.length_code = key / 10
-    if "dwo" in gcodes:  # Haas G254 / G255 (interpolators.iso_dwo)
-        dwo_switch(gcodes["dwo"], st, where, notes)
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
@@ -1072,6 +1070,10 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
                 fail_words(where, f"{w.text.upper()} additional work offset", exc, seen, w)
             if assumed:
                 notes.add(f"{w.text.upper()} without P: P1")
+        if st.dwo is not None and "dwo" not in gcodes:  # G254 carries the work offset in force
+            carry_work_zero(st)
+    if "dwo" in gcodes:  # Haas G254 / G255 (interpolators.iso_dwo), after the block's work offset
+        dwo_switch(gcodes["dwo"], st, where, notes)
     if "path" in gcodes:
         key, w = gcodes["path"]
         st.exact_stop = key in (610, 611)
