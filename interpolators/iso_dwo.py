@@ -8,13 +8,13 @@ where the work offset has gone"; "G255 cancels DWO". Fusion's Haas posts (OpenPo
 turned by the post into the machine's axes (``setRotation`` of the remaining orientation), and ``G255`` before
 the next indexing.
 
-What vcnc reads (``--dialect haas``, a machine with ``[program.kinematics]`` of a tilting table): at G254 the
-work zero (work offset plus G92 offset, machine coordinates with the rotary axes at 0) is carried by the table to
-its place at the present rotary positions (:meth:`interpolators.tilted.Kinematics.place`, about the axes'
-pivots, which stand for the MRZP; a work offset selected under G254 is carried the same way), and every
-following move is shifted by that translation, its X Y Z axes those of the machine (our reading of "work offset": a translation, as the post's own rotation of the coordinates
-shows); arcs, cycles and compensation run as without it. G255 drops the shift. Refused,
-each an error naming it: G254 without kinematics, on a head-tilting machine, under TCPC (G234) or a G68/G51
+What vcnc reads (``--dialect haas``, a machine with ``[program.kinematics]`` of a tilting table): at G254 the work
+zero (work offset plus G92 offset, machine coordinates with the rotary axes at 0) is carried by the table to its
+place at the present rotary positions (:meth:`interpolators.tilted.Kinematics.place`, about the axes' pivots, which
+stand for the MRZP; a work offset selected under G254 is carried the same way), and every following move is shifted
+by that translation, its X Y Z axes those of the machine (our reading of "work offset": a translation, as the post's
+own rotation of the coordinates shows); arcs, cycles and compensation run as without it. G255 drops the shift.
+Refused, each an error naming it: G254 without kinematics, on a head-tilting machine, under TCPC (G234) or a G68/G51
 frame; a rotary axis word while G254 is in force (the posts cancel DWO with G255 before indexing: our reading, a
 move whose offset would change along it).
 """
