@@ -309,7 +309,7 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
-    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80: the next G84/G74 turns the spindle itself
+    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80 or group 01 code: the next G84/G74 turns it
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
@@ -1135,6 +1135,8 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
                 carried = st.cycle.p if st.context.dialect.name == "linuxcnc" else None
                 st.cycle = CycleWords(motion_before=st.motion, p=carried)
             st.motion = key
+            if key < 730 and not any(w.letter == "M" and w.value == 29 for w in words):
+                st.rigid_tap = False  # a group 01 code ends the cycle as G80 does, and M29's rigid mode with it
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
         st.rigid_tap = False

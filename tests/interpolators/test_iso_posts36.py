@@ -46,6 +46,20 @@ def test_fanuc_per_revolution_tapping_without_m29_or_m03_stays_refused():
         parse_program(again, context=FANUC)
 
 
+def test_fanuc_rigid_tapping_ends_with_the_cycle_a_motion_code_cancels():
+    # a group 01 code (G00) ends the canned cycle as G80 does (B-64304EN "Canned cycle for drilling": a cycle is
+    # canceled by G80 or a group 01 G code) and with it the rigid mode M29 armed (our reading: M29 arms the tapping
+    # cycle that follows it). Before (review36): N90's G84 ran as a rigid tap with no M29 or M03, the spindle never
+    # started
+    again = FANUC_RIGID_TAP.replace("N85 G95 G80\n", "N85 G00 Z15.\n").replace(
+        "N90 M09\n", "N90 G98 G84 X30. Y10. Z-10. R5. P0 F1.25\n")
+    with pytest.raises(GCodeError, match=r":21:9: G84 tapping cycle under G95"):
+        parse_program(again, context=FANUC)
+    # M29 in the block of the motion code still arms the cycle after it
+    armed = again.replace("N85 G00 Z15.\n", "N85 G00 Z15. M29 S500\n")
+    assert [b for b in parse_program(armed, context=FANUC).blocks if b.line == 21]
+
+
 #: haas.cps ``onCyclePoint`` "right-tapping" with ``useG95forTapping``: ``G95`` then ``G98 G84 .. F<pitch>``; the
 #: post starts the spindle in ``onSection``, but a tapping operation after an ``M05`` (or a program that stops the
 #: spindle before the tap, as shops edit them) reaches the G84 with it stopped.
