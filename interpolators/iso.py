@@ -150,7 +150,7 @@ from interpolators.iso_corners import PendingCorner, corner_after_block, corner_
 from interpolators.iso_cycle_blocks import cycle_block, pattern_or_pocket
 from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
-from interpolators.iso_dwo import dwo_switch
+from interpolators.iso_dwo import carry_work_zero, dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
@@ -311,7 +311,7 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
-    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80: the next G84/G74 turns the spindle itself
+    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80 or group 01 code: the next G84/G74 turns it
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
@@ -1064,8 +1064,6 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
                        text=w.text, expected="G255 before G234")
         length_compensation((430, w) if st.tcp else (key, w), seen, st, where, notes)
         st.length_code = key / 10
-    if "dwo" in gcodes:  # Haas G254 / G255 (interpolators.iso_dwo)
-        dwo_switch(gcodes["dwo"], st, where, notes)
     if "coordinate system" in gcodes:
         key, w = gcodes["coordinate system"]
         if st.comp_side is not None and st.context.dialect.name == "linuxcnc":  # convert_coordinate_system
@@ -1081,6 +1079,10 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
                 fail_words(where, f"{w.text.upper()} additional work offset", exc, seen, w)
             if assumed:
                 notes.add(f"{w.text.upper()} without P: P1")
+        if st.dwo is not None and "dwo" not in gcodes:  # G254 carries the work offset in force
+            carry_work_zero(st)
+    if "dwo" in gcodes:  # Haas G254 / G255 (interpolators.iso_dwo), after the block's work offset
+        dwo_switch(gcodes["dwo"], st, where, notes)
     if "path" in gcodes:
         key, w = gcodes["path"]
         st.exact_stop = key in (610, 611)
@@ -1142,6 +1144,8 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
                 carried = st.cycle.p if st.context.dialect.name == "linuxcnc" else None
                 st.cycle = CycleWords(motion_before=st.motion, p=carried)
             st.motion = key
+            if key < 730 and not any(w.letter == "M" and w.value == 29 for w in words):
+                st.rigid_tap = False  # a group 01 code ends the cycle as G80 does, and M29's rigid mode with it
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
         st.rigid_tap = False

@@ -8,13 +8,13 @@ where the work offset has gone"; "G255 cancels DWO". Fusion's Haas posts (OpenPo
 turned by the post into the machine's axes (``setRotation`` of the remaining orientation), and ``G255`` before
 the next indexing.
 
-What vcnc reads (``--dialect haas``, a machine with ``[program.kinematics]`` of a tilting table): at G254 the
-work zero (work offset plus G92 offset, machine coordinates with the rotary axes at 0) is carried by the table to
-its place at the present rotary positions (:meth:`interpolators.tilted.Kinematics.place`, about the axes'
-pivots, which stand for the MRZP), and every following move is shifted by that translation, its X Y Z axes
-those of the machine (our reading of "work offset": a translation, as the post's own rotation of the coordinates
-shows); arcs, cycles and compensation run as without it. G255 drops the shift. Refused,
-each an error naming it: G254 without kinematics, on a head-tilting machine, under TCPC (G234) or a G68/G51
+What vcnc reads (``--dialect haas``, a machine with ``[program.kinematics]`` of a tilting table): at G254 the work
+zero (work offset plus G92 offset, machine coordinates with the rotary axes at 0) is carried by the table to its
+place at the present rotary positions (:meth:`interpolators.tilted.Kinematics.place`, about the axes' pivots, which
+stand for the MRZP; a work offset selected under G254 is carried the same way), and every following move is shifted
+by that translation, its X Y Z axes those of the machine (our reading of "work offset": a translation, as the post's
+own rotation of the coordinates shows); arcs, cycles and compensation run as without it. G255 drops the shift.
+Refused, each an error naming it: G254 without kinematics, on a head-tilting machine, under TCPC (G234) or a G68/G51
 frame; a rotary axis word while G254 is in force (the posts cancel DWO with G255 before indexing: our reading, a
 move whose offset would change along it).
 """
@@ -30,7 +30,7 @@ from interpolators._words import Where
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["DWO_CODES", "dwo_switch", "refuse_rotary_under_dwo"]
+__all__ = ["DWO_CODES", "carry_work_zero", "dwo_switch", "refuse_rotary_under_dwo"]
 
 #: round(10 x G) of Haas's DWO codes, with their names.
 DWO_CODES = {2540: "G254 dynamic work offset", 2550: "G255 dynamic work offset cancel"}
@@ -58,10 +58,18 @@ def dwo_switch(entry: tuple[int, object], st: State, where: Where, notes: Notes)
         what = "tool centre point control (G234)" if st.tcp else "a G68 rotation, G51 scaling or G10 R rotation"
         where.fail(f"G254 dynamic work offset under {what}: not supported", column=w.column, text=w.text,
                    expected=_EXPECTED)
+    carry_work_zero(st)
+    notes.add("G254/G255 dynamic work offset")
+
+
+def carry_work_zero(st: State) -> None:
+    """``st.dwo``: the shift of the work zero in force (work offset plus G92 offset, machine coordinates with the
+    rotary axes at 0) to where the table at its present rotary positions has carried it; at G254 and at each
+    change of work offset (G54-G59, G54.1 P..) under it, the control's "active work offset" (the module text)."""
+    kin = st.context.kinematics
     st.dwo = None
     zero = st.offset() - np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
     st.dwo = kin.place(zero, kin.solution_at(st.extra)) - zero
-    notes.add("G254/G255 dynamic work offset")
 
 
 def refuse_rotary_under_dwo(st: State, letters: list[str], seen, where: Where) -> None:

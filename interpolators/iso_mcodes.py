@@ -33,7 +33,8 @@ _M_NOTES = {
 
 #: Fanuc's rigid tapping M code (parameter No. 5210, M29 by default): Fanuc 0i-B connection manual (function)
 #: B-63833EN, "Rigid tapping": "M29 S1000 ; G84 Z-100. R-20. F1. ;" under G99 (feed per revolution), with no M03:
-#: the control drives the spindle in step with the tapping axis for the G84/G74 that follows, until G80.
+#: the control drives the spindle in step with the tapping axis for the G84/G74 that follows, until G80 or a group 01
+#: code (G00, G01, ..) ends the cycle (our reading).
 RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
 
 

@@ -24,7 +24,7 @@ from identification.effects import Drift, PositionPeriodic
 from identification.parallel import serial_blas
 from identification.searches import Data
 from identification.segments import active_mask, folds
-from tests.identification.test_whole_record_refusal import T, _capture_and_model, _rms_um
+from tests.identification.test_whole_record_refusal import T, capture_and_model, rms_um
 
 IDLE = int(4.0 / T)
 
@@ -32,7 +32,7 @@ IDLE = int(4.0 / T)
 def _backward_checked(seed: int, eps: float):
     """The final model of the backward check of the stages [reduced, + drift, + load], the drift dropped."""
     load = PositionPeriodic(period=2.0, coefficients=((1500.0 * (1.0 + eps), 800.0),))
-    cap, reduced = _capture_and_model(load=load, seed=seed)
+    cap, reduced = capture_and_model(load=load, seed=seed)
     xr, x = cap.reference[:, 0], cap.measured[:, 0]
     opt = D.DiagnosisOptions()
     active = active_mask(xr, x, T, opt.margin_s)
@@ -65,10 +65,10 @@ def test_the_final_model_of_the_backward_check_keeps_the_mean_the_rests_put(seed
     p = final.parameters
     assert 0.5 * (p["d0"] + p["d1"]) == pytest.approx(-800.0, abs=100.0)  # cancels the load at rest, +800 mm/s^2
     error = final.simulate(xr) - x
-    assert _rms_um(error) < 0.2 * _rms_um(reduced.simulate(xr) - x)  # 1.15 against the reduced model's 15.1 um
-    assert _rms_um(error[:IDLE]) < 1.0  # at rest: 0.33 um
+    assert rms_um(error) < 0.2 * rms_um(reduced.simulate(xr) - x)  # 1.15 against the reduced model's 15.1 um
+    assert rms_um(error[:IDLE]) < 1.0  # at rest: 0.33 um
     # the errors the final stage reports are those of the model it holds
-    assert stages[-1].identification_rms_um == pytest.approx(_rms_um(error[_active(xr, x)]), rel=1e-9)
+    assert stages[-1].identification_rms_um == pytest.approx(rms_um(error[_active(xr, x)]), rel=1e-9)
 
 
 def _active(xr: np.ndarray, x: np.ndarray) -> np.ndarray:

@@ -62,3 +62,16 @@ def test_one_sample_delay_on_a_loop_with_acceleration_feedforward():
     model = identify(cap, axis="x")
     assert [e.name for e in model.effects][:1] == ["delay"]
     assert model.effects[0].parameters["samples"] == 1
+
+
+def test_the_same_capture_without_the_delay_names_none():
+    """The null rule's other side: the program and noise of test_one_sample_delay_on_a_loop_with_acceleration_
+    feedforward on fadal-smc without the delay. A parameter-free element faces its null by the folds alone
+    (diagnosis.beats_the_model_without): on this clean capture no delay is named (nor anything else; review36,
+    seeds 1-3 of this program alike)."""
+    import toolpaths
+
+    m = vcnc.machine("fadal-smc").with_axis_options("x", noise=3e-4, encoder=1e-3)
+    sp = vcnc.interpolate(vcnc.parse_program(toolpaths.random_moves(36, 3.0, 4125, seed=1, axes=("x",))), m)
+    cap = m.simulate(sp, seed=1).select_axes(("x",))
+    assert [e.name for e in identify(cap, axis="x").effects] == []

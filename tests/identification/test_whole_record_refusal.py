@@ -44,7 +44,7 @@ from vcnc.capture import Capture
 T = 0.001
 
 
-def _capture_and_model(idle_s: float = 4.0, load=None, seed: int = 1) -> tuple[Capture, ReducedAxisModel]:
+def capture_and_model(idle_s: float = 4.0, load=None, seed: int = 1) -> tuple[Capture, ReducedAxisModel]:
     moves = random_moves_reference(moves=12, span=10.0, feed=100.0, acceleration=1000.0, sample_time=T, dwell=0.3,
                                    seed=3)
     idle = int(idle_s / T)
@@ -59,26 +59,26 @@ def _capture_and_model(idle_s: float = 4.0, load=None, seed: int = 1) -> tuple[C
     return cap, reduced
 
 
-def _rms_um(error_mm: np.ndarray) -> float:
+def rms_um(error_mm: np.ndarray) -> float:
     return float(np.sqrt(np.mean(np.square(error_mm)))) * 1e3
 
 
 def test_the_whole_record_decides_an_effect_the_held_out_folds_accept():
-    cap, reduced = _capture_and_model()
+    cap, reduced = capture_and_model()
     rep = diagnose_report(cap, reduced, axis="x")
     first = rep.rounds[0]
     assert first["best"] == "position_periodic"
     assert first["gain_pct"] == pytest.approx(92.2, abs=2.0)  # the held-out test alone would take it
     xr, x = cap.reference[:, 0], cap.measured[:, 0]
-    before = _rms_um(reduced.simulate(xr) - x)
+    before = rms_um(reduced.simulate(xr) - x)
     assert before == pytest.approx(15.11, rel=0.02)
     # judged at the Coulomb mean the record puts it, the model holds at rest: accepted on any platform, wherever the
     # joint refit left the mean (9.96 .. 38.17 um over all samples before coulomb35)
     assert first["accepted"] == "position_periodic" and "worse_on_the_record_um" not in first
     assert rep.effects == ["position_periodic"]
     after = rep.model.simulate(xr) - x
-    assert _rms_um(after) < 0.2 * before  # 1.15 um
-    assert _rms_um(after[: int(4.0 / T)]) < 1.0  # the idle stretch: 0.33 um
+    assert rms_um(after) < 0.2 * before  # 1.15 um
+    assert rms_um(after[: int(4.0 / T)]) < 1.0  # the idle stretch: 0.33 um
     mean = 0.5 * (rep.model.parameters["d0"] + rep.model.parameters["d1"])
     assert mean == pytest.approx(-800.0, abs=100.0)  # it cancels the load at the rest position, +800 mm/s^2
     text = format_before_after(rep.model)
@@ -91,12 +91,12 @@ def test_an_effect_that_moves_the_model_at_rest_whatever_the_mean_is_refused():
     stiction holds at rest: the model of the load oscillates at rest, which no Coulomb mean cancels. The held-out
     folds take it (24.48 -> 4.74 um, coulomb35's machine), the whole record refuses it (13.78 -> 18.89 um; 17.22 um
     is the 25 % line), and the reduced model stands."""
-    cap, reduced = _capture_and_model(idle_s=12.0, load=TimePeriodic(period=0.25, coefficients=((1500.0, 0.0),)))
+    cap, reduced = capture_and_model(idle_s=12.0, load=TimePeriodic(period=0.25, coefficients=((1500.0, 0.0),)))
     rep = diagnose_report(cap, reduced, axis="x")
     first = rep.rounds[0]
     assert first["best"] == "time_periodic" and first["gain_pct"] > 50.0
     b, a = first["worse_on_the_record_um"]["time_periodic"]
-    assert b == pytest.approx(_rms_um(reduced.simulate(cap.reference[:, 0]) - cap.measured[:, 0]), rel=1e-6)
+    assert b == pytest.approx(rms_um(reduced.simulate(cap.reference[:, 0]) - cap.measured[:, 0]), rel=1e-6)
     assert a - b >= 0.25 * b and a - b >= 0.05
     assert first["accepted"] is None and rep.effects == []
     assert refusal_lines(rep.model.validation)[0].startswith("refused: time_periodic lowers the held-out error")
@@ -120,18 +120,18 @@ def test_the_coulomb_mean_at_rest_does_not_depend_on_where_the_refit_left_it(loa
     all samples against the reduced model's 13.78, refused whatever the mean (from 0 the mean stays: -412 mm/s^2
     predicts 0.05 % better)."""
     if load == "position":
-        cap, reduced = _capture_and_model()
+        cap, reduced = capture_and_model()
         idle, effect = int(4.0 / T), PositionPeriodic(period=2.0, coefficients=((1500.0, 800.0),))
     else:
         idle, effect = int(12.0 / T), TimePeriodic(period=0.25, coefficients=((1500.0, 0.0),))
-        cap, reduced = _capture_and_model(idle_s=12.0, load=effect)
+        cap, reduced = capture_and_model(idle_s=12.0, load=effect)
     data = _data(cap, idle)
     xr, x = cap.reference[:, 0], cap.measured[:, 0]
-    before = _rms_um(reduced.simulate(xr) - x)
+    before = rms_um(reduced.simulate(xr) - x)
     settled = [coulomb_mean_at_rest(with_coulomb_mean(augment(reduced, [effect]), mean), reduced, data)
                for mean in (-6731.0, 0.0, 18654.0)]
     means = [0.5 * (m.parameters["d0"] + m.parameters["d1"]) for m in settled]
-    rms = [_rms_um(m.simulate(xr) - x) for m in settled]
+    rms = [rms_um(m.simulate(xr) - x) for m in settled]
     # the whole record judged alike, whatever the refit's mean (a mean is moved only for a 0.1 % better prediction)
     assert max(rms) <= 1.001 * min(rms)
     for m in settled:
@@ -147,14 +147,14 @@ def test_the_coulomb_mean_at_rest_does_not_depend_on_where_the_refit_left_it(loa
 def test_the_active_samples_do_not_determine_the_coulomb_mean():
     # the refits of the scenario above: d0 - d1 = 7834 mm/s^2 and means -6731 (session 34) and +18654 mm/s^2
     # (session 33's refusal, 38.17 um over all samples); the load of the truth
-    cap, _ = _capture_and_model()
+    cap, _ = capture_and_model()
     xr, idle = cap.reference[:, 0], int(4.0 / T)
     load = PositionPeriodic(period=2.0, coefficients=((1500.0, 800.0),))
     runs = [augment(ReducedAxisModel(parameters=dict(FADAL_PID_X, d0=mean + 3917.0, d1=mean - 3917.0),
                                      sample_time=T), [load]).simulate(xr) for mean in (-6731.0, 0.0, 18654.0)]
     for x in runs[1:]:
-        assert _rms_um(x[idle:] - runs[0][idle:]) < 0.01  # the active samples: the same prediction
-    at_rest = [_rms_um(x[:idle] - xr[0]) for x in runs]
+        assert rms_um(x[idle:] - runs[0][idle:]) < 0.01  # the active samples: the same prediction
+    at_rest = [rms_um(x[:idle] - xr[0]) for x in runs]
     assert at_rest[2] > 3.0 * at_rest[0] > 9.0 * at_rest[1]  # the idle stretch: the mean decides
 
 

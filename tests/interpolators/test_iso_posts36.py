@@ -46,6 +46,20 @@ def test_fanuc_per_revolution_tapping_without_m29_or_m03_stays_refused():
         parse_program(again, context=FANUC)
 
 
+def test_fanuc_rigid_tapping_ends_with_the_cycle_a_motion_code_cancels():
+    # a group 01 code (G00) ends the canned cycle as G80 does (B-64304EN "Canned cycle for drilling": a cycle is
+    # canceled by G80 or a group 01 G code) and with it the rigid mode M29 armed (our reading: M29 arms the tapping
+    # cycle that follows it). Before (review36): N90's G84 ran as a rigid tap with no M29 or M03, the spindle never
+    # started
+    again = FANUC_RIGID_TAP.replace("N85 G95 G80\n", "N85 G00 Z15.\n").replace(
+        "N90 M09\n", "N90 G98 G84 X30. Y10. Z-10. R5. P0 F1.25\n")
+    with pytest.raises(GCodeError, match=r":21:9: G84 tapping cycle under G95"):
+        parse_program(again, context=FANUC)
+    # M29 in the block of the motion code still arms the cycle after it
+    armed = again.replace("N85 G00 Z15.\n", "N85 G00 Z15. M29 S500\n")
+    assert [b for b in parse_program(armed, context=FANUC).blocks if b.line == 21]
+
+
 #: haas.cps ``onCyclePoint`` "right-tapping" with ``useG95forTapping``: ``G95`` then ``G98 G84 .. F<pitch>``; the
 #: post starts the spindle in ``onSection``, but a tapping operation after an ``M05`` (or a program that stops the
 #: spindle before the tap, as shops edit them) reaches the G84 with it stopped.
@@ -273,3 +287,18 @@ def test_fanuc_smooth_tolerance_control_names_its_axes_without_moving_them():
     assert "G05.1 Q3 smooth tolerance+ control" in prog.notes
     five = parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"], extra_axes=("a",)))
     assert [b.target.tolist() for b in five.blocks] == [[10.0, 10.0, 10.0], [20.0, 10.0, 10.0]]
+
+
+@pytest.mark.parametrize("order", ["G55\nG254\n", "G254 G55\n", "G254\nG55\n"])
+def test_haas_dynamic_work_offset_carries_the_work_offset_in_force(order):
+    # Haas NGC manual "G254 Dynamic Work Offset (DWO)": the control uses the MRZP and "the location of the workpiece
+    # (active work offset)". G55 at Y10 Z20 (G54 at 0), (0, 10, 70) from the A pivot (0, 0, -50): at A30 it is
+    # carried as test_haas_dynamic_work_offset_carries_the_work_zero_with_the_table turns G54's, to
+    # (0, 10 cos30 + 70 sin30, -50 + 70 cos30 - 10 sin30) = (0, 43.660, 5.622), wherever G55 stands: before G254,
+    # in its block or after it. Before (review36): after G254, or in its block, the shift of G54's zero
+    # (0, 25, -6.699) was added to G55's own offset: Z5. at (0, 35, 18.301)
+    text = "%\nO1\nG90 G17 G21\nG54\nG00 A30. C0.\n" + order + "G00 X0. Y0.\nZ5.\nG255\nM30\n%\n"
+    prog = parse_program(text, context=_umc_context(work_offsets={"G55": np.array([0.0, 10.0, 20.0])}))
+    c, s = np.cos(np.radians(30.0)), np.sin(np.radians(30.0))
+    zero = np.array([0.0, 10.0 * c + 70.0 * s, -50.0 + 70.0 * c - 10.0 * s])
+    assert prog.blocks[-1].target == pytest.approx(zero + [0.0, 0.0, 5.0])
