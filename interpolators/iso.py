@@ -1291,7 +1291,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                                     "bare G53 does nothing")
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
         machine = not _incremental_g53(st, notes)
-        target = block_target(seen, axis_words, st, machine=machine)
+        # a Z in machine coordinates takes up a tool length change not yet travelled; Fanuc's G53 under G91 moves
+        # by its words, and travels it as any incremental Z (iso_offsets.length_travel)
+        target = length_travel(block_target(seen, axis_words, st, machine=machine), axis_words, st)
         motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=machine)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \

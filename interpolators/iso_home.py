@@ -11,6 +11,7 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target
 from interpolators.iso_motion import block_target, rapid_move
+from interpolators.iso_offsets import length_travel
 from interpolators.iso_polar import POLAR_LETTERS
 from interpolators.iso_reference import FANUC_CODES, MILL_CODES, off_reference, stored_intermediate
 
@@ -22,12 +23,14 @@ __all__ = ["reference_return", "mill_positioning", "grbl_homing"]
 
 def reference_return(key: int, seen, axis_words, st: State, blocks, used, where: Where, number) -> None:
     """G28/G30: through the programmed intermediate point to the reference, only the axes named
-    (A-W words too); without axis words every axis, A-W to their reference positions."""
+    (A-W words too); without axis words every axis, A-W to their reference positions. A tool length change not yet
+    travelled (Fanuc, Haas, Fadal: :func:`interpolators.iso_offsets.length_travel`) is taken up by the intermediate
+    point's incremental Z, and is gone once Z is at its reference."""
     ref = st.home if key == 280 else st.reference2
     ref_rot = st.home_extra if key == 280 else st.reference2_extra
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if axis_words or rot_words:
-        mid = block_target(seen, axis_words, st, machine=False)
+        mid = length_travel(block_target(seen, axis_words, st, machine=False), axis_words, st)
         mid_rot = None
         if rot_words:
             st.extra_used = True
@@ -47,6 +50,7 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
         rapid_move(end, st, blocks, used, where, number, axis_words, rot=end_rot)
     else:
+        st.length_pending = 0.0  # Z goes to its reference
         st.intermediate = st.to_program(st.pos)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         rapid_move(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)

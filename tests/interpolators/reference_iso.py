@@ -1130,11 +1130,16 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             home = m.home[code]
             axes = [i for i, a in enumerate("xyz") if a in words]
             extra = m.extra_words(words)
-            m.intermediate[axes] = m.target(words)[axes]  # Fanuc/Haas G29 returns through it
+            mid = m.target(words)
+            if "z" in words:  # Fanuc: an incremental Z travels the tool length change too; at the reference it is gone
+                mid[2] += m.length_change if m.incremental else 0.0
+            if "z" in words or not axes and not extra:
+                m.length_change = 0.0
+            m.intermediate[axes] = mid[axes]  # Fanuc/Haas G29 returns through it
             if not axes and not extra:
                 m.intermediate = m.to_program(m.pos)
             if axes or extra:
-                m.move(line, "rapid", m.target(words), optional=True, extra=m.extra_end(words))
+                m.move(line, "rapid", mid, optional=True, extra=m.extra_end(words))
             end = m.pos.copy()
             for i in axes if axes or extra else range(3):
                 end[i] = home[i]
@@ -1367,6 +1372,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         for i, a in enumerate("xyz"):
             if a in words:
                 end[i] = end[i] * steps + words[a][-1] * m.scale
+        if "z" in words:  # machine Z takes up a tool length change not yet travelled; G53 under G91 travels it
+            end[2] += m.length_change if steps else 0.0
+            m.length_change = 0.0
         m.extra = m.extra_end(words, machine=not steps)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return

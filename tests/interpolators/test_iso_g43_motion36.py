@@ -86,3 +86,28 @@ def test_a_g91_arc_with_z_travels_the_change():
 def test_the_dialect_property():
     assert [name for name, d in DIALECTS.items() if d.length_offset_motion] == ["fanuc", "haas", "fadal"]
     assert not dataclasses.replace(DIALECTS["fanuc"], name="x", length_offset_motion=False).length_offset_motion
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_reference_return_takes_the_length_change_up(dialect):
+    """G49 alone, then G91 G28 Z0 (the Fanuc post's end of a tool) and a G91 Z move: at its reference Z has travelled
+    the change (12.5.2, TOS = 0: the G49 block moved it already), so the next incremental Z moves by its word alone.
+    Before the fix the -50 mm change waited for that Z-5. and ended 50 mm low."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG49\nG91 G28 Z0\nG91 G0 Z-5.\nM30\n"
+    z = ends(text, dialect)
+    assert z[-1] == pytest.approx(-5.0)  # the home is at the origin: Z-5. from it
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_an_incremental_intermediate_point_of_g28_travels_the_change(dialect):
+    """G49 alone moves Z by -50 at once on the control (TOS = 0); G91 G28 Z20. goes through 20 above that, then home."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z100.\nG49\nG91 G28 Z20.\nM30\n"
+    z = ends(text, dialect)
+    assert z[-2:] == pytest.approx([150.0 - 50.0 + 20.0, 0.0])
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_machine_coordinate_z_takes_the_length_change_up(dialect):
+    """G49 alone, G53 G0 Z0 (the machine's Z zero, which no offset shifts), then G91 Z-5.: 5 below machine zero."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG49\nG53 G0 Z0\nG91 G0 Z-5.\nM30\n"
+    assert ends(text, dialect)[-1] == pytest.approx(-5.0)
