@@ -620,6 +620,12 @@ def search_friction_stribeck(ctx: SearchContext) -> list[Candidate]:
     return [dataclasses.replace(c, evidence={**c.evidence, **held_ev}, other_starts=(*c.other_starts, m))]
 
 
+def _start_viscous_rate(ctx: SearchContext) -> float:
+    """The plant's viscous rate [1/s] a split-form start (an element's, or the Stribeck term's stick) takes when
+    the current model is in the exact form, which has none: 2 % of its a1, at least 1e-3."""
+    return max(1e-3, 0.02 * ctx.model.parameters["a1"])
+
+
 def _stick_start(ctx: SearchContext, vs: float) -> tuple[float, AugmentedAxisModel] | None:
     """(screen RMS [um], start) of the Stribeck term in the split form, which holds a stopped mass at rest
     (``FrictionStribeck.stick``), at the Stribeck velocity ``vs`` [mm/s] (two Gauss-Newton iterations of the reduced
@@ -638,7 +644,7 @@ def _stick_start(ctx: SearchContext, vs: float) -> tuple[float, AugmentedAxisMod
         params, cvis = dict(p), ctx.model.viscous_rate
     else:
         half = 0.5 * abs(p["d0"] - p["d1"])
-        params, cvis = dict(p, d0=half, d1=-half), max(1e-3, 0.02 * p["a1"])
+        params, cvis = dict(p, d0=half, d1=-half), _start_viscous_rate(ctx)
     e = FrictionStribeck(velocity=vs, excess_positive=abs(params["d0"]), excess_negative=-abs(params["d1"]),
                          stick=True)
     sc, m = ctx.gn_refine(augment(ctx.model, others + [e], parameters=params, viscous_rate=cvis), 2)
@@ -1012,7 +1018,7 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
     d = ctx.data
     rows = _train_rows(d, 4)
     others = list(ctx.model.elements)
-    cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
+    cvis = _start_viscous_rate(ctx)
 
     def tried(n: int) -> list[tuple[float, AugmentedAxisModel]]:
         e = Delay(samples=n, sample_time=d.T)
@@ -1111,7 +1117,7 @@ def search_saturation(ctx: SearchContext) -> list[Candidate]:
             for aw in (True, False):
                 e = Saturation(limit=U, anti_windup=aw)
                 if n == (delay or 0):
-                    starts.append(augment(ctx.model, others + held + [e], viscous_rate=max(1e-3, 0.02 * p["a1"])))
+                    starts.append(augment(ctx.model, others + held + [e], viscous_rate=_start_viscous_rate(ctx)))
                 if reg is not None:
                     starts.append(augment(ctx.model, others + held + [e], parameters=reg["parameters"],
                                           viscous_rate=reg["viscous_rate"]))
@@ -1159,7 +1165,7 @@ def search_saturation(ctx: SearchContext) -> list[Candidate]:
 def search_backlash(ctx: SearchContext) -> list[Candidate]:
     best = None
     tried = {}
-    cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
+    cvis = _start_viscous_rate(ctx)
     widths = np.geomspace(1e-3, 0.3, 12)
     starts = [augment(ctx.model, list(ctx.model.elements) + [Backlash(width=float(b))], viscous_rate=cvis)
               for b in widths]
@@ -1190,7 +1196,7 @@ def search_resonance(ctx: SearchContext) -> list[Candidate]:
     sampled split loop unstable (a 150 Hz mode at 2 ms diverges from damping 0.05) and would
     never be proposed (issue #16)."""
     d = ctx.data
-    cvis = max(1e-3, 0.02 * ctx.model.parameters["a1"])
+    cvis = _start_viscous_rate(ctx)
     others = list(ctx.model.elements)
     # up to 0.45/T: a 150 Hz mode must be searchable at a 2 or 3 ms sampling too (issue #16)
     grid = np.geomspace(20.0, 0.45 / d.T, 12)
