@@ -2746,11 +2746,13 @@ def _in_limits(ax, deg: float, near: float | None = None) -> float | None:
     return None
 
 
-def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False) -> dict[str, float]:
+def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False,
+           table_rot: bool = False) -> dict[str, float]:
     """The rotary positions for ``plane`` of an A/C or B/C table (closed form): the tool's direction in the
     part, Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A) or Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
     cos B), equal to the plane's Z. ``nearest``: each axis at the turn of 360 nearest its position (a tool
-    direction under M128), else in (-180, 180] first."""
+    direction under M128), else in (-180, 180] first. When the plane's Z is the C axis' own, C stays (COORD ROT)
+    or, with ``table_rot``, turns the plane's X onto the machine's X (:func:`_table_rot`)."""
     n = plane[:, 2]
     if len(t.ctx.kinematics.axes) == 1:  # one axis: Rx(A) e_z = (0, -sin A, cos A), Ry(B) e_z = (sin B, 0, cos B)
         ax = t.ctx.kinematics.axes[0]
@@ -2770,7 +2772,7 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False) -> di
     for tilt in {b, -b}:
         st = math.sin(math.radians(tilt))
         if abs(st) < 1e-9:
-            rot = now[1]
+            rot = _table_rot(t, plane, tilt) if table_rot else now[1]
         elif outer.direction == "X":
             rot = math.degrees(math.atan2(n[0] / st, -n[1] / st))
         else:
@@ -2785,9 +2787,74 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False) -> di
     return {outer.name: o, inner.name: i}
 
 
+def _table_rot(t: _Tnc, plane: np.ndarray, tilt: float) -> float:
+    """TABLE ROT (iTNC 530 user's manual, "Selecting the type of transformation": TABLE ROT positions the rotary
+    table to the tilting angle, COORD ROT only turns the coordinate system): the C position, with the tilting axis
+    at ``tilt`` [deg], at which the table carries the plane's X onto the machine's +X. Tried from the angle of X in
+    the part's XY plane and that angle plus 180 (a tilt of 180 deg about Y reverses X)."""
+    outer, inner = t.ctx.kinematics.axes
+    base = math.degrees(math.atan2(plane[1, 0], plane[0, 0])) * (-1.0 if inner.direction.startswith("-") else 1.0)
+    for c in (base, base + 180.0):
+        ang = {outer.name: tilt, inner.name: c}
+        x = _carry(t, plane[:, 0], ang) - _carry(t, np.zeros(3), ang)
+        if x[0] > 1.0 - 1e-9:
+            return (c + 180.0) % 360.0 - 180.0
+    raise ReferenceError("TABLE ROT: no C position turns the plane's X onto X")
+
+
+def _projected(propr: float, promin: float, rot: float) -> np.ndarray:
+    """``PLANE PROJECTED PROPR PROMIN ROT`` (iTNC 530 user's manual 340 49x, 12.3, "Defining the working plane
+    with projection angles"): PROPR is the angle of the tilted plane's trace in the ZX plane from X, PROMIN that
+    of its trace in the YZ plane from Y (each within +-89.9999 deg), ROT then turns the tilted axes about the tilted
+    tool axis as cycle 10 does. The traces run along (1, 0, -tan PROPR) and (0, 1, tan PROMIN) (our reading of the
+    figure's positive directions: PROPR alone is SPB, PROMIN alone is SPA); the tilted X along the first, the tool
+    axis square to both."""
+    if max(abs(propr), abs(promin)) >= 90.0:
+        raise ReferenceError("a projection angle of 90 deg or more")
+    x = np.array([1.0, 0.0, -math.tan(math.radians(propr))])
+    trace_y = np.array([0.0, 1.0, math.tan(math.radians(promin))])
+    z = np.cross(x, trace_y)
+    x, z = x / np.linalg.norm(x), z / np.linalg.norm(z)
+    return np.column_stack([x, np.cross(z, x), z]) @ _turn("Z", rot)
+
+
+def _three_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray) -> np.ndarray:
+    """``PLANE POINTS`` (TNC 640 user's manual 34059x-05, "Defining the working plane via three points"): "thumb (X
+    axis) points from Point 1 to Point 2, index finger (Y axis) points parallel to the tilted Y axis in the direction
+    of Point 3. Then the middle finger points in the direction of the tilted tool axis": Gram-Schmidt from P1."""
+    x = p2 - p1
+    if np.linalg.norm(x) < 1e-12:
+        raise ReferenceError("PLANE POINTS with P1 = P2")
+    x = x / np.linalg.norm(x)
+    y = (p3 - p1) - ((p3 - p1) @ x) * x
+    if np.linalg.norm(y) < 1e-9 * max(1.0, float(np.linalg.norm(p3 - p1))):
+        raise ReferenceError("PLANE POINTS on one line")
+    y = y / np.linalg.norm(y)
+    return np.column_stack([x, y, np.cross(x, y)])
+
+
+def _axial(t: _Tnc, w: dict) -> tuple[np.ndarray, dict[str, float]]:
+    """``PLANE AXIAL A.. B.. C..`` (TNC7 basic user's manual 81762x-19, "PLANE AXIAL": "Axis angles define both the
+    orientation of the working plane as well as the nominal coordinates of the rotary axes"; an axis angle for an
+    axis the machine lacks is an error): the axes go to the angles written (an axis not written keeps its position,
+    our reading); the plane is the part's frame the table at those angles turns onto the machine's axes (its
+    columns: the part directions carried onto machine X, Y, Z)."""
+    names = [ax.name for ax in t.ctx.kinematics.axes]
+    if any(k.lower() not in names for k in w) or not w:
+        raise ReferenceError(f"PLANE AXIAL {sorted(w)} on axes {names}")
+    angles = {a: w.get(a.upper(), t.extra["ABC".index(a.upper())]) for a in names}
+    for ax in t.ctx.kinematics.axes:
+        if not ax.limits[0] - 1e-6 <= angles[ax.name] <= ax.limits[1] + 1e-6:
+            raise ReferenceError(f"PLANE AXIAL {ax.name.upper()} outside the limits")
+    cols = [_carry(t, e, angles, back=True) - _carry(t, np.zeros(3), angles, back=True) for e in np.eye(3)]
+    return np.column_stack(cols), angles
+
+
 def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: str, seq: int = 0,
-                feed: str = "rapid", dist: float = 0.0) -> None:
-    """Activate ``plane`` (None: cancel it), then position the rotary axes as ``positioning`` says."""
+                feed: str = "rapid", dist: float = 0.0, table_rot: bool = False,
+                angles: dict[str, float] | None = None) -> None:
+    """Activate ``plane`` (None: cancel it), then position the rotary axes as ``positioning`` says (at ``angles``
+    when the block gave them, PLANE AXIAL, else at the solution for the plane)."""
     if t.ctx.kinematics is None:
         raise ReferenceError("a tilt without kinematics")
     names = [ax.name for ax in t.ctx.kinematics.axes]
@@ -2797,7 +2864,7 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
             t.shift = t.base.copy()
         t.tilt, new = None, dict.fromkeys(names, 0.0)
     else:
-        new = _solve(t, plane, seq)
+        new = dict(angles) if angles is not None else _solve(t, plane, seq, table_rot=table_rot)
         if t.tilt is None:
             t.base = t.shift.copy()
         t.tilt, t.tilt_angles, t.shift, t.shifted = plane, new, np.zeros(3), False
@@ -2819,8 +2886,9 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
     """``PLANE SPATIAL SPA SPB SPC MOVE|TURN|STAY [DIST] [F|FMAX] [SEQ]``, ``PLANE EULER EULPR EULNU EULROT``
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
     ``PLANE RELATIV SPA|SPB|SPC`` (the active plane turned about its own axis), ``PLANE RESET ..``."""
-    w = {k: _val(v, t.q)
-         for k, v in re.findall(r"(SP[ABC]|EUL(?:PR|NU|ROT)|[BN][XYZ]|DIST|F)\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))", up)}
+    w = {k: _val(v, t.q) for k, v in re.findall(
+        r"(SP[ABC]|EUL(?:PR|NU|ROT)|PRO(?:PR|MIN)|ROT|P[123][XYZ]|[BN][XYZ]|DIST|F|(?<![A-Z])[ABC])"
+        r"\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
     seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
     kind = "rapid" if "MAX" in up.split("SEQ")[0].replace("MB MAX", "") or "F" not in w else "feed"
@@ -2841,7 +2909,15 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
         if len(turns) != 1:
             raise ReferenceError(up)
         plane = (np.eye(3) if t.tilt is None else t.tilt) @ _turn("XYZ"["ABC".index(turns[0][-1])], w[turns[0]])
-    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR", "PLANE RELATIV")):
+    elif up.startswith("PLANE PROJECTED"):
+        plane = _projected(w.get("PROPR", 0.0), w.get("PROMIN", 0.0), w.get("ROT", 0.0))
+    elif up.startswith("PLANE POINTS"):
+        plane = _three_points(*(np.array([w.get(f"P{i}{a}", 0.0) for a in "XYZ"]) for i in "123"))
+    angles = None
+    if up.startswith("PLANE AXIAL"):
+        plane, angles = _axial(t, {k: v for k, v in w.items() if k in ("A", "B", "C")})
+    if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR", "PLANE RELATIV",
+                          "PLANE PROJECTED", "PLANE POINTS", "PLANE AXIAL")):
         raise ReferenceError(up)
     mb = re.search(r"\bMB\s*(MAX|\+?\d+\.?\d*)", up)
     up_to = None if not mb else max(t.ctx.home[2], t.pos[2]) if mb.group(1) == "MAX" else \
@@ -2849,7 +2925,8 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
     if up_to is not None and up_to > t.pos[2] + _EPS and pos and pos.group(1) in ("MOVE", "TURN"):
         _retract(t, line, mb.group(1), "MAX")  # MB: up the tool axis (machine Z on a table) before the turn
     _tilt_plane(t, line, plane, positioning=pos.group(1) if pos else "STAY",
-                seq=0 if seq is None else (1 if seq.group(1) == "+" else -1), feed=kind, dist=w.get("DIST", 0.0))
+                seq=0 if seq is None else (1 if seq.group(1) == "+" else -1), feed=kind, dist=w.get("DIST", 0.0),
+                table_rot=bool(re.search(r"\bTABLE\s+ROT\b", up)), angles=angles)
 
 
 def heidenhain_reference(text: str, context, *, resolve=None) -> list[Expected]:
@@ -2988,8 +3065,10 @@ def _without_motion(t: _Tnc, up: str) -> None:
     640 user's manual); any other is not modelled."""
     if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
                            "FUNCTION FILEDELETE"))
-            or up.startswith("PLANE")
-            and all(_val(v, t.q) == 0 for v in re.findall(r"SP[ABC]\s*([-+]?\s*[\d.]+)", up))):
+            or re.match(r"PLANE (SPATIAL|PROJECTED|EULER|RELATIVE?|AXIAL)\b", up)
+            and all(_val(v, t.q) == 0 for v in re.findall(
+                r"(?:SP[ABC]|PRO(?:PR|MIN)|(?<!EUL)ROT|EUL(?:PR|NU|ROT)|(?<![A-Z])[ABC])\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))",
+                up))):
         raise ReferenceError(up)
 
 
