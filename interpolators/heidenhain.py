@@ -226,6 +226,7 @@ from interpolators.heidenhain_transforms import (
     TiltedPlane,
     Transform,
     TransformError,
+    axial_angles,
     plane_rotation,
     read_plane,
     tilt_block,
@@ -1519,8 +1520,11 @@ def _plane(text: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> N
         current = _rotary_now(m)
         active = m.tilt.rotation if m.tilt is not None else np.eye(3)
         rotation = plane_rotation(pb, active=active, kinematics=kin, current=current)
-        angles = None if rotation is None else kin.choose(rotation, current, sequence=pb.sequence,
-                                                          table_rot=pb.table_rot)
+        if pb.form == "AXIAL":  # the axes' angles as written, not a solution for the plane
+            angles = axial_angles(pb, kinematics=kin, current=current)
+        else:
+            angles = None if rotation is None else kin.choose(rotation, current, sequence=pb.sequence,
+                                                              table_rot=pb.table_rot)
     except TiltError as exc:
         where.fail(f"PLANE {pb.form}: {exc.message}", column=col, text=text.strip(), expected=exc.expected)
     _retract(pb, m, where, blk)

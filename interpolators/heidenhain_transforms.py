@@ -38,11 +38,23 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.heidenhain_params import QParameters
 from interpolators.heidenhain_words import read_value
-from interpolators.tilted import Kinematics, Solution, TiltError, euler, points, projected, relative, spatial, vector
+from interpolators.tilted import (
+    ANGLE_TOLERANCE,
+    Kinematics,
+    Solution,
+    TiltError,
+    euler,
+    points,
+    projected,
+    relative,
+    spatial,
+    vector,
+)
 from toolpaths.geometry import PLANE_AXES
 
 __all__ = ["Transform", "TransformError", "TRANSFORM_CYCLES", "transform_item", "tilt_block", "trans_block",
-           "PlaneBlock", "PLANE_FORMS", "read_plane", "KINEMATICS_HINT", "plane_rotation", "TiltedPlane"]
+           "PlaneBlock", "PLANE_FORMS", "read_plane", "axial_angles", "KINEMATICS_HINT", "plane_rotation",
+           "TiltedPlane"]
 
 
 class TransformError(ValueError):
@@ -444,6 +456,10 @@ def plane_rotation(block: PlaneBlock, *, active: np.ndarray, kinematics: Kinemat
     if block.form == "SPATIAL":
         return spatial(v.get("SPA", 0.0), v.get("SPB", 0.0), v.get("SPC", 0.0))
     if block.form == "PROJECTED":
+        for key in ("PROPR", "PROMIN"):  # iTNC 530 user's manual, PLANE PROJECTED: "Input range: -89.9999 to
+            if abs(v.get(key, 0.0)) >= 90.0:  # +89.9999" (a trace at 90 deg is the tool axis itself)
+                raise TiltError(f"PLANE PROJECTED {key}{v[key]:+g}: a projection angle of 90 deg or more",
+                                f"{key} within -89.9999..+89.9999 deg")
         return projected(v.get("PROPR", 0.0), v.get("PROMIN", 0.0), v.get("ROT", 0.0))
     if block.form == "EULER":
         return euler(v.get("EULPR", 0.0), v.get("EULNU", 0.0), v.get("EULROT", 0.0))
@@ -456,13 +472,35 @@ def plane_rotation(block: PlaneBlock, *, active: np.ndarray, kinematics: Kinemat
             raise TiltError(f"PLANE RELATIV with {len(v)} angles", "one incremental angle: SPA, SPB or SPC")
         (key, angle), = v.items()
         return relative(active, "XYZ"["ABC".index(key[-1])], angle)
+    return kinematics.axial(axial_angles(block, kinematics=kinematics, current=current))
+
+
+def axial_angles(block: PlaneBlock, *, kinematics: Kinematics, current: Solution) -> Solution:
+    """The rotary positions of ``PLANE AXIAL A.. B.. C..`` [deg]: the angles written, an axis not written where it is
+    (``current``). TNC7 basic user's manual 81762x-19, "PLANE AXIAL": "Axis angles define both the orientation of the
+    working plane as well as the nominal coordinates of the rotary axes", and an angle of an axis the machine does not
+    have is an error. The control takes them as they are, not the other solution of the same tool axis (SEQ and the
+    nearest solution choose among the solutions of the other PLANE forms), and not a turn of 360 deg to within the
+    limits: an angle outside them is an error.
+
+    Raises
+    ------
+    TiltError
+        An axis the kinematics lacks, or an angle outside its axis' limits.
+    """
     names = kinematics.names
-    for key in v:
+    for key in block.values:
         if key.lower() not in names:
             raise TiltError(f"PLANE AXIAL {key}: no rotary axis {key} in the machine's kinematics",
-                            "PLANE AXIAL " + " ".join(f"{n.upper()}.." for n in names))
-    return kinematics.axial(Solution(outer=v.get(names[0].upper(), current.outer),
-                                     inner=v.get(names[-1].upper(), current.inner) if len(names) == 2 else 0.0))
+                            "PLANE AXIAL " + " ".join(f"{n.upper()}.." for n in names), letter=key)
+    now = (current.outer, current.inner)
+    at = [block.values.get(n.upper(), now[i]) for i, n in enumerate(names)]
+    for axis, angle in zip(kinematics.axes, at, strict=True):
+        lo, hi = axis.limits
+        if not lo - ANGLE_TOLERANCE <= angle <= hi + ANGLE_TOLERANCE:
+            raise TiltError(f"PLANE AXIAL {axis.name.upper()}{angle:+g} is outside the axis' limits {lo:g}..{hi:g} deg",
+                            f"an angle of {axis.name.upper()} within {lo:g}..{hi:g} deg", letter=axis.name.upper())
+    return Solution(outer=at[0], inner=at[-1] if len(at) == 2 else 0.0)
 
 
 def trans_block(rest: str, transform: Transform, where: Where, params: QParameters, *, column0: int,
