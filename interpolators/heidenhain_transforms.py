@@ -313,13 +313,13 @@ PLANE_FORMS: dict[str, tuple[str, ...]] = {
     "VECTOR": ("BX", "BY", "BZ", "NX", "NY", "NZ"),
     "POINTS": tuple(f"P{i}{a}" for i in "123" for a in "XYZ"),
     "RELATIVE": ("SPA", "SPB", "SPC"),
-    "AXIAL": ("A", "B", "C"),
+    "AXIAL": ("A", "B", "C", "IA", "IB", "IC"),
     "RESET": (),
 }
 _PLANE_FORM_RE = re.compile(r"\s*(SPATIAL|PROJECTED|EULER|VECTOR|POINTS|RELATIVE?|AXIAL|RESET)\b", re.I)
 _PLANE_WORD_RE = re.compile(
     r"\s*(MOVE|TURN|STAY|COORD\s+ROT|TABLE\s+ROT|MB\s*MAX|F\s*MAX|FMAX|F\s*AUTO|SEQ\s*[+-]|SYM\s*[+-]"
-    r"|DIST|ABST|MB|F|SPA|SPB|SPC|PROPR|PROMIN|EULPR|EULNU|EULROT|ROT|BX|BY|BZ|NX|NY|NZ|P[123][XYZ]|[ABC])"
+    r"|DIST|ABST|MB|F|SPA|SPB|SPC|PROPR|PROMIN|EULPR|EULNU|EULROT|ROT|BX|BY|BZ|NX|NY|NZ|P[123][XYZ]|I?[ABC])"
     r"(?![A-Z])", re.I)
 
 
@@ -477,24 +477,28 @@ def plane_rotation(block: PlaneBlock, *, active: np.ndarray, kinematics: Kinemat
 
 def axial_angles(block: PlaneBlock, *, kinematics: Kinematics, current: Solution) -> Solution:
     """The rotary positions of ``PLANE AXIAL A.. B.. C..`` [deg]: the angles written, an axis not written where it is
-    (``current``). TNC7 basic user's manual 81762x-19, "PLANE AXIAL": "Axis angles define both the orientation of the
-    working plane as well as the nominal coordinates of the rotary axes", and an angle of an axis the machine does not
-    have is an error. The control takes them as they are, not the other solution of the same tool axis (SEQ and the
-    nearest solution choose among the solutions of the other PLANE forms), and not a turn of 360 deg to within the
-    limits: an angle outside them is an error.
+    (``current``), an incremental one (``IB+10``) from where it is. TNC7 basic user's manual 81762x-19, "PLANE AXIAL":
+    the function defines "the working plane with anywhere from one to three absolute or incremental axis angles";
+    "Axis angles define both the orientation of the working plane as well as the nominal coordinates of the rotary
+    axes", and an angle of an axis the machine does not have is an error. The control takes them as they are, not the
+    other solution of the same tool axis (SEQ and the nearest solution choose among the solutions of the other PLANE
+    forms), and not a turn of 360 deg to within the limits: an angle outside them is an error.
 
     Raises
     ------
     TiltError
         An axis the kinematics lacks, or an angle outside its axis' limits.
     """
-    names = kinematics.names
-    for key in block.values:
-        if key.lower() not in names:
-            raise TiltError(f"PLANE AXIAL {key}: no rotary axis {key} in the machine's kinematics",
+    names, v = kinematics.names, block.values
+    for key in v:
+        if key[-1].lower() not in names:
+            raise TiltError(f"PLANE AXIAL {key}: no rotary axis {key[-1]} in the machine's kinematics",
                             "PLANE AXIAL " + " ".join(f"{n.upper()}.." for n in names), letter=key)
+        if key[-1] in v and "I" + key[-1] in v:
+            raise TiltError(f"PLANE AXIAL with both {key[-1]} and I{key[-1]}", f"{key[-1]} or I{key[-1]}, once",
+                            letter=key)
     now = (current.outer, current.inner)
-    at = [block.values.get(n.upper(), now[i]) for i, n in enumerate(names)]
+    at = [v.get(n.upper(), now[i] + v.get("I" + n.upper(), 0.0)) for i, n in enumerate(names)]
     for axis, angle in zip(kinematics.axes, at, strict=True):
         lo, hi = axis.limits
         if not lo - ANGLE_TOLERANCE <= angle <= hi + ANGLE_TOLERANCE:

@@ -2835,14 +2835,16 @@ def _three_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray) -> np.ndarray:
 
 def _axial(t: _Tnc, w: dict) -> tuple[np.ndarray, dict[str, float]]:
     """``PLANE AXIAL A.. B.. C..`` (TNC7 basic user's manual 81762x-19, "PLANE AXIAL": "Axis angles define both the
-    orientation of the working plane as well as the nominal coordinates of the rotary axes"; an axis angle for an
-    axis the machine lacks is an error): the axes go to the angles written (an axis not written keeps its position,
-    our reading); the plane is the part's frame the table at those angles turns onto the machine's axes (its
-    columns: the part directions carried onto machine X, Y, Z)."""
+    orientation of the working plane as well as the nominal coordinates of the rotary axes", "absolute or incremental
+    axis angles"; an axis angle for an axis the machine lacks is an error): the axes go to the angles written (``IB``:
+    that much from where the axis is; an axis not written keeps its position, our reading); the plane is the part's
+    frame the table at those angles turns onto the machine's axes (its columns: the part directions carried onto
+    machine X, Y, Z)."""
     names = [ax.name for ax in t.ctx.kinematics.axes]
-    if any(k.lower() not in names for k in w) or not w:
+    if any(k[-1].lower() not in names for k in w) or not w or any(k in w and "I" + k in w for k in "ABC"):
         raise ReferenceError(f"PLANE AXIAL {sorted(w)} on axes {names}")
-    angles = {a: w.get(a.upper(), t.extra["ABC".index(a.upper())]) for a in names}
+    now = {a: t.extra["ABC".index(a.upper())] for a in names}
+    angles = {a: w[a.upper()] if a.upper() in w else now[a] + w.get("I" + a.upper(), 0.0) for a in names}
     for ax in t.ctx.kinematics.axes:
         if not ax.limits[0] - 1e-6 <= angles[ax.name] <= ax.limits[1] + 1e-6:
             raise ReferenceError(f"PLANE AXIAL {ax.name.upper()} outside the limits")
@@ -2887,7 +2889,7 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
     (Z, then the turned X, then the new Z), ``PLANE VECTOR BX .. NZ`` (Z along N, X along B square to it),
     ``PLANE RELATIV SPA|SPB|SPC`` (the active plane turned about its own axis), ``PLANE RESET ..``."""
     w = {k: _val(v, t.q) for k, v in re.findall(
-        r"(SP[ABC]|EUL(?:PR|NU|ROT)|PRO(?:PR|MIN)|ROT|P[123][XYZ]|[BN][XYZ]|DIST|F|(?<![A-Z])[ABC])"
+        r"(SP[ABC]|EUL(?:PR|NU|ROT)|PRO(?:PR|MIN)|ROT|P[123][XYZ]|[BN][XYZ]|DIST|F|(?<![A-Z])I?[ABC])"
         r"\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))", up)}
     pos = re.search(r"\b(MOVE|TURN|STAY)\b", up)
     seq = re.search(r"\b(?:SEQ|SYM)\s*([+-])", up)
@@ -2915,7 +2917,7 @@ def _plane(t: _Tnc, line: int, up: str) -> None:
         plane = _three_points(*(np.array([w.get(f"P{i}{a}", 0.0) for a in "XYZ"]) for i in "123"))
     angles = None
     if up.startswith("PLANE AXIAL"):
-        plane, angles = _axial(t, {k: v for k, v in w.items() if k in ("A", "B", "C")})
+        plane, angles = _axial(t, {k: v for k, v in w.items() if k.lstrip("I") in ("A", "B", "C")})
     if not up.startswith(("PLANE RESET", "PLANE SPATIAL", "PLANE EULER", "PLANE VECTOR", "PLANE RELATIV",
                           "PLANE PROJECTED", "PLANE POINTS", "PLANE AXIAL")):
         raise ReferenceError(up)
@@ -3090,6 +3092,8 @@ def _label_block(t: _Tnc, up: str, pc: int, labels: dict[str, int], counters: di
     if up.startswith("CALL LBL"):
         m = re.match(r"CALL LBL\s*(\S+)\s*(?:REP\s*(Q[LR]?\d+|\d+))?", up)  # REPQ13: the count in a Q parameter
         target = labels[m.group(1).strip('"')]
+        if m.group(2) is not None and _val(m.group(2), t.q) != int(_val(m.group(2), t.q)):
+            raise ReferenceError(f"{up}: a fractional repeat count (no manual text says how the TNC rounds it)")
         if m.group(2) is None or target > pc:  # a subprogram; REP k of one after the call: k + 1 runs
             stack.append((pc + 1, target, 1 + (int(_val(m.group(2), t.q)) if m.group(2) else 0)))
             return target + 1

@@ -17,6 +17,7 @@ from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_iso import ReferenceError  # noqa: A004 (the references' own error)
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
@@ -81,6 +82,17 @@ def test_plane_axial_keeps_an_axis_not_written_and_refuses_an_angle_beyond_the_l
         run("PLANE AXIAL B+120 TURN FMAX", reference=False)
 
 
+def test_plane_axial_incremental_angles_add_to_where_the_axes_are():
+    """TNC7 basic user's manual, PLANE AXIAL: "absolute or incremental axis angles". From B+10 C+20: IB+25 is B+35
+    (C stays), then IB+10 IC-50 is B+45 C-30; B and IB together is an error."""
+    prog = run("L B+10 C+20 FMAX\nPLANE AXIAL IB+25 TURN FMAX\nPLANE AXIAL IB+10 IC-50 TURN FMAX\nL X+0 Y+0 Z+0 FMAX")
+    assert prog.blocks[2].extra_target[1:3] == pytest.approx([35.0, 20.0])
+    assert prog.blocks[3].extra_target[1:3] == pytest.approx([45.0, -30.0])
+    assert np.asarray(prog.blocks[4].target) == pytest.approx(machine_of(PRESET, 45.0, -30.0))
+    with pytest.raises(GCodeError, match="PLANE AXIAL with both B and IB"):
+        run("PLANE AXIAL B+10 IB+5 TURN FMAX", reference=False)
+
+
 def test_plane_projected_of_two_45_degree_traces():
     """PROPR+45 PROMIN+45: the traces (1, 0, -1) and (0, 1, 1); tool axis their cross product (1, -1, 1)/sqrt3,
     reached at B = acos(1/sqrt3) = 54.7356, C-45 (nearer from B0 C0 than B-54.7 C+135); tilted X along the first
@@ -129,6 +141,16 @@ def test_table_rot_turns_the_table_coord_rot_the_coordinates():
                                                                  -10.0 * math.sin(math.radians(30.0)), 20.0])
     coord = run("PLANE SPATIAL SPA+0 SPB+0 SPC+30 TURN FMAX COORD ROT\nL X+10 Y+0 Z+0 FMAX")
     assert np.asarray(coord.blocks[-1].target) == pytest.approx(point + TOOL)
+
+
+def test_a_fractional_repeat_count_is_refused_by_the_reader_and_the_reference():
+    """CALL LBL 1 REPQ5 with Q5 = 1.5: no manual text found says how the TNC rounds it; the reader refuses it, and the
+    reference (which had truncated it to 1) now does too rather than predict a count."""
+    body = "Q5 = 1.5\nLBL 1\nL IX+1 F100\nCALL LBL 1 REPQ5"
+    with pytest.raises(GCodeError, match="REP Q5 = 1.5 is not a whole number"):
+        run(body, reference=False)
+    with pytest.raises(ReferenceError, match="fractional repeat count"):
+        heidenhain_reference(HEAD + body + "\nEND PGM T MM\n", CTX)
 
 
 #: Short programs as the posts write them; each must agree with the reference at every block.
