@@ -17,7 +17,7 @@ from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_iso import ReferenceError  # noqa: A004 (the references' own error)
+from tests.interpolators.reference_iso import ReferenceError
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
