@@ -368,6 +368,7 @@ class Machine:
         self.look_ahead = False  # M120 LA>0 in a radius-compensated run
         # M94: machine angle minus shown angle of A B C [deg]; absolute angles are shown ones
         self.rotary_shift = np.zeros(len(EXTRA_LETTERS))
+        self.shortest_path = False  # M126 (until M127) on a machine whose rotary axes wrap (interpolators.rotary_wrap)
 
     # --- coordinates -------------------------------------------------------------------------
     @property
