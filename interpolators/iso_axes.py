@@ -101,8 +101,15 @@ def wrapped_target(target: np.ndarray, words: dict, st, where, *, machine: bool 
     if not ctx.wrapped_axes or (st.incremental and not machine):
         return target
     offset = np.zeros(len(EXTRA_LETTERS)) if machine else st.extra_offset()
-    return wrap_words(target, words, st.extra, offset, wrapped=ctx.wrapped_axes,
-                      direction=ctx.wrap_direction or default_direction(ctx.dialect.name), where=where)
+    direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
+    return wrap_words(target, words, st.extra, offset, wrapped=ctx.wrapped_axes, direction=direction, where=where,
+                      linuxcnc_offset=_linuxcnc_offset(st, direction) if machine else None)
+
+
+def _linuxcnc_offset(st, direction: str) -> np.ndarray | None:
+    """The program offset LinuxCNC subtracts from a machine-coordinate word of a wrapped axis
+    (:func:`interpolators.rotary_wrap.linuxcnc_machine_word`), under its own rule only."""
+    return st.extra_offset() if st.context.dialect.name == "linuxcnc" and direction == "sign" else None
 
 
 def wrapped_reference(target: np.ndarray, st, moving: tuple[str, ...] = ROTARY_AXES) -> np.ndarray:
@@ -111,8 +118,9 @@ def wrapped_reference(target: np.ndarray, st, moving: tuple[str, ...] = ROTARY_A
     ctx = st.context
     if not ctx.wrapped_axes:
         return target
-    return wrap_reference(target, st.extra, wrapped=ctx.wrapped_axes, moving=moving,
-                          direction=ctx.wrap_direction or default_direction(ctx.dialect.name))
+    direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
+    return wrap_reference(target, st.extra, wrapped=ctx.wrapped_axes, moving=moving, direction=direction,
+                          linuxcnc_offset=_linuxcnc_offset(st, direction))
 
 
 def fill_extra(blocks: list[Block]) -> list[Block]:

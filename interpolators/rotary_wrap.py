@@ -44,7 +44,8 @@ from typing import Protocol
 
 import numpy as np
 
-__all__ = ["WRAP_DIRECTIONS", "ROTARY_AXES", "default_direction", "wrapped_end", "wrap_words", "wrap_reference"]
+__all__ = ["WRAP_DIRECTIONS", "ROTARY_AXES", "default_direction", "wrapped_end", "wrap_words", "wrap_reference",
+           "linuxcnc_machine_word"]
 
 #: The rules of an absolute move on a wrapping rotary axis (see the module text).
 WRAP_DIRECTIONS: tuple[str, ...] = ("shortest", "sign", "difference")
@@ -95,7 +96,8 @@ def wrapped_end(value: float, current: float, offset: float, direction: str) -> 
 
 
 def wrap_words(target: np.ndarray, words: Mapping[str, _Word], current: np.ndarray, offset: np.ndarray, *,
-               wrapped: tuple[str, ...], direction: str, where: _Where) -> np.ndarray:
+               wrapped: tuple[str, ...], direction: str, where: _Where,
+               linuxcnc_offset: np.ndarray | None = None) -> np.ndarray:
     """``target`` (the ends ``(a, b, c, u, v, w)`` of a block's absolute words read as on a linear axis) with the
     words of the ``wrapped`` axes (``"a"``..) among ``words`` (letter -> word) ended by :func:`wrapped_end`.
 
@@ -115,6 +117,9 @@ def wrap_words(target: np.ndarray, words: Mapping[str, _Word], current: np.ndarr
         One of :data:`WRAP_DIRECTIONS`.
     where
         Names the block in the error of a ``"sign"`` word of magnitude 360 deg or more.
+    linuxcnc_offset : ndarray, shape (6,), optional
+        For machine-coordinate words (``offset`` zero) under LinuxCNC: the program offset [deg] its interpreter
+        subtracts first (:func:`linuxcnc_machine_word`).
     """
     letters = [k for k in words if k in _COLUMN and k.lower() in wrapped]
     if not letters:
@@ -127,17 +132,33 @@ def wrap_words(target: np.ndarray, words: Mapping[str, _Word], current: np.ndarr
                        text=w.text, expected=f"-360 < {k} < 360 (the sign turns the axis that way, LinuxCNC "
                                              "WRAPPED_ROTARY / Fanuc RAB = 1), or G91")
         i = _COLUMN[k]
-        out[i] = wrapped_end(w.value, float(current[i]), float(offset[i]), direction)
+        if linuxcnc_offset is None:
+            out[i] = wrapped_end(w.value, float(current[i]), float(offset[i]), direction)
+        else:
+            off = float(linuxcnc_offset[i])
+            out[i] = wrapped_end(linuxcnc_machine_word(w.value, off), float(current[i]), off, direction)
     return out
 
 
+def linuxcnc_machine_word(value: float, offset: float) -> float:
+    """The program word LinuxCNC's interpreter unwraps for the machine position ``value`` [deg] (a G53 word, or the
+    G28/G30 stored position) on a wrapped axis whose program position is the machine's minus ``offset`` [deg]:
+    ``|value - offset|`` with the sign of ``value`` (``interp_find.cc``: ``find_ends``'s G53 branch and
+    ``find_relative`` call ``unwrap_rotary(.., block->a_number, block->a_number - AA_origin_offset - AA_axis_offset
+    ..)``, which takes the magnitude of the second and the sign of the first). With a zero offset it is the machine
+    angle; with another it is not (rs274 2.9.0~pre1, a 30 deg A offset, ``G53 G0 A5``: machine 55 deg; G28 to a
+    stored 0: machine 60 deg), and vcnc follows rs274 there."""
+    return math.copysign(abs(value - offset), value)
+
+
 def wrap_reference(target: np.ndarray, current: np.ndarray, *, wrapped: tuple[str, ...], direction: str,
-                   moving: tuple[str, ...] = ROTARY_AXES) -> np.ndarray:
+                   moving: tuple[str, ...] = ROTARY_AXES, linuxcnc_offset: np.ndarray | None = None) -> np.ndarray:
     """``target`` (the reference positions G28/G30 send the ``moving`` rotary axes to [deg, machine]) with each
     wrapping one ended by :func:`wrapped_end` as a machine word of that value (a Fanuc roll-over axis returns less
     than a revolution). Under ``"sign"`` the position is first reduced to [0, 360) and reached turning positive, as
     LinuxCNC's ``G28.1``/``G30.1`` store it reduced (``interp_convert.cc``, ``fmod(a, 360.0)``) and its
-    ``find_relative`` unwraps it by its sign (``interp_find.cc``)."""
+    ``find_relative`` unwraps it by its sign (``interp_find.cc``; ``linuxcnc_offset``: the program offset it
+    subtracts first, :func:`linuxcnc_machine_word`)."""
     axes = [a for a in moving if a in wrapped]
     if not axes:
         return target
@@ -147,5 +168,9 @@ def wrap_reference(target: np.ndarray, current: np.ndarray, *, wrapped: tuple[st
         value = float(target[i])
         if direction == "sign":
             value = value % 360.0
-        out[i] = wrapped_end(value, float(current[i]), 0.0, direction)
+        if linuxcnc_offset is None:
+            out[i] = wrapped_end(value, float(current[i]), 0.0, direction)
+        else:
+            off = float(linuxcnc_offset[i])
+            out[i] = wrapped_end(linuxcnc_machine_word(value, off), float(current[i]), off, direction)
     return out

@@ -53,6 +53,25 @@ M2
 RS274_A_C = [(350, 0), (370, 0), (350, 0), (10, 0), (90, 0), (490, 0), (360, 0), (360, -270), (360, -90),
              (370, -90), (560, -90)]
 
+#: Machine-coordinate words and reference returns under a 30 deg A offset on LinuxCNC, where its interpreter
+#: unwraps |word - offset| (interp_find.cc find_ends G53 branch, find_relative; G28.1 stores the angle reduced).
+LINUXCNC_MACHINE_PROGRAM = """G21 G90
+G10 L2 P1 A30
+G0 A340
+G53 G0 A5
+G53 G0 A-100
+G28.1
+G0 A10
+G28
+G0 A200
+G91 G28 A0
+G90 G0 A-10
+G30
+M2
+"""
+#: rs274 2.9.0~pre1 -i the same INI: A (program coordinates, machine = program + 30) of each move that moves.
+RS274_MACHINE_A = [-20, 25, -230, 10, 130, 200, 490, 370, 390]
+
 
 def _iso(text: str, context: MachineContext):
     prog = parse_iso(text, source="t.ngc", context=context)
@@ -93,15 +112,26 @@ def test_linuxcnc_wrapped_rotary_takes_the_sign_as_the_direction_as_rs274_does()
     assert _a_c_program(prog, offsets) == [(float(a), float(c)) for a, c in RS274_A_C]
 
 
+def test_linuxcnc_g53_and_g28_on_a_wrapped_axis_with_an_offset_follow_rs274():
+    """rs274 unwraps a G53 word or the G28/G30 position less the program offset (``G53 G0 A5`` under a 30 deg
+    offset ends at machine 55 deg: rotary_wrap.linuxcnc_machine_word); vcnc's linuxcnc dialect does the same."""
+    prog = parse_iso(LINUXCNC_MACHINE_PROGRAM, source="t.ngc", context=LINUXCNC)
+    assert [a for a, _ in _a_c_program(prog, [30.0] * len(prog.blocks))] == [float(a) for a in RS274_MACHINE_A]
+
+
 @pytest.mark.skipif(shutil.which("rs274") is None, reason="LinuxCNC's rs274 is not installed")
-def test_linuxcnc_against_rs274_with_a_wrapped_rotary_ini(tmp_path: Path):
-    """The same program through rs274 -i INI (WRAPPED_ROTARY = 1 on A and C) gives RS274_A_C."""
+@pytest.mark.parametrize(("program", "expected"), [
+    (LINUXCNC_PROGRAM, [(float(a), float(c)) for a, c in RS274_A_C]),
+    (LINUXCNC_MACHINE_PROGRAM, [(float(a), 0.0) for a in RS274_MACHINE_A]),
+])
+def test_linuxcnc_against_rs274_with_a_wrapped_rotary_ini(tmp_path: Path, program, expected):
+    """The programs through rs274 -i INI (WRAPPED_ROTARY = 1 on A and C) give the ends written out above."""
     ini = tmp_path / "w.ini"
     (tmp_path / "w.var").write_text("")
     ini.write_text(f"[RS274NGC]\nPARAMETER_FILE = {tmp_path / 'w.var'}\n[TRAJ]\nLINEAR_UNITS = mm\n"
                    "ANGULAR_UNITS = degree\n[AXIS_A]\nWRAPPED_ROTARY = 1\n[AXIS_C]\nWRAPPED_ROTARY = 1\n")
     ngc = tmp_path / "p.ngc"
-    ngc.write_text(LINUXCNC_PROGRAM)
+    ngc.write_text(program)
     out = subprocess.run(["rs274", "-i", str(ini), "-g", str(ngc)], capture_output=True, text=True, timeout=60,
                          cwd=tmp_path).stdout
     ends = [tuple(float(v) for v in m.group(1).split(","))
@@ -112,7 +142,7 @@ def test_linuxcnc_against_rs274_with_a_wrapped_rotary_ini(tmp_path: Path):
         if here != last:
             got.append(here)
         last = here
-    assert got == [(float(a), float(c)) for a, c in RS274_A_C]
+    assert got == expected
 
 
 def test_linuxcnc_a_wrapped_word_of_360_or_more_is_an_error_naming_it():
