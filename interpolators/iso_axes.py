@@ -43,7 +43,7 @@ from interpolators.rotary_wrap import ROTARY_AXES, default_direction, wrap_refer
 from vcnc.core.axes import EXTRA_NAMES
 
 __all__ = ["EXTRA_LETTERS", "ROTARY_LETTERS", "word_values", "extra_target", "wrapped_target", "wrapped_reference",
-           "fill_extra"]
+           "refuse_wrapped_offset", "fill_extra"]
 
 #: Axis words beyond X, Y, Z, in the column order of ``Block.extra_start`` / ``extra_target``.
 EXTRA_LETTERS: str = "".join(EXTRA_NAMES).upper()
@@ -121,6 +121,20 @@ def wrapped_reference(target: np.ndarray, st, moving: tuple[str, ...] = ROTARY_A
     direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
     return wrap_reference(target, st.extra, wrapped=ctx.wrapped_axes, moving=moving, direction=direction,
                           linuxcnc_offset=_linuxcnc_offset(st, direction))
+
+
+def refuse_wrapped_offset(seen: dict, st, where, code: str) -> None:
+    """LinuxCNC refuses a ``code`` (G92, G52, G10 L20) word of magnitude 360 deg or more on a wrapped axis
+    (``interp_convert.cc`` ``convert_axis_offsets`` and ``convert_setup``: "Invalid absolute position .. for wrapped
+    rotary axis A"); the other controls are not known to."""
+    ctx = st.context
+    if ctx.dialect.name != "linuxcnc" or not ctx.wrapped_axes:
+        return
+    for k in ROTARY_LETTERS:
+        w = seen.get(k)
+        if w is not None and k.lower() in ctx.wrapped_axes and not abs(w.value) < 360.0:
+            where.fail(f"{code}: invalid absolute position {w.value:g} for wrapped rotary axis {k}", column=w.column,
+                       text=w.text, expected=f"-360 < {k} < 360 on an axis that wraps at 360 deg")
 
 
 def fill_extra(blocks: list[Block]) -> list[Block]:

@@ -153,6 +153,17 @@ def test_linuxcnc_a_wrapped_word_of_360_or_more_is_an_error_naming_it():
     assert _moves(prog, 0) == [370.0]
 
 
+@pytest.mark.parametrize(("block", "column"), [("G92 A400", 5), ("G10 L20 P1 A-360", 12), ("G52 A370", 5)])
+def test_linuxcnc_an_offset_word_of_360_or_more_on_a_wrapped_axis_is_an_error(block, column):
+    """rs274 refuses these too (interp_convert.cc convert_axis_offsets, convert_setup): "Invalid absolute position
+    400.00 for wrapped rotary axis A"; a G92 within a turn shifts as ever (G92 A350 at 0, then A10: rs274 370, our
+    machine 20)."""
+    with pytest.raises(GCodeError, match=rf"t\.ngc:2:{column}: .*invalid absolute position -?\d+ for wrapped"):
+        parse_iso(f"G21\n{block}\nG0 A10\nM2\n", source="t.ngc", context=LINUXCNC)
+    assert _moves(parse_iso("G21\nG92 A350\nG0 A10\nM2\n", context=LINUXCNC), 0) == [20.0]
+    assert _moves(parse_iso("G21\nG92 A400\nG0 A10\nM30\n", context=FANUC), 0) == [-30.0]  # Fanuc: no such check
+
+
 def test_fanuc_roll_over_takes_the_shorter_way_as_the_manual_example():
     """Fanuc B-63534EN/02 20.2.1 "Rotary axis roll-over" (ROA = 1, RAB = 0, No. 1260 = 360): from A0, ``G90 A-150.``
     -150, ``G90 A540.`` -30, ``G90 A-620.`` -80, ``G91 A380.`` +380, ``G91 A-840.`` -840."""
