@@ -254,3 +254,34 @@ def test_the_machine_file_sets_wrap_and_the_direction(tmp_path: Path):
 def test_a_bad_wrap_setting_names_the_key_and_the_file(tmp_path: Path, change, message):
     with pytest.raises(MachineError, match=message):
         _machine(tmp_path, change(MACHINE))
+
+
+@pytest.mark.parametrize("dialect", ["linuxcnc", "fanuc", "haas", "grbl", "fadal"])
+def test_the_iso_shortcut_declines_wrapped_words_and_reads_alike(dialect):
+    """interpolators.iso_fast leaves a word of a wrapping axis to the general path: the blocks of a 4-axis program
+    on a wrapped A are the same, bit for bit, with and without the shortcut, and differ from a machine without wrap
+    (so that the identity says something)."""
+    from tests.interpolators.test_reader_fast import reading
+
+    text = ("G21 G90 G94\nG0 X0. Y0. Z5. A0.\nG1 Z-1. F300.\nG1 X10. A350. F600.\nG1 X20. A10.\nG1 A-20.\n"
+            "G91 G1 A400. X1.\nG90 G1 X5. A90.\nG1 X6. Y1.\nM2\n")
+    wrapped = dataclasses.replace(LINUXCNC, extra_axes=("a",), wrapped_axes=("a",)).with_dialect(dialect)
+    fast = reading(text, wrapped, shortcuts=True)
+    assert fast == reading(text, wrapped, shortcuts=False)
+    assert fast != reading(text, dataclasses.replace(wrapped, wrapped_axes=()), shortcuts=True)
+
+
+def test_the_tnc_shortcut_leaves_m126_to_the_general_path_and_reads_alike():
+    """interpolators.heidenhain_fast runs ``L X+5 F100 M126`` on a machine without wrapping axes (M126 noted as
+    before), and leaves it to the general path on one with them (the switch then holds): the same blocks and notes
+    both ways."""
+    from tests.interpolators.block_digest import program_digest
+
+    text = ("0 BEGIN PGM W MM\n1 L C+350 FMAX\n2 L X+5 F100 M126\n3 L C+10 FMAX\n4 L X+6 M127\n5 L C+350 FMAX\n"
+            "END PGM W MM\n")
+    for ctx in (TNC, dataclasses.replace(TNC, wrapped_axes=())):
+        fast = program_digest(parse_heidenhain(text, source="w.h", context=ctx))
+        assert fast == program_digest(parse_heidenhain(text, source="w.h", context=ctx, shortcuts=False))
+    assert _moves(parse_heidenhain(text, context=TNC), 2) == [350.0, 20.0, 340.0]  # M127: 10 shown, +340
+    notes = parse_heidenhain(text, context=dataclasses.replace(TNC, wrapped_axes=())).notes
+    assert any("M126 ignored" in n for n in notes)
