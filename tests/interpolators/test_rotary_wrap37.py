@@ -285,3 +285,22 @@ def test_the_tnc_shortcut_leaves_m126_to_the_general_path_and_reads_alike():
     assert _moves(parse_heidenhain(text, context=TNC), 2) == [350.0, 20.0, 340.0]  # M127: 10 shown, +340
     notes = parse_heidenhain(text, context=dataclasses.replace(TNC, wrapped_axes=())).notes
     assert any("M126 ignored" in n for n in notes)
+
+
+def test_vcnc_interpolate_with_a_wrapping_machine_turns_the_short_way_and_takes_less_time(tmp_path: Path, capsys):
+    """``vcnc interpolate --machine`` with ``[axes.a] wrap = true`` (linuxcnc): ``G1 X10 A10`` after A350 turns +20
+    deg (--blocks: 370) and the run is shorter than on the same machine without wrap (-340 deg: 10)."""
+    from vcnc.cli import main
+
+    prog = tmp_path / "p.ngc"
+    prog.write_text("G21 G90 G94\nG0 X0 A350\nG1 X10 A10 F600\nM2\n")
+    seconds = {}
+    for wrap in ("true", "false"):
+        machine = tmp_path / f"m_{wrap}.toml"
+        machine.write_text(MACHINE.replace("WRAP", wrap).replace('dialect = "fanuc"', 'dialect = "linuxcnc"'))
+        blocks = tmp_path / f"b_{wrap}.csv"
+        assert main(["interpolate", str(prog), "--machine", str(machine), "--blocks", str(blocks),
+                     "-o", str(tmp_path / f"o_{wrap}.csv")]) == 0
+        assert blocks.read_text().splitlines()[-1].split(",")[6] == ("370" if wrap == "true" else "10")
+        seconds[wrap] = float(re.search(r"interpolated ([\d.]+) s", capsys.readouterr().out).group(1))
+    assert seconds["true"] < seconds["false"]
