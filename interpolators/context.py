@@ -24,6 +24,7 @@ from typing import ClassVar
 import numpy as np
 
 from interpolators.arcs import ARC_RULES
+from interpolators.rotary_wrap import ROTARY_AXES, WRAP_DIRECTIONS
 from interpolators.tilted import Kinematics
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError
@@ -413,6 +414,16 @@ class MachineContext:
         :mod:`interpolators.tilted`); None (the default): a tilt is an error naming the function.
     touch_probe : TouchProbe
         The workpiece touch probe's table row (Heidenhain ``TCH PROBE`` cycles).
+    wrapped_axes : tuple of str
+        The rotary axes (``"a"``, ``"b"``, ``"c"``, among ``extra_axes``) that wrap at 360 deg (modulo, roll-over
+        axes: LinuxCNC ``WRAPPED_ROTARY``, Fanuc ROA, a TNC axis shown below 360 deg; machine file ``[axes.a] wrap =
+        true``): an absolute word of one turns it by :attr:`wrap_direction` (:mod:`interpolators.rotary_wrap`).
+        Empty (the default): every rotary axis is read as a linear one (350 deg, then ``A10``: -340 deg).
+    wrap_direction : str or None
+        The rule of an absolute move on those axes, one of :data:`interpolators.rotary_wrap.WRAP_DIRECTIONS`
+        (``"sign"``: LinuxCNC, Fanuc RAB = 1; ``"shortest"``: Fanuc RAB = 0, TNC M126; ``"difference"``: the TNC
+        without M126), or None (the default): the reader's control's own
+        (:func:`interpolators.rotary_wrap.default_direction`).
     datum_table : mapping of int to ndarray (3,)
         The Heidenhain datum table (a ``.D`` file, :func:`read_datum_table`): row ``D`` to its X, Y, Z
         columns [mm], the shift ``CYCL DEF 7.1 #D`` selects (from the preset, in the workpiece coordinates:
@@ -432,6 +443,8 @@ class MachineContext:
     kinematics: Kinematics | None = None
     touch_probe: TouchProbe = dataclasses.field(default_factory=TouchProbe)
     datum_table: Mapping[int, np.ndarray] = dataclasses.field(default_factory=dict)
+    wrapped_axes: tuple[str, ...] = ()
+    wrap_direction: str | None = None
 
     def __post_init__(self) -> None:
         if self.linear_units not in ("mm", "inch"):
@@ -466,6 +479,13 @@ class MachineContext:
         bad = [a for a in self.extra_axes if a not in EXTRA_NAMES]
         if bad:
             raise InputError(f"extra_axes must be among {', '.join(map(repr, EXTRA_NAMES))}, got {bad!r}")
+        bad = [a for a in self.wrapped_axes if a not in ROTARY_AXES]
+        if bad:
+            raise InputError(f"wrapped_axes must be among {', '.join(map(repr, ROTARY_AXES))} (rotary axes), "
+                             f"got {bad!r}")
+        if self.wrap_direction is not None and self.wrap_direction not in WRAP_DIRECTIONS:
+            raise InputError(f"wrap_direction must be one of {', '.join(WRAP_DIRECTIONS)} (or None: the control's "
+                             f"own), got {self.wrap_direction!r}")
         if self.kinematics is not None and not isinstance(self.kinematics, Kinematics):
             raise InputError(f"kinematics must be an interpolators.tilted.Kinematics, got {self.kinematics!r}")
 

@@ -68,6 +68,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     STOP, M0, M1                    program stop: no motion (noted)
     L X.. M136 F0.05, M137          M136: F in mm per spindle revolution (x TOOL CALL S) until M137
     L C+180 FMAX M94, M94 C         M94: the rotary display reduced below 360 deg first (heidenhain_motion)
+    L C+10 FMAX M126, M127          on an axis that wraps ([axes.c] wrap = true): M126 the shorter way, M127 (and
+                                    before M126) the shown angle's difference (interpolators.rotary_wrap)
     M112 T0.01 A10 .. M113          contour tolerance as cycle 32 T (TNC 426/430); M118 X.. Y.., M124 T..:
                                     noted; M120 LA3: look-ahead of RL/RR (the path as without it)
     SPL X.. Y.. Z.. K3X.. K2X.. K1X.. ..
@@ -369,6 +371,7 @@ class Machine:
         self.look_ahead = False  # M120 LA>0 in a radius-compensated run
         # M94: machine angle minus shown angle of A B C [deg]; absolute angles are shown ones
         self.rotary_shift = np.zeros(len(EXTRA_LETTERS))
+        self.shortest_path = False  # M126 (until M127) on a machine whose rotary axes wrap (interpolators.rotary_wrap)
 
     # --- coordinates -------------------------------------------------------------------------
     @property

@@ -58,6 +58,8 @@ _PLAIN_BLOCK = re.compile(r"(L|CC|CR|C)((?:[ \t]+(?:I?[XYZ]" + PLAIN_NUMBER + r"
 _AXIS = {"X": 0, "Y": 1, "Z": 2}
 #: M functions the general path does more with than note them (see the module text).
 _ACTIVE_M = frozenset({0, 1, 2, 30, 89, 91, 92, 94, 99, 103, 112, 113, 118, 120, 124, 128, 129, 136, 137, 138, 140})
+#: M126 / M127, with a meaning on a machine whose rotary axes wrap at 360 deg (declined there, noted elsewhere).
+_WRAP_M = frozenset({126, 127})
 #: M functions the general path accepts without a note (spindle, coolant).
 _QUIET_M = frozenset({3, 4, 5, 8, 9})
 
@@ -152,6 +154,8 @@ class PlainBlocks:
         words = plain_words(blk.code)
         if words is None or not (self.ready or self.ready is None and self._judge()):
             return False
+        if self.m.context.wrapped_axes and not _WRAP_M.isdisjoint(words.m):
+            return False  # M126 / M127: the shorter-path switch of the machine's wrapping rotary axes
         if words.keyword == "CC":
             return self._pole(words)
         return self._move(words, blk)

@@ -48,6 +48,7 @@ from interpolators.heidenhain_tcpm import (
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
+from interpolators.rotary_wrap import default_direction, wrap_words
 from interpolators.tcp import machine_point, part_point
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
@@ -216,6 +217,9 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         return False
     if w.value == 129:
         m.tcpm = False
+    if w.value in (126, 127) and m.context.wrapped_axes:  # "Shorter-path traverse of rotary axes: M126"
+        m.shortest_path = w.value == 126  # from the start of its block until M127 (_extra_axes)
+        return False
     if w.value == 114:  # iTNC 530 user's manual, "Automatic compensation of machine geometry when working with
         # tilted axes: M114": the programmed X, Y, Z become the tool's after a 3-D length compensation at each block's
         # end, by the machine's geometry; ignored, every later point would be silently off by that compensation
@@ -587,7 +591,12 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
     or None when it has none. ``A+90`` is the position, ``IA+90`` an increment (TNC 640 user's manual,
     "Straight line L": the block may contain "up to 5 axes" including rotary axes); A, B, C in degrees,
     U, V, W in the program's unit; the preset of these axes is the machine's zero (the context's
-    work offsets hold X, Y, Z only), so an absolute word is the machine position, as with M91/M92. A
+    work offsets hold X, Y, Z only), so an absolute word is the machine position, as with M91/M92. An absolute
+    word of an axis the machine wraps at 360 deg (``MachineContext.wrapped_axes``) turns it the shorter way under
+    ``M126`` (TNC 640 user's manual, "Shorter-path traverse of rotary axes: M126"; ``M127`` ends it), otherwise
+    by the shown angle's difference to the word, or the machine's ``wrap_direction``
+    (:mod:`interpolators.rotary_wrap`); an incremental one as it is ("M126 is not in effect with incremental
+    traverse movements", TNC7 user's manual). A
     machine (``MachineContext.extra_axes``) without the axis: an error naming it, but for a word of
     value 0 (posts write ``L A0 C0 R0 FMAX`` on 3-axis work), which is noted and ignored."""
     letters = [k for k in seen if len(k) <= 2 and k[-1] in EXTRA_LETTERS and k[:-1] in ("", "I")]
@@ -612,6 +621,10 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
     if not moved:
         return None
     m.extra_used = True
+    if m.context.wrapped_axes:
+        direction = "shortest" if m.shortest_path else m.context.wrap_direction or default_direction("heidenhain")
+        target = wrap_words(target, {k: seen[k] for k in letters if k in ROTARY_LETTERS}, m.extra, m.rotary_shift,
+                            wrapped=m.context.wrapped_axes, direction=direction, where=where)
     return target
 
 

@@ -124,7 +124,7 @@ from interpolators._words import INCH, Where, lines_of
 from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
 from interpolators.iso_arc3d import ARC3D_CODES, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
-from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, word_values
+from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, refuse_wrapped_offset, word_values
 from interpolators.iso_codes import (
     DIALECT_G,
     G_CODES,
@@ -1312,6 +1312,8 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         else:
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
         return True
+    if key in (520, 920):
+        refuse_wrapped_offset(seen, st, where, f"G{key // 10}")
     if key == 520:
         local_offset(seen, axis_words, st, where, w)
         notes.add("G52 local offset")

@@ -24,6 +24,9 @@ move with X/Y/Z or U/V/W "cartesian" and measures it along XYZ if they move, els
 move of A/B/C alone "angular", measured along ``sqrt(da^2 + db^2 + dc^2)``, citing NIST IR 6556
 Sec. 2.1.2.5).
 
+A rotary axis the machine wraps at 360 deg (``MachineContext.wrapped_axes``) ends an absolute or G53 word by the
+machine's rule (:func:`wrapped_target`, :mod:`interpolators.rotary_wrap`); G91 turns it by the word.
+
 A machine (:class:`interpolators.context.MachineContext`) names the extra axes it has; a word of
 another axis is an error naming it (a word ``A0`` or ``U0`` on a machine without the axis is
 accepted with a note, as CAM posts write it on 3-axis work).
@@ -36,9 +39,11 @@ import dataclasses
 import numpy as np
 
 from interpolators.program import Block
+from interpolators.rotary_wrap import ROTARY_AXES, default_direction, wrap_reference, wrap_words
 from vcnc.core.axes import EXTRA_NAMES
 
-__all__ = ["EXTRA_LETTERS", "ROTARY_LETTERS", "word_values", "extra_target", "fill_extra"]
+__all__ = ["EXTRA_LETTERS", "ROTARY_LETTERS", "word_values", "extra_target", "wrapped_target", "wrapped_reference",
+           "refuse_wrapped_offset", "fill_extra"]
 
 #: Axis words beyond X, Y, Z, in the column order of ``Block.extra_start`` / ``extra_target``.
 EXTRA_LETTERS: str = "".join(EXTRA_NAMES).upper()
@@ -86,6 +91,50 @@ def extra_target(values: dict[str, float], current: np.ndarray, offset: np.ndarr
     else:
         target[given] = v[given] + np.asarray(offset, dtype=float)[given]
     return target
+
+
+def wrapped_target(target: np.ndarray, words: dict, st, where, *, machine: bool = False) -> np.ndarray:
+    """``target`` (:func:`extra_target`'s ends of the block's words ``words``, letter -> word) with the absolute
+    (G90 or G53: ``machine``) words of the axes the machine wraps at 360 deg ended by its rule
+    (:func:`interpolators.rotary_wrap.wrap_words`; ``st``: the reader's state, before the block)."""
+    ctx = st.context
+    if not ctx.wrapped_axes or (st.incremental and not machine):
+        return target
+    offset = np.zeros(len(EXTRA_LETTERS)) if machine else st.extra_offset()
+    direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
+    return wrap_words(target, words, st.extra, offset, wrapped=ctx.wrapped_axes, direction=direction, where=where,
+                      linuxcnc_offset=_linuxcnc_offset(st, direction) if machine else None)
+
+
+def _linuxcnc_offset(st, direction: str) -> np.ndarray | None:
+    """The program offset LinuxCNC subtracts from a machine-coordinate word of a wrapped axis
+    (:func:`interpolators.rotary_wrap.linuxcnc_machine_word`), under its own rule only."""
+    return st.extra_offset() if st.context.dialect.name == "linuxcnc" and direction == "sign" else None
+
+
+def wrapped_reference(target: np.ndarray, st, moving: tuple[str, ...] = ROTARY_AXES) -> np.ndarray:
+    """``target`` (the reference positions of G28/G30 [deg, mm; machine]) with the ``moving`` axes the machine
+    wraps ended by its rule (:func:`interpolators.rotary_wrap.wrap_reference`)."""
+    ctx = st.context
+    if not ctx.wrapped_axes:
+        return target
+    direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
+    return wrap_reference(target, st.extra, wrapped=ctx.wrapped_axes, moving=moving, direction=direction,
+                          linuxcnc_offset=_linuxcnc_offset(st, direction))
+
+
+def refuse_wrapped_offset(seen: dict, st, where, code: str) -> None:
+    """LinuxCNC refuses a ``code`` (G92, G52, G10 L20) word of magnitude 360 deg or more on a wrapped axis
+    (``interp_convert.cc`` ``convert_axis_offsets`` and ``convert_setup``: "Invalid absolute position .. for wrapped
+    rotary axis A"); the other controls are not known to."""
+    ctx = st.context
+    if ctx.dialect.name != "linuxcnc" or not ctx.wrapped_axes:
+        return
+    for k in ROTARY_LETTERS:
+        w = seen.get(k)
+        if w is not None and k.lower() in ctx.wrapped_axes and not abs(w.value) < 360.0:
+            where.fail(f"{code}: invalid absolute position {w.value:g} for wrapped rotary axis {k}", column=w.column,
+                       text=w.text, expected=f"-360 < {k} < 360 on an axis that wraps at 360 deg")
 
 
 def fill_extra(blocks: list[Block]) -> list[Block]:

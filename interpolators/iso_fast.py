@@ -31,7 +31,8 @@ centre; R beside I J K, on a G0/G1, a full circle by R, an R shorter than half t
 without a decimal point go the general way.
 
 It declines (returns False, having changed nothing) a block with any other word (M, S, T, P, R, H, D, E, a word of an
-axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, a Fanuc ``,R``/``,C`` ...), a
+axis the machine lacks -- the general path's note for ``A0``, its error otherwise --, of an axis that wraps at
+360 deg (``MachineContext.wrapped_axes``, :func:`interpolators.iso_axes.wrapped_target`), a Fanuc ``,R``/``,C`` ...), a
 repeated letter, a G code other than G0-G3, G93 and G94 (by its exact value), a centre word on a G0/G1 or on the plane
 normal of an arc, an arc without an X Y Z word, an F <= 0, no axis word, a feed move without a feed, an arc whose
 centre is not on the circle (the general path then words the error), under grbl an arc without an end-point word in its
@@ -103,8 +104,10 @@ class PlainMoves:
         self.offset: list[float] = []
         self.extra_offset: list[float] = []
         # the words of the axes beyond X Y Z the machine has -> their column in State.extra; a word of another
-        # (an error, or with value 0 a note) goes the general way
-        extra_columns = {letter: i for i, letter in enumerate(EXTRA_LETTERS) if letter.lower() in st.context.extra_axes}
+        # (an error, or with value 0 a note) or of an axis that wraps at 360 deg (iso_axes.wrapped_target) goes the
+        # general way
+        extra_columns = {letter: i for i, letter in enumerate(EXTRA_LETTERS)
+                         if letter.lower() in st.context.extra_axes and letter.lower() not in st.context.wrapped_axes}
         # a coordinate word -> (which of the block's axes, centre, extra words, its column): one rule for all three
         self.slots = {**{a: (0, i) for a, i in _AXIS.items()}, **{c: (1, i) for c, i in _CENTRE.items()},
                       **{e: (2, i) for e, i in extra_columns.items()}}

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.iso_axes import EXTRA_LETTERS, extra_target
+from interpolators.iso_axes import EXTRA_LETTERS, extra_target, wrapped_reference, wrapped_target
 from interpolators.iso_motion import block_target, rapid_move
 from interpolators.iso_offsets import length_travel
 from interpolators.iso_polar import POLAR_LETTERS
@@ -37,6 +37,7 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
             used.update(3 + EXTRA_LETTERS.index(a) for a in rot_words)
             mid_rot = extra_target({a: seen[a].value for a in rot_words}, st.extra, st.extra_offset(),
                                    incremental=st.incremental, scale=st.scale)
+            mid_rot = wrapped_target(mid_rot, {a: seen[a] for a in rot_words}, st, where)
         rapid_move(mid, st, blocks, used, where, number, axis_words, rot=mid_rot)
         for a in axis_words:  # Fanuc/Haas G29 returns through it (program coordinates)
             st.intermediate["XYZ".index(a)] = st.to_program(mid)["XYZ".index(a)]
@@ -48,10 +49,12 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
             end_rot = st.extra.copy()
             for a in rot_words:
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
+            end_rot = wrapped_reference(end_rot, st, tuple(a.lower() for a in rot_words))
         rapid_move(end, st, blocks, used, where, number, axis_words, rot=end_rot)
     else:
         st.length_pending = 0.0  # Z goes to its reference
         st.intermediate = st.to_program(st.pos)
+        ref_rot = wrapped_reference(ref_rot.copy(), st)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         rapid_move(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)
 

@@ -15,7 +15,7 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.iso_arc3d import ARC3D_CODES, arc3d_block
 from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords
-from interpolators.iso_axes import EXTRA_LETTERS, extra_target
+from interpolators.iso_axes import EXTRA_LETTERS, extra_target, wrapped_target
 from interpolators.iso_codes import G_CODES, PLANE_CODES
 from interpolators.iso_corners import finish_corner, start_corner
 from interpolators.iso_decimal import decimal_literal
@@ -289,8 +289,9 @@ def _extra_words(seen, motion: int, st: State, where: Where, used: set[int], *, 
         refuse_rotary_under_dwo(st, letters, seen, where)
     st.extra_used = True
     used.update(3 + EXTRA_LETTERS.index(letter) for letter in letters)
-    return extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(), incremental=st.incremental,
-                        scale=st.scale, machine=machine)
+    target = extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(),
+                          incremental=st.incremental, scale=st.scale, machine=machine)
+    return wrapped_target(target, {k: seen[k] for k in letters}, st, where, machine=machine)
 
 
 def initial_feed(st: State, where: Where) -> bool:

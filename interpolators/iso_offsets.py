@@ -79,7 +79,7 @@ import numpy as np
 
 from interpolators._words import Where
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool, extended_offset
-from interpolators.iso_axes import EXTRA_LETTERS, word_values
+from interpolators.iso_axes import EXTRA_LETTERS, refuse_wrapped_offset, word_values
 from interpolators.iso_words import Word, WordError, fail_words
 
 if TYPE_CHECKING:
@@ -586,6 +586,7 @@ def g10(seen, st: State, where: Where, w: Word) -> str:
                    expected="P0 (current) .. P9")
     current = st.offsets.get(code, st.context.offset(code)).copy()
     if int(l_word.value) == 20:
+        refuse_wrapped_offset(seen, st, where, "G10 L20")
         current = _l20_offset(seen, st, current, st.rotations.get(code, 0.0))
     for a in ("X", "Y", "Z"):
         if a in seen and int(l_word.value) == 2:

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.iso_axes import EXTRA_LETTERS, extra_target
+from interpolators.iso_axes import EXTRA_LETTERS, extra_target, wrapped_target
 from interpolators.iso_motion import block_target, initial_feed
 from interpolators.program import Block
 from interpolators.tcp import ChordsError, block_time, part_point, tcp_chords, tool_vector_extra
@@ -159,6 +159,7 @@ def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: S
     if letters:
         rot = extra_target({k: seen[k].value for k in letters}, st.extra, st.extra_offset(),
                            incremental=st.incremental, scale=st.scale)
+        rot = wrapped_target(rot, {k: seen[k] for k in letters}, st, where)
         st.extra_used = True
     if rot is not None:
         used.update(3 + i for i in range(6) if rot[i] != st.extra[i] or EXTRA_LETTERS[i] in letters)

@@ -78,7 +78,7 @@ import re
 import numpy as np
 
 from tests.interpolators.reference_heidenhain_fk import FkReference
-from tests.interpolators.reference_iso import Expected, ReferenceError
+from tests.interpolators.reference_iso import Expected, ReferenceError, wrapped_end
 from tests.interpolators.reference_match import match_blocks
 
 __all__ = ["heidenhain_reference"]
@@ -264,6 +264,7 @@ class _Tnc:
         self.auto: float | None = None  # F of the last TOOL CALL
         self.extra = np.zeros(6)  # A, B, C [deg], U, V, W [mm]: machine positions (their preset is 0)
         self.shown = np.zeros(3)  # M94: machine angle minus displayed angle of A, B, C [deg]
+        self.m126 = False  # M126 (until M127): the shorter way on the rotary axes that wrap at 360 deg
         self.strings: dict[int, str] = {}  # QS parameters
         self.comp = False
         self.side = 1.0  # +1 RL, -1 RR
@@ -436,10 +437,16 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     if spat:
         others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k)]
         _spatial_angles(t, w)
+    if t.ctx.wrapped_axes and {126, 127} & set(w.get("M", [])):  # TNC 640 manual, M126: from its block's start
+        t.m126 = 126 in w["M"]
+    now = t.extra.copy()
     for k in [] if spat else others:
         i = "ABCUVW".index(k[-1])
         v = w[k] * (1.0 if i < 3 else t.scale)
         t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
+        if k[0] != "I" and i < 3 and k.lower() in t.ctx.wrapped_axes:  # a modulo axis (TNC 640 manual, M126)
+            rule = "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
+            t.extra[i] = wrapped_end(rule, v, now[i], t.shown[i])
     kind = "rapid" if "FMAX" in w else "feed"
     if t.feed_dwell is not None and kind == "feed" and (axes or others):
         _feed_dwell_line(t, line, t.target(w), bool(others))

@@ -146,6 +146,32 @@ class ReferenceError(Exception):
     """The program uses something this reference does not model (the test reports it)."""
 
 
+def wrapped_end(rule: str, word: float, now: float, offset: float) -> float:
+    """The end [deg, machine] of the absolute word ``word`` on a rotary axis that wraps at 360 deg, now at ``now``,
+    machine = program + ``offset``: among the positions that show the word's angle, the one the rule picks
+    (searched over the turns around ``now``, not computed as the reader does). ``"sign"`` (LinuxCNC INI docs,
+    WRAPPED_ROTARY; Fanuc RAB = 1): ``|word|`` is the angle, its sign the way; ``"shortest"`` (Fanuc RAB = 0, TNC
+    M126): at most half a turn, exactly half the positive way (Fanuc 15i B-63783EN-1, 1.6.3); ``"difference"`` (TNC
+    without M126): from the angle shown in [0, 360) by the word minus it."""
+    shown = abs(word) if rule == "sign" else word
+    if rule == "sign" and abs(word) >= 360.0:
+        raise ReferenceError(f"wrapped word {word} (an error)")
+    k0 = int(math.floor((now - shown - offset) / 360.0))
+    ends = [shown + offset + 360.0 * k for k in range(k0 - 2, k0 + 4)]
+    if rule == "sign":
+        if math.copysign(1.0, word) > 0:
+            return min(e for e in ends if e >= now - 1e-9)
+        return max(e for e in ends if e <= now + 1e-9)
+    if rule == "shortest":
+        return min(ends, key=lambda e: (abs(e - now) > 180.0 + 1e-9, abs(e - now), e < now))
+    shown_now = now - offset
+    while shown_now >= 360.0:
+        shown_now -= 360.0
+    while shown_now < 0.0:
+        shown_now += 360.0
+    return now + word - shown_now
+
+
 @dataclasses.dataclass(frozen=True, kw_only=True)
 class Expected:
     """What one programmed motion produces in the ``--blocks`` table.
@@ -813,7 +839,18 @@ class _Machine:
                 end[i] += v
             else:
                 end[i] = v + self.extra_offsets[self.wcs][i] + self.g92_extra[i]
+            if i < 3 and "abc"[i] in self.ctx.wrapped_axes and (machine or not self.incremental):
+                end[i] = self.wrapped(v, self.extra[i], end[i] - v)
         return end
+
+    def wrap_rule(self) -> str:
+        """The direction rule of the machine's wrapping rotary axes: its ``wrap_direction``, else the control's
+        (LinuxCNC INI docs, WRAPPED_ROTARY: the sign; Fanuc B-63534EN/02 20.2.1, RAB = 0 by default: the shorter)."""
+        return self.ctx.wrap_direction or ("sign" if self.ctx.dialect.name == "linuxcnc" else "shortest")
+
+    def wrapped(self, word: float, now: float, offset: float) -> float:
+        """:func:`wrapped_end` by this machine's rule."""
+        return wrapped_end(self.wrap_rule(), word, now, offset)
 
     def emit(self, line: int, kind: str | None, end: np.ndarray, *, rows: str = "one",
              centre: np.ndarray | None = None, centre_tolerance: float = 0.0) -> None:
@@ -1144,7 +1181,10 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             for i in axes if axes or extra else range(3):
                 end[i] = home[i]
             for i in extra if axes or extra else range(6):
-                m.extra[i] = 0.0  # the reference position of a, b, c, u, v, w: 0
+                # the reference position of a, b, c, u, v, w: 0; a wrapping rotary axis turns there by its rule,
+                # less than a turn (LinuxCNC: reached the positive way, as G28.1 stores it reduced below 360)
+                wraps = i < 3 and "abc"[i] in m.ctx.wrapped_axes
+                m.extra[i] = m.wrapped(0.0, m.extra[i], 0.0) if wraps else 0.0
             m.emit(line, "rapid", end)
             return True
         if code in (270, 290, 600) and m.ctx.dialect.name in ("fanuc", "haas"):

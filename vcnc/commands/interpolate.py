@@ -34,7 +34,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_context_arguments(parser)
     parser.add_argument("--blocks", metavar="CSV",
                         help="also write the interpreted motion blocks: block, line, kind, x, y, z (machine "
-                             "coordinates, mm), a, b, c (deg), u, v, w (mm) for those the program uses, cx, cy, "
+                             "coordinates, mm), a, b, c (deg; a wrapping axis unwrapped, as its motor turns), u, "
+                             "v, w (mm) for those the program uses, cx, cy, "
                              "cz (arc centre), feed (mm/min; deg/min on a pure rotary move)")
     parser.add_argument("--max-seconds", type=float, metavar="S",
                         help="interpolate only the blocks that run within the first S seconds (a note says where "
@@ -222,7 +223,9 @@ def blocks_table(program) -> tuple[list[str], list[list]]:
 
     Columns ``block, line, kind, x, y, z``, then in LinuxCNC's axis order ``a, b, c`` [deg] and
     ``u, v, w`` [mm] for those the program uses (``program.axes``), then ``cx, cy, cz, feed``
-    [mm/min; deg/min on a pure rotary move]."""
+    [mm/min; deg/min on a pure rotary move]. An axis that wraps at 360 deg (``[axes.a] wrap = true``) is listed
+    unwrapped, as its motor has turned (350, then ``A10`` the short way: 370), as LinuxCNC's canonical calls carry
+    it; the control shows the angle reduced below 360 deg (:mod:`interpolators.rotary_wrap`)."""
     import numpy as np
 
     from toolpaths.geometry import Arc

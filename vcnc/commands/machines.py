@@ -29,6 +29,12 @@ PROGRAM_TABLE_DOC = """
 # user_m_path = []               # folders holding the M100-M199 user programs, e.g. ["mfiles"] (USER_M_PATH)
 #   initial_feed = 500.0         # optional, unset by default (such a move is then an error): mm/min, the feed of
 #                                # a feed move before any F word (the control's power-on feed, Fanuc No. 1411)
+#   wrap_direction = "sign"      # optional, for the rotary axes marked [axes.a] wrap = true (modulo axes that
+#                                # wrap at 360 deg; unset: none wraps, 350 then A10 turns back 340 deg): the way an
+#                                # absolute move turns: sign (the word's sign, |word| < 360: LinuxCNC WRAPPED_ROTARY,
+#                                # Fanuc RAB=1) | shortest (Fanuc RAB=0, TNC M126) | difference (the TNC without
+#                                # M126: from the angle shown below 360); unset: the control's own (linuxcnc sign,
+#                                # heidenhain difference and M126 shortest, the others shortest). G91 is never wrapped
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]

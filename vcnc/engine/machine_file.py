@@ -10,6 +10,7 @@ Layout::
     feedback = "motor"            # or "table"
     measurement = "feedback"      # or "table": captures record a linear scale on the table
     substeps = 1
+    wrap = false                  # a, b, c only: true for a rotary axis that wraps at 360 deg (modulo, roll-over)
     [axes.x.limits]               # velocity mm/s, acceleration mm/s^2, jerk mm/s^3, rapid mm/s
     [axes.x.drive]                # type = "ballscrew" | "linear" | "discrete", then its fields
     [axes.x.controller]           # type = "pid" | "ppi" | "smc" | "ppc" | "pdf", then its fields, and
@@ -33,6 +34,8 @@ Layout::
     subroutine_path = ["subs"]    # optional folders searched for o<name> subroutine files (LinuxCNC SUBROUTINE_PATH)
     user_m_path = ["mfiles"]      # optional folders holding the M100-M199 user programs (LinuxCNC USER_M_PATH)
     initial_feed = 500.0          # optional mm/min: feed of a feed move before any F (Fanuc No. 1411); unset: an error
+    wrap_direction = "sign"       # optional: absolute moves of the wrap = true axes: sign (LinuxCNC; Fanuc RAB=1) |
+                                  #   shortest (Fanuc RAB=0; TNC M126) | difference (TNC); unset: the control's own
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300", Fadal E7 .. E48
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
@@ -77,6 +80,7 @@ from interpolators.context import (
     work_offset_code,
 )
 from interpolators.limits import AxisLimits
+from interpolators.rotary_wrap import ROTARY_AXES, WRAP_DIRECTIONS
 from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.core.axes import EXTRA_NAMES
 from vcnc.core.errors import InputError, MachineError
@@ -89,8 +93,10 @@ __all__ = ["parse_machine_text", "MachineSpec", "LineIndex"]
 _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "program": ""}
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
                  "datum_table", "work_offsets", "tools", "linear_units", "decimal_point_input", "tool_offset_memory",
-                 "kinematics", "subroutine_path", "user_m_path", "initial_feed", "touch_probe")
-_AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", *NONIDEALITY_FIELDS}
+                 "kinematics", "subroutine_path", "user_m_path", "initial_feed", "touch_probe",
+                 "wrap_direction")
+_AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", "wrap",
+              *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
 
 
@@ -264,6 +270,7 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
         raise where.error("missing table [axes.<name>]: a machine needs at least one axis", ("axes",))
     axes: dict[str, Any] = {}
     limits: dict[str, AxisLimits] = {}
+    wrapped: list[str] = []
     for a, tab in axes_tab.items():
         path = ("axes", a)
         if a not in AXIS_NAMES:
@@ -278,8 +285,10 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
             raise where.error(f"missing table [axes.{a}.limits] (velocity mm/s, acceleration mm/s^2, jerk mm/s^3)",
                               path)
         limits[a] = _build_limits(tab["limits"], path + ("limits",), where)
+        if _wraps(a, tab, where):
+            wrapped.append(a)
         if "fmu" in tab:
-            extra = [k for k in tab if k not in ("fmu", "limits")]
+            extra = [k for k in tab if k not in ("fmu", "limits", "wrap")]
             if extra:
                 raise where.error(f"axes.{a}.{extra[0]} cannot be combined with 'fmu' (the FMU is the whole axis)",
                                   path + (extra[0],))
@@ -311,7 +320,8 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
             raise where.error(exc.message, path + ((key,) if key else ())) from None
     context = _build_context(data.get("program", {}), where, file)
     # the program may move the axes beyond X, Y, Z the machine has (a, b, c in degrees, u, v, w in mm), no others
-    context = dataclasses.replace(context, extra_axes=tuple(a for a in EXTRA_NAMES if a in axes))
+    context = dataclasses.replace(context, extra_axes=tuple(a for a in EXTRA_NAMES if a in axes),
+                                  wrapped_axes=tuple(wrapped))
     if context.kinematics is not None:
         for ax in context.kinematics.axes:
             if ax.name not in axes:
@@ -319,6 +329,19 @@ def parse_machine_text(text: str, *, file: str, default_name: str) -> MachineSpe
                                   "table", ("program", "kinematics", "axes"))
     return MachineSpec(name=name, description=description, sample_time=float(ts), axes=axes, limits=limits,
                        context=context, warnings=tuple(plausibility_warnings(data, file=file, line=where.index.line)))
+
+
+def _wraps(a: str, tab: dict, where: _Where) -> bool:
+    """``[axes.a] wrap``: whether the rotary axis ``a`` wraps at 360 deg (:mod:`interpolators.rotary_wrap`)."""
+    if "wrap" not in tab:
+        return False
+    wrap = tab["wrap"]
+    if not isinstance(wrap, bool):
+        raise where.error(f"'axes.{a}.wrap' must be true or false (a rotary axis that wraps at 360 deg), got {wrap!r}",
+                          ("axes", a, "wrap"))
+    if wrap and a not in ROTARY_AXES:
+        raise where.error(f"'axes.{a}.wrap' = true: only a rotary axis (a, b, c) wraps at 360 deg", ("axes", a, "wrap"))
+    return wrap
 
 
 def _xyz_value(value: Any, path: tuple[str, ...], where: _Where) -> list[float]:
@@ -391,6 +414,13 @@ def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noq
                           "value per offset; geometry and wear; geometry and wear apart for H and D), got "
                           f"{tab['tool_offset_memory']!r}", path + ("tool_offset_memory",))
     kwargs["tool_offset_memory"] = tab.get("tool_offset_memory", "C")
+    if "wrap_direction" in tab:
+        if tab["wrap_direction"] not in WRAP_DIRECTIONS:
+            raise where.error("'program.wrap_direction' must be 'sign' (LinuxCNC WRAPPED_ROTARY, Fanuc RAB=1), "
+                              "'shortest' (Fanuc RAB=0, TNC M126) or 'difference' (TNC without M126): the direction "
+                              f"of an absolute move of a wrap = true axis; got {tab['wrap_direction']!r}",
+                              path + ("wrap_direction",))
+        kwargs["wrap_direction"] = tab["wrap_direction"]
     offsets = tab.get("work_offsets", {})
     if not isinstance(offsets, dict):
         raise where.error("'program.work_offsets' must be a table of G54 = [x, y, z] ...", path + ("work_offsets",))
