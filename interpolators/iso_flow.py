@@ -185,6 +185,17 @@ def _refuse_colon_block(line: str, column: int, where: Where) -> NoReturn:
                column=column, text=line, expected="':' followed by the program number, e.g. :1234")
 
 
+def _refuse_colon(line: str, column: int, where: Where) -> NoReturn:
+    """The error for a program number ``:1248`` where the dialect has no ISO-code address: LinuxCNC's rs274ngc knows
+    no ':' (interp_read.cc ``read_one_item``: rs274 stops at ':1248' with "Bad character ':' used"); its numbered
+    programs are O-words (o-code.adoc "Fanuc-Style Numbered Programs"). A ':' before a block is refused by
+    :func:`_refuse_colon_block` in every dialect."""
+    number = _FANUC_PROGRAM.match(line).group(1)
+    where.fail("':' before a program number (ISO code's program-number address, O of EIA code): LinuxCNC refuses "
+               "it (rs274: \"Bad character ':' used\")", column=column, text=line,
+               expected=f"O{number} (--dialect fanuc reads :{number} as O{number})")
+
+
 def _refuse_foreign_header(line: str, where: Where) -> None:
     """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code, or a
     Heidenhain TNC program in DIN/ISO (:func:`refuse_heidenhain_iso`)."""
@@ -306,8 +317,10 @@ class _Program:
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
                  subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
-                 abbreviations: bool = False, skip_levels: bool = False, skip_after_number: bool = True) -> None:
+                 abbreviations: bool = False, skip_levels: bool = False, skip_after_number: bool = True,
+                 colon_program: bool = True) -> None:
         self.source = source
+        self.colon_program = colon_program
         self.skip_levels = skip_levels
         self.skip_after_number = skip_after_number
         self.subroutine_path = subroutine_path
@@ -385,6 +398,8 @@ class _Program:
                 code = _block_delete(code, where, levels=self.skip_levels)
             elif "/" in code:
                 code = _skip_after_number(code, where, levels=self.skip_levels, reads=self.skip_after_number)
+            if s.startswith(":") and not self.colon_program and _FANUC_PROGRAM.match(code):
+                _refuse_colon(s, code.index(":") + 1, where)
             if s.startswith(":") and not _FANUC_PROGRAM.match(code):
                 _refuse_colon_block(s, code.index(":") + 1, where)
             if self.macro.add_line(i, code, self.span, where) is not None:
@@ -654,7 +669,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         on_comment: Callable[[str, str, Where], None] | None = None,
         on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None,
         on_call_words: Callable[[list[Word], Where], None] | None = None,
-        modal_calls: ModalCalls | None = None, skip_after_number: bool = True) -> Iterator[FlowLine]:
+        modal_calls: ModalCalls | None = None, skip_after_number: bool = True,
+        colon_program: bool = True) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or backward GOTO sends
@@ -670,6 +686,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     G66.1 and G67 run as Fanuc's modal macro calls (:mod:`interpolators.iso_modal_call`), in force in it; without it
     they are yielded as words (which the reader refuses). ``skip_after_number``: a '/' right after the line's sequence
     number runs as block delete (Fanuc, Haas, grbl); False: refused, as LinuxCNC does (:func:`_skip_after_number`).
+    ``colon_program``: ``:1234`` is program number 1234, as O1234 (ISO code's address, Fanuc); False: a ':' line is
+    refused, as LinuxCNC does (:func:`_refuse_colon`).
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -682,7 +700,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     params = Parameters() if params is None else params
     prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
                     tape_leader=tape_leader, abbreviations=params.fanuc, skip_levels=params.fanuc,
-                    skip_after_number=skip_after_number)
+                    skip_after_number=skip_after_number, colon_program=colon_program)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

@@ -528,7 +528,7 @@ def _unskipped(s: str, *, fanuc: bool) -> str:
     return s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
 
 
-def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]:
+def _lines(text: str, *, grbl: bool = False, fanuc: bool = False, linuxcnc: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(_split(text), start=1):
         s = clean_line(raw)
@@ -550,6 +550,8 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]
             s = _unskipped(s, fanuc=fanuc)
         s = _unabbreviated(s) if fanuc else s
         seq = int(n.group(1)) if n else None
+        if linuxcnc and s.startswith(":"):  # rs274ngc reads no ':' (rs274: "Bad character ':' used")
+            raise ReferenceError(f"line {no}: ':' refused under LinuxCNC")
         if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097
             s = "o" + s[1:]
         m = _OWORD.match(s)
@@ -2054,7 +2056,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     if fadal:  # Fadal's own words in a pass over the lines (_fadal_lines), Fanuc's rules for the rest
         context = dataclasses.replace(context, dialect=dataclasses.replace(context.dialect, name="fanuc"))
     fanuc = context.dialect.name == "fanuc"
-    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc)
+    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc,
+                   linuxcnc=context.dialect.name == "linuxcnc")
     if fadal:
         lines = _fadal_lines(lines)
     own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
