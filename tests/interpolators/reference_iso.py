@@ -716,6 +716,10 @@ class _Machine:
         self.tcp_vector = False  # Fanuc G43.5: the tool direction I J K instead of rotary words
         self.selected = self.loaded = 0
         self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
+        self.spindle = 0.0  # S [rev/min] (Fanuc rigid tapping: _rigid_tap)
+        self.rigid = False  # Fanuc M29 until its tapping cycle ends
+        self.rigid_at: int | None = None  # the line of that M29 until a G84/G74 runs
+        self.rigid_s = 0.0  # the S of the rigid tap that ran
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.comp_side = "left"
@@ -1680,10 +1684,14 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
         _fanuc_polar(m, g, words)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
+    if m.ctx.dialect.name == "fanuc":
+        _rigid_tap(m, ln.number, g, mc, words)
     used = _non_modal(m, ln.number, g, words)
     count, start = len(m.out), m.pos.copy()
     if not used:
         _motion(m, ln.number, g, words, axes)
+    if m.rigid_at is not None:
+        _rigid_tap_after(m, ln.number, any(e.kind != "dwell" for e in m.out[count:]))
     if m.corner is not None and len(m.out) > count:
         _corner(m, count)
     for key in (",r", ",c"):
@@ -1698,6 +1706,38 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict) -> None:
+    """Fanuc M29 rigid tapping (0i-B connection manual B-63833EN "Rigid tapping": "M29 S1000 ; G84 Z-100. R-20. F1.
+    ; ... G80 ;"; the operator's manuals' limitations and alarm list as we read them): G80, a group 01 code or
+    another canned cycle ends the rigid mode and clears the S of a tap that ran (an S word since, or in the block, is
+    kept);
+    M29 arms it for the next G84/G74, which needs S > 0 (alarm PS0200); the program end ends it."""
+    tapping = (740, 840)
+    ends = [c for c in g if c in (0, 10, 20, 30, 800) or c // 10 in _CYCLES + _MILL_CYCLES and c not in tapping]
+    if m.rigid and (ends or 20 in mc or 300 in mc) and 290 not in mc:
+        if m.rigid_at is None and m.spindle == m.rigid_s:  # no S word since the tap
+            m.spindle = 0.0
+        m.rigid = False
+    if "s" in words:
+        m.spindle = words["s"][-1]
+    if 290 in mc:
+        m.rigid, m.rigid_at = True, line
+    cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
+    if m.rigid and cycle in tapping and not m.spindle > 0:
+        raise ReferenceError(f"line {line}: G84/G74 after M29 with S0 (Fanuc alarm PS0200)")
+
+
+def _rigid_tap_after(m: _Machine, line: int, moved: bool) -> None:
+    """After a block while an M29 waits for its G84/G74: the tap takes it; an axis movement in a later block is
+    Fanuc's alarm PS0204 (:func:`_rigid_tap`)."""
+    if m.rigid and m.motion in (740, 840):
+        m.rigid_at, m.rigid_s = None, m.spindle
+    elif moved and line != m.rigid_at:
+        raise ReferenceError(f"line {line}: axis movement between M29 and G84/G74 (Fanuc alarm PS0204)")
+    elif not m.rigid:
+        m.rigid_at = None
 
 
 def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None:

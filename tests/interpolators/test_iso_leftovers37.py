@@ -35,3 +35,84 @@ def test_linuxcnc_refuses_an_iso_code_program_number():
         [1.0, 0.0, 0.0]]
     # Fanuc's ISO code reads ':' as O (B-64304EN "Program number"), as before
     assert [b.target.tolist() for b in parse_program(text, context=FANUC).blocks] == [[1.0, 0.0, 0.0]]
+
+
+#: A Fanuc rigid tap as Fusion's fanuc.cps writes it (``useRigidTapping`` "without"): ``M29 S..`` right before the
+#: ``G84`` under G95, no M03; a drilling series follows.
+RIGID = ("%\nO1001\nG21 G90 G17 G54\nG00 X0. Y0. Z10.\nG95\nM29 S500\nG98 G84 X10. Y10. Z-10. R2. F1.25\n"
+         "G81 X20. Y10. Z-5. R2. F0.1\nG84 X30. Y10. Z-10. R2. F1.25\nG80\nM30\n%\n")
+
+
+def test_fanuc_rigid_mode_ends_at_another_canned_cycle():
+    # B-64304EN "Canned cycle for drilling": G81 replaces the tapping cycle; with it M29's rigid mode ends (our
+    # reading, iso_rigid_tap) and the rigid tap's S is cleared ("specify an S command again after cancellation of
+    # rigid tapping"): line 8's G81 under G95 has no spindle speed. Before: G81 and line 9's G84 ran, the G84 as a
+    # rigid tap M29 no longer armed. The
+    # rigid tap's S is cleared: the reference models no feed, the reader refuses the G81's
+    with pytest.raises(GCodeError, match=r":8:1: G81 drilling cycle under G95 feed per revolution without a spindle "
+                                         r"speed: S0 \(no S word > 0 before it, or the S of a rigid tap \(M29\), "
+                                         r"cleared at its end"):
+        parse_program(RIGID, context=FANUC)
+    # with the spindle started for the drill, the G84 after it is a floating-holder tap: M29 again or refused
+    started = RIGID.replace("G81 X20.", "S800 M03\nG81 X20.").replace("G84 X30.", "M05\nG84 X30.")
+    with pytest.raises(GCodeError, match=r":11:1: G84 tapping cycle under G95 feed per revolution with the spindle "
+                                         r"stopped"):
+        parse_program(started, context=FANUC)
+    again = started.replace("M05\nG84 X30.", "M05\nM29 S500\nG84 X30.")
+    holes = [b.target.tolist() for b in parse_program(again, context=FANUC).blocks if b.kind == "line"]
+    assert holes[-2:] == [[30.0, 10.0, -10.0], [30.0, 10.0, 2.0]]
+    assert [b.end.tolist() for b in iso_reference(again, FANUC) if b.kind == "feed"][-2:] == holes[-2:]
+
+
+def test_fanuc_axis_movement_between_m29_and_its_tap_is_refused():
+    # the alarm lists' PS0204 "ILLEGAL AXIS OPERATION": an axis movement between the M29 block and the G84 block
+    # (our reading, iso_rigid_tap). The brief's case: M29 S.., then a G81, then the G84. Before: accepted
+    text = RIGID.replace("G98 G84 X10. Y10. Z-10. R2. F1.25\n", "").replace("G95\n", "G94\n").replace("F0.1", "F100.")
+    _refused(text, FANUC, r":7:1: axis movement after M29 \(line 6\) before its G84/G74: Fanuc refuses it \(alarm "
+             r"PS0204", r"line 7: axis movement between M29 and G84/G74 \(Fanuc alarm PS0204\)")
+    # a rapid between them, too; a dwell is no movement, and a move in the M29 block itself is taken
+    _refused(RIGID.replace("M29 S500\n", "M29 S500\nG00 X10.\n"), FANUC, r":7:1: axis movement after M29",
+             r"line 7: axis movement")
+    for ok in ("M29 S500\nG04 X1.\n", "G00 Z5. M29 S500\n"):
+        text = RIGID.replace("M29 S500\n", ok).replace("G81 X20. Y10. Z-5. R2. F0.1\n", "")
+        assert sum(b.kind == "line" for b in parse_program(text, context=FANUC).blocks) == 4
+        iso_reference(text, FANUC)
+
+
+def test_fanuc_rigid_tap_needs_a_spindle_speed():
+    # M29 without S and no S in force: the alarm lists' PS0200 "ILLEGAL S CODE COMMAND" (in the rigid tap, an S
+    # value is not specified; our reading). Before, under G94: tapped at S0 (F600 mm/min, no spindle)
+    text = RIGID.replace("M29 S500", "M29").replace("G95\n", "G94\n").replace("F1.25", "F600.")
+    _refused(text, FANUC, r":7:5: G84 tapping cycle after M29 rigid tapping without a spindle speed \(S0\): Fanuc "
+             r"refuses it \(alarm PS0200", r"line 7: G84/G74 after M29 with S0 \(Fanuc alarm PS0200\)")
+    # the S in force serves: S500 M03 before, M29 alone
+    kept = text.replace("M29\n", "S500 M03\nM29\n").replace("G81 X20. Y10. Z-5. R2. F0.1\n", "")
+    assert sum(b.kind == "line" for b in parse_program(kept, context=FANUC).blocks) == 4
+    # the S of a rigid tap is cleared when it ends: a second M29 without S after G80 is refused again
+    second = RIGID.replace("G81 X20. Y10. Z-5. R2. F0.1\nG84 X30.", "G80\nM29\nG84 X30.")
+    _refused(second, FANUC, r":10:1: G84 tapping cycle after M29 rigid tapping without a spindle speed",
+             r"line 10: G84/G74 after M29 with S0")
+    # an S word in the block that ends the cycle is the next operation's
+    after = RIGID.replace("G81 X20. Y10. Z-5. R2. F0.1\nG84 X30. Y10. Z-10. R2. F1.25\nG80\n",
+                          "G80 S400 M03\nG01 X20. F0.1\n")
+    assert parse_program(after, context=FANUC).blocks[-1].feed * 60 == pytest.approx(0.1 * 400)
+
+
+@pytest.mark.parametrize("dialect, said", [
+    ("fanuc", r"F0\.1 per revolution x S0 is no feed"),
+    ("linuxcnc", r"rs274: \"Cannot feed with zero spindle speed in feed per rev mode\""),
+    ("haas", r"F0\.1 per revolution x S0 is no feed")])
+def test_feed_per_revolution_without_a_spindle_speed_names_what_is_missing(dialect, said):
+    # Before: "G01 feed move without a feed: G95 feed per revolution with spindle speed S0 (LinuxCNC: ...)", expected
+    # "F > 0 [mm/min]" (the F was there), and for a cycle "no feed rate (G95: F and S > 0 per revolution)"
+    context = MachineContext(dialect=DIALECTS[dialect])
+    with pytest.raises(GCodeError, match=r"<input>:4:1: G01 under G95 feed per revolution without a spindle speed: "
+                                         rf"S0 \(no S word > 0 before it.*{said}\).*expected S<spindle speed> > 0 "
+                                         r"\[rev/min\] \(and M3/M4\) before a feed move under G95"):
+        parse_program("G21 G90 G0 X0 Y0 Z10\nM3\nG95\nG1 X5 F0.1\nM30\n", context=context)
+    with pytest.raises(GCodeError, match=r"<input>:4:1: G81 drilling cycle under G95 feed per revolution without a "
+                                         rf"spindle speed: S0 .*{said}"):
+        parse_program("G21 G90 G0 X0 Y0 Z10\nM3\nG95\nG81 X5 Z-5 R2 F0.1\nG80\nM30\n", context=context)
+    with pytest.raises(GCodeError, match=r"<input>:3:1: G01 under G95 feed per revolution: no F word since G95.*"
+                                         r"expected F<feed per revolution> > 0 \[mm/rev\] after G95"):
+        parse_program("G21 G90 S100 M3\nG95\nG1 X5\nM30\n", context=context)

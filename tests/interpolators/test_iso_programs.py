@@ -774,7 +774,8 @@ def test_g95_feed_per_revolution_is_f_times_s():
 
 @pytest.mark.parametrize("text, why", [("G21 S600 M3\nG95\nG1 X1\n", "no F word since G95"),
                                        ("G21 S600 M3\nF100\nG95 G1 X1\n", "no F word since G95"),
-                                       ("G21 M3\nG95 G1 X1 F0.1\n", "spindle speed S0"),
+                                       ("G21 M3\nG95 G1 X1 F0.1\n", "without a spindle speed: S0 .*rs274: "
+                                        "\"Cannot feed with zero spindle speed in feed per rev mode\""),
                                        ("G21 S600\nG95 G1 X1 F0.1\n", "with the spindle stopped")])
 def test_g95_needs_f_a_spindle_speed_and_a_turning_spindle(text, why):
     with pytest.raises(GCodeError, match=why):
