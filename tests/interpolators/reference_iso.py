@@ -720,6 +720,8 @@ class _Machine:
         self.rigid = False  # Fanuc M29 until its tapping cycle ends
         self.rigid_at: int | None = None  # the line of that M29 until a G84/G74 runs
         self.rigid_s = 0.0  # the S of the rigid tap that ran
+        self.dwo_on = False  # Haas G254 dynamic work offset (_dwo)
+        self.dwo = np.zeros(3)  # its shift of the work zero [mm]
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.comp_side = "left"
@@ -769,16 +771,17 @@ class _Machine:
         return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]])
 
     def to_machine(self, prog: np.ndarray) -> np.ndarray:
-        """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
+        """Machine position of a program point: rotation(program + G92) + work offset (+ Haas G254's shift of it,
+        :func:`_dwo`) + tool length."""
         p = np.where(self.mirror, 2 * self.mirror_at - prog, np.asarray(prog, float))
         p = self.scale_centre + self.factors * (p - self.scale_centre)
-        m = self._rot(self._g68_turn(p, 1.0) + self.g92, 1.0) + self.offsets[self.wcs]
+        m = self._rot(self._g68_turn(p, 1.0) + self.g92, 1.0) + self.offsets[self.wcs] + self.dwo
         m[2] += self.tool_length
         m[:2] += self.tool_xy
         return m
 
     def to_program(self, machine: np.ndarray) -> np.ndarray:
-        v = machine - self.offsets[self.wcs]
+        v = machine - self.offsets[self.wcs] - self.dwo
         v[2] -= self.tool_length
         v[:2] -= self.tool_xy
         p = self._g68_turn(self._rot(v, -1.0) - self.g92, -1.0)
@@ -1026,6 +1029,30 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.arc_absolute = code == 901
         elif code in (980, 990):
             m.retract = code // 10
+    if m.ctx.dialect.name == "haas":
+        _dwo(m, g, words)
+
+
+def _dwo(m: _Machine, g: list[int], words: dict) -> None:
+    """Haas G254 dynamic work offset (Haas mill operator's manual (NGC) "G254 Dynamic Work Offset (DWO)": for 3+1 /
+    3+2 positioning "DWO uses the current rotary positions and the machine rotary zero point (MRZP) to compute where
+    the work offset has gone"; "G255 cancels DWO"), on the context's tilting table: the work zero in force (work
+    offset and G92 shift, machine coordinates with the rotary axes at 0) carried by the table to the rotary
+    positions (:func:`_table`, the pivots standing for the MRZP) shifts every position, incremental moves included
+    (an offset, which a G91 move does not see: it goes from where the tool is). A rotary word under it, a G68 frame
+    or TCPC are not modelled (ReferenceError)."""
+    if 2550 in g:
+        m.dwo_on, m.dwo = False, np.zeros(3)
+    if 2540 in g:
+        kin = m.ctx.kinematics
+        if kin is None or kin.kind != "table" or m.g68 is not None or m.tcp:
+            raise ReferenceError("G254 without a tilting table, or under G68 / G234")
+        m.dwo_on = True
+    if m.dwo_on:
+        if any(a in words for a in "abc"):
+            raise ReferenceError("a rotary axis word under G254")
+        zero = m.offsets[m.wcs] + m._rot(m.g92, 1.0)
+        m.dwo = _table(m, zero, m.extra) - zero
 
 
 def _use_system(m: _Machine, code: str) -> None:

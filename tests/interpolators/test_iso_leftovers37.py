@@ -5,10 +5,13 @@ interpreter) gives the reading, and the independent reference (tests/interpolato
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from interpolators.tilted import Kinematics, RotaryAxis
+from tests.interpolators.iso_checks import checked_iso
 from tests.interpolators.reference_iso import ReferenceError, iso_reference
 from vcnc.errors import GCodeError
 
@@ -116,3 +119,29 @@ def test_feed_per_revolution_without_a_spindle_speed_names_what_is_missing(diale
     with pytest.raises(GCodeError, match=r"<input>:3:1: G01 under G95 feed per revolution: no F word since G95.*"
                                          r"expected F<feed per revolution> > 0 \[mm/rev\] after G95"):
         parse_program("G21 G90 S100 M3\nG95\nG1 X5\nM30\n", context=context)
+
+
+def _umc(**changes) -> MachineContext:
+    """A UMC-like table: A about X round (0, 0, -50), C about Z (as test_iso_posts36.py's)."""
+    kin = Kinematics(axes=(RotaryAxis(name="a", direction="X", pivot=(0.0, 0.0, -50.0), limits=(-120.0, 120.0)),
+                           RotaryAxis(name="c")))
+    return MachineContext(dialect=DIALECTS["haas"], kinematics=kin, extra_axes=("a", "c"), **changes)
+
+
+@pytest.mark.parametrize("order", ["G55\nG254\n", "G254\nG55\n"])
+def test_haas_incremental_moves_under_dynamic_work_offset(order):
+    # Haas NGC mill manual "G254 Dynamic Work Offset (DWO)": DWO computes "where the work offset has gone" with the
+    # rotary positions; a work offset moves the zero, and G91 moves go from where the tool is (Haas "G91 Incremental
+    # Position Command"), so increments are the machine's axes' (the post turns the coordinates itself). G55 at
+    # (0, 10, 20) is carried by A30 to (0, 10 cos30 + 70 sin30, -50 + 70 cos30 - 10 sin30) (X0 Y0 there, Z at machine
+    # 0 still); G91 Y3. Z-2. from Z5.
+    # above it; after G255 a G91 X1. goes on from the tool, the zero G55's own again. The reference models G254 now
+    # (before, it ignored it: the session-36 tests compared no DWO program with it)
+    text = ("%\nO1\nG90 G17 G21\nG54\nG00 A30. C0.\n" + order + "G00 X0. Y0.\nZ5.\nG91 Y3. Z-2.\nX4.\nG90 G255\n"
+            "G91 X1.\nG90 Z30.\nM30\n%\n")
+    prog = checked_iso(text, _umc(work_offsets={"G55": np.array([0.0, 10.0, 20.0])}))
+    c, s = np.cos(np.radians(30.0)), np.sin(np.radians(30.0))
+    zero = np.array([0.0, 10.0 * c + 70.0 * s, -50.0 + 70.0 * c - 10.0 * s])
+    ends = [b.target for b in prog.blocks][1:]
+    assert np.allclose(ends, [[0, zero[1], 0], zero + [0, 0, 5], zero + [0, 3, 3], zero + [4, 3, 3],
+                              zero + [5, 3, 3], [5, zero[1] + 3, 30 + 20]], atol=1e-9)

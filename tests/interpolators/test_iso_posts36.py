@@ -161,7 +161,7 @@ def test_haas_dynamic_work_offset_carries_the_work_zero_with_the_table():
     # follows the rotary axes about their centres. The work zero (G54 at the origin, 50 mm above the A pivot) at
     # A30 is turned about X round (0, 0, -50): (0, 50 sin30, -50 + 50 cos30) = (0, 25, -6.699); C90 turns it about
     # the C axis through it, which leaves it in place. Before: "G254 dynamic work offset ...: not supported"
-    prog = parse_program(HAAS_DWO, context=_umc_context())
+    prog = checked_iso(HAAS_DWO, _umc_context())  # the reference models G254 since iso37
     zero = np.array([0.0, 25.0, -50.0 + 50.0 * np.cos(np.radians(30.0))])
     ends = {b.line: b.target for b in prog.blocks}
     assert ends[12][:2] == pytest.approx(zero[:2])  # X0 Y0: over the carried work zero
