@@ -122,7 +122,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
 from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
-from interpolators.iso_arc3d import ARC3D_CODES, unfinished_arc3d
+from interpolators.iso_arc3d import ARC3D_CODES, arc3d_interrupted, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, word_values
 from interpolators.iso_codes import (
@@ -624,7 +624,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     if st.context.dialect.name == "grbl":
         for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)
-    before = len(blocks)
+    before, arc3d = len(blocks), st.arc3d_mid is not None
     if "exact stop check" not in gcodes:
         ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
     else:
@@ -633,6 +633,8 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
         ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
         if "path" not in gcodes:
             st.exact_stop = modal
+    if arc3d and st.arc3d_mid is not None and not ended and any(w.letter != "N" for w in words):  # G02.4 pair
+        arc3d_interrupted(st, where)
     if st.rigid_tap_at is not None:  # Fanuc M29 waiting for its G84/G74 (interpolators.iso_rigid_tap)
         rigid_tap_moved(st, any(b.kind != "dwell" for b in blocks[before:]), where)
     return ended

@@ -721,6 +721,7 @@ class _Machine:
         self.rigid_at: int | None = None  # the line of that M29 until a G84/G74 runs
         self.rigid_s = 0.0  # the S of the rigid tap that ran
         self.dwo_on = False  # Haas G254 dynamic work offset (_dwo)
+        self.arc3d: tuple[np.ndarray, int] | None = None  # Fanuc G02.4's intermediate point [mm] and line (_arc3d)
         self.dwo = np.zeros(3)  # its shift of the work zero [mm]
         self.comp_radius: float | None = None
         self.comp_entry = False
@@ -1384,7 +1385,8 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     nurbs = (52, 53) if m.ctx.dialect.name == "linuxcnc" else ()
     if 52 in nurbs and 52 in g and m.motion != 52:  # a new G5.2 block: the current position is its first point
         m.nurbs_end = m.pos.copy()
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800, *nurbs) or c // 10 in cycles]
+    arcs3d = (24, 34) if m.ctx.dialect.name == "fanuc" else ()
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800, *nurbs, *arcs3d) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
         if code // 10 not in cycles:
@@ -1432,7 +1434,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if shift and m.ctx.dialect.name == "fanuc":
         end = _position_offset(m, shift[0], words, end)
     m.extra = m.extra_end(words)
-    if m.motion in (0, 10, 330):
+    if m.motion in (24, 34):
+        _arc3d(m, line, words, end)
+    elif m.motion in (0, 10, 330):
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
     elif m.motion == 331:  # g-code.adoc "G33.1 Rigid Tapping": to the end point and back to the start
         start = m.pos.copy()
@@ -1456,6 +1460,22 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
+
+
+def _arc3d(m: _Machine, line: int, words: dict, end: np.ndarray) -> None:
+    """Fanuc G02.4 / G03.4 (Mitsubishi M700V programming manual 6.14, which describes the same command: "G02.4
+    Xx1 Yy1 Zz1 ; Intermediate point designation (1st block) / Xx2 Yy2 Zz2 ; End point designation (2nd block)"):
+    the first block's point is kept, the second runs the arc (the reader's chords, the last checked at its end);
+    an end coordinate the second block omits is the intermediate point's, under G91 it counts from there."""
+    if m.arc3d is None:
+        m.arc3d = (end, line)
+        return
+    mid, m.arc3d = m.arc3d[0], None
+    if m.incremental:
+        end = end + (mid - m.pos)
+    else:
+        end = np.array([end[i] if a in words else mid[i] for i, a in enumerate("xyz")])
+    m.emit(line, "feed", end, rows="last")
 
 
 def _nurbs(m: _Machine, line: int, words: dict, axes: bool) -> None:
@@ -1719,6 +1739,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         _motion(m, ln.number, g, words, axes)
     if m.rigid_at is not None:
         _rigid_tap_after(m, ln.number, any(e.kind != "dwell" for e in m.out[count:]))
+    if m.arc3d is not None and m.arc3d[1] != ln.number and words:  # a block between G02.4's two (not a macro line)
+        raise ReferenceError(f"line {ln.number}: a block between a G02.4/G03.4 intermediate point and its end point")
     if m.corner is not None and len(m.out) > count:
         _corner(m, count)
     for key in (",r", ",c"):

@@ -145,3 +145,29 @@ def test_haas_incremental_moves_under_dynamic_work_offset(order):
     ends = [b.target for b in prog.blocks][1:]
     assert np.allclose(ends, [[0, zero[1], 0], zero + [0, 0, 5], zero + [0, 3, 3], zero + [4, 3, 3],
                               zero + [5, 3, 3], [5, zero[1] + 3, 30 + 20]], atol=1e-9)
+
+
+#: fanuc.cps ``onCircular`` with "Allow 3D arcs" (as test_iso_posts36.py's FANUC_ARC3D): ``G02.4`` and the
+#: intermediate point, then the end point block.
+ARC3D = ("%\nO1003\nN10 G90 G94 G17 G21 G54\nN15 S1000 M03\nN20 G00 X0. Y0. Z10.\nN25 G01 X10. Y0. Z0. F500.\n"
+         "N30 G02.4 X0. Y10. Z5.\nN35 X-10. Y0. Z0.\nN40 G01 X-12.\nN45 M30\n%\n")
+
+
+@pytest.mark.parametrize("between", ["G04 X1.", "M08", "G91", "G17"])
+def test_fanuc_three_dimensional_arc_blocks_follow_each_other(between):
+    # Mitsubishi M700V programming manual 6.14 (the command's description found): "G02.4(G03.4) Xx1 Yy1 Zz1 ;
+    # Intermediate point designation (1st block) / Xx2 Yy2 Zz2 ; End point designation (2nd block)"; a block between
+    # them is neither (our reading, iso_arc3d). Before: a dwell or an M code between them was run and the next
+    # block taken as the end point
+    text = ARC3D.replace("N35 ", f"N32 {between}\nN35 ")
+    _refused(text, FANUC, r":8:1: three-dimensional arc: a block between the intermediate point \(line 7\) and its "
+             r"end point block", r"line 8: a block between a G02.4/G03.4 intermediate point and its end point")
+
+
+def test_fanuc_three_dimensional_arc_takes_a_macro_statement_between_its_blocks():
+    # "#100 = 1" is a macro statement, no NC block; the reference now models G02.4 (before, it read the first block
+    # as a G01 to the intermediate point, so no test compared a 3-D arc with it)
+    text = ARC3D.replace("N35 ", "#100 = 1\nN35 ")
+    prog = checked_iso(text, FANUC)
+    assert [b.target.tolist() for b in prog.blocks if b.line == 9][-1] == pytest.approx([-10.0, 0.0, 0.0])
+    assert not [b for b in prog.blocks if b.line == 7]  # the intermediate point's block moves nothing

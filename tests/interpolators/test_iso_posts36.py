@@ -216,7 +216,7 @@ def test_fanuc_three_dimensional_arc_runs_through_its_three_points():
     # The circle through (10, 0, 0), (0, 10, 5) and (-10, 0, 0): centre on the perpendicular
     # bisector of the first and last points, in their plane z = y / 2: |c - a| = |c - m| gives c = (0, 1, 0.5).
     # Before: "unknown G code 'G02.4'"
-    prog = parse_program(FANUC_ARC3D, context=FANUC)
+    prog = checked_iso(FANUC_ARC3D, FANUC)  # the reference models G02.4 since iso37
     arc = [b for b in prog.blocks if b.line == 10]
     points = np.array([b.target for b in arc])
     a, m, e = np.array([10.0, 0.0, 0.0]), np.array([0.0, 10.0, 5.0]), np.array([-10.0, 0.0, 0.0])
