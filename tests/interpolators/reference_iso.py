@@ -624,8 +624,8 @@ def _structure(lines: list[_Line]) -> dict:
         program_of[i] = program_start
         if name is None:
             continue
-        if k is None:
-            fanuc[name] = i
+        if k is None:  # O01000 is program 1000 (Fanuc program numbers: M98 P1000 calls it)
+            fanuc[str(int(name)) if name.isdigit() else name] = i
         elif k in ("sub", "if", "repeat") or (k == "while" and not (stack and stack[-1][:2] == (name, "do"))) \
                 or k == "do":
             stack.append((name, k, i))
@@ -2211,26 +2211,31 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "m99":
             if not frames or frames[-1]["kind"] not in ("m98", "g65"):
                 break
-            pc = _m99_return(ln, frames, st, params)
+            pc = _m99_return(ln, pc, frames, st, params, haas=context.dialect.name == "haas")
             continue
         pc += 1
     return m.out
 
 
-def _m99_return(ln, frames: list[dict], st, params) -> int:  # noqa: ANN001
-    """The line an M99 goes on at in an M98 or G65 frame: the called program again while repeats are left, else
-    the caller's next line (or its block N<n> for an M99 P<n>, Haas, Fanuc); a G65's locals #1-#33 as they
-    were."""
+def _m99_return(ln, pc: int, frames: list[dict], st, params, *, haas: bool = False) -> int:  # noqa: ANN001
+    """The line an M99 (line ``pc``) goes on at in an M98 or G65 frame: the called program again while repeats are
+    left, else the caller's next line (or its block N<n> for an M99 P<n>, Fanuc B-64304EN "Subprogram"); a G65's
+    locals #1-#33 as they were. Haas's M99 P<n> branches to N<n> of the subprogram it stands in, the call still
+    open (Haas mill operator's manual 96-8000 "Conditional Expressions": "M99 in the HAAS control has the ability to
+    branch unconditionally to any line in the current subroutine ... It does not return control to the calling
+    subroutine")."""
     f = frames[-1]
     if f["kind"] == "g65":
         frames.pop()
         params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
         return f["ret"]
+    words, _ = _words(ln.text, params)
+    if haas and "p" in words:
+        return _goto(words["p"][-1], pc, st)
     if f["left"] > 0:
         f["left"] -= 1
         return f["start"]
     frames.pop()
-    words, _ = _words(ln.text, params)
     return _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
 
 

@@ -91,11 +91,11 @@ def test_haas_m99_p_in_a_subprogram_branches_within_it():
     # "Conditional Expressions"): "M99 in the HAAS control has the ability to branch unconditionally to any line in
     # the current subroutine by placing a P code on the same line ... N50 M99 P10 ; branches to line N10. It does not
     # return control to the calling subroutine." Before: vcnc returned to the caller's N20 (Fanuc's rule)
-    prog = parse_program(M99_P_IN_SUB, context=HAAS)
+    prog = checked_iso(M99_P_IN_SUB, HAAS)  # the reference too since iso37 (it returned to the caller's N20)
     assert [b.target.tolist() for b in prog.blocks] == [
         [0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [1.0, 0.0, -1.0], [5.0, 0.0, -1.0], [5.0, 7.0, -1.0]]
     # Fanuc's M99 P20 returns to the calling program's N20 (B-64304EN "Subprogram", "Special usage")
-    prog = parse_program(M99_P_IN_SUB, context=FANUC)
+    prog = checked_iso(M99_P_IN_SUB, FANUC)
     assert [b.target.tolist() for b in prog.blocks] == [[0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [1.0, 7.0, 10.0]]
 
 
