@@ -586,7 +586,7 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
             key = ev.param_ref()
             ev.expect("=")
             sets.append((key, ev.chain(closed=False)))
-        elif c in "@^" or c.isalpha():
+        elif c in "@^$" or c.isalpha():
             ev.i += 1
             value = ev.real()
             if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
@@ -1623,6 +1623,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
     if code in (73, 83):
         # Haas "G83": I the first peck, each next J less, never below K (instead of Q)
         haas = (m.ctx.dialect.name == "haas" or m.fadal) and bool(m.sticky.get("i"))  # fadal.cps writes them too
+        if not haas and "q" not in m.sticky:  # every control refuses a peck cycle without its peck depth
+            raise ReferenceError(f"G{code} without Q")
         delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
@@ -1704,6 +1706,10 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
+    for value in words.pop("$", []):  # LinuxCNC's spindle of S/M3-M5/M19/G33 (m-code.adoc "M3, M4, M5": "M3 $0
+        # S1000", $-1 all of them); one spindle here, $0 or $-1 (rs274 takes the integer part: "M3 $0.9" runs)
+        if m.ctx.dialect.name != "linuxcnc" or int(value) not in (0, -1):
+            raise ReferenceError(f"line {ln.number}: spindle word ${value:g}")
     if 980 in mc and m.ctx.dialect.name == "linuxcnc":  # an M98 block is the call alone: its F, S, X.. do not run
         return "m98"
     if 650 in g:  # Fanuc/Haas G65 macro call: run by iso_reference (the called program, its arguments as locals)

@@ -171,3 +171,20 @@ def test_fanuc_three_dimensional_arc_takes_a_macro_statement_between_its_blocks(
     prog = checked_iso(text, FANUC)
     assert [b.target.tolist() for b in prog.blocks if b.line == 9][-1] == pytest.approx([-10.0, 0.0, 0.0])
     assert not [b for b in prog.blocks if b.line == 7]  # the intermediate point's block moves nothing
+
+
+def test_haas_g73_k_under_g91_and_without_q():
+    # Haas mill operator's manual "G73 High-Speed Peck Drilling Canned Cycle": Q the peck, K the accumulated depth
+    # after which the tool goes back to R. Under G91 R counts from the initial Z15. (R-10. is Z5.) and Z from R
+    # (Z-15. is Z-10.): pecks of 2 to Z3., Z1., back to R at 4 mm, on to -1., -3., R again, and so on. The reader
+    # and the reference agree (checked); a G73 with K and no Q nor I is refused by both (the reference had raised
+    # a KeyError)
+    text = ("G90 G17 G21\nG00 X10. Y10. Z15.\nS2000 M03\nG91 G98 G73 X0. Y0. Z-15. R-10. Q2. K4. F200.\nG90 G80\n"
+            "M30\n")
+    prog = checked_iso(text, HAAS)
+    feeds = [round(float(b.target[2]), 6) for b in prog.blocks if b.kind == "line"]
+    assert feeds == [3.0, 1.0, -1.0, -3.0, -5.0, -7.0, -9.0, -10.0]
+    backs = [i for i, b in enumerate(prog.blocks) if b.kind == "rapid" and float(b.target[2]) == 5.0]
+    assert len(backs) == 4  # to R first, then after 4, 8 and 12 mm of pecks
+    _refused(text.replace(" Q2.", ""), HAAS, r"G73 peck drilling cycle: peck depth Q must be > 0",
+             r"G73 without Q")
