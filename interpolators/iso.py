@@ -442,8 +442,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                 decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
                 on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None,
-                modal_calls=st.modal_calls, skip_after_number=dialect.name != "linuxcnc",
-                colon_program=dialect.name != "linuxcnc")
+                modal_calls=st.modal_calls, tape_forms=dialect.name != "linuxcnc")
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
