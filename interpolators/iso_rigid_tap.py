@@ -16,7 +16,8 @@ axis for the G84 (G74: left-handed) that follows. What vcnc reads of it:
   drilling": a cycle is canceled by G80 or a group 01 G code), at a canned cycle other than G84/G74 (``M29 S.. ;
   G84 .. ; G81 .. ; G84 ..``: the second G84 is a floating-holder tap again) and at the program end (a reset);
   with it the S of the rigid tap is cleared, as if S0 were specified (the operator's manuals' "Rigid tapping"
-  limitations, "S command": "specify an S command again after cancellation of rigid tapping").
+  limitations, "S command": "specify an S command again after cancellation of rigid tapping"); an S word given
+  since the tap, or in the block that ends it (``G80 S1000 M03``), is the next operation's and kept.
 
 The alarm texts and the S and cancel rules are taken from the Fanuc 0i/16i operator's manuals' "Rigid tapping"
 section and alarm lists as we know them; none of those pages is in the texts searchable here (the connection
