@@ -122,7 +122,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
 from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
-from interpolators.iso_arc3d import ARC3D_CODES, unfinished_arc3d
+from interpolators.iso_arc3d import ARC3D_CODES, arc3d_interrupted, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, refuse_wrapped_offset, word_values
 from interpolators.iso_codes import (
@@ -181,6 +181,7 @@ from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_reference import FANUC_CODES
+from interpolators.iso_rigid_tap import end_rigid_tap, rigid_tap_moved
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
 from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
@@ -311,7 +312,9 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
-    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80 or group 01 code: the next G84/G74 turns it
+    rigid_tap: bool = False  # Fanuc M29 S.. until its tapping cycle ends: the G84/G74 turns it (iso_rigid_tap)
+    rigid_tap_at: Where | None = None  # the M29 block while no G84/G74 has come since (iso_rigid_tap)
+    rigid_tap_s: float = 0.0  # the S [rev/min] of the rigid tap that ran (iso_rigid_tap)
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
@@ -439,7 +442,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                 decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
                 on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None,
-                modal_calls=st.modal_calls, skip_after_number=dialect.name != "linuxcnc")
+                modal_calls=st.modal_calls, tape_forms=dialect.name != "linuxcnc")
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
@@ -620,13 +623,19 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     if st.context.dialect.name == "grbl":
         for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)
+    before, arc3d = len(blocks), st.arc3d_mid is not None
     if "exact stop check" not in gcodes:
-        return _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
-    notes.add("G09 exact stop (one block)")
-    modal, st.exact_stop = st.exact_stop, True
-    ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
-    if "path" not in gcodes:
-        st.exact_stop = modal
+        ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+    else:
+        notes.add("G09 exact stop (one block)")
+        modal, st.exact_stop = st.exact_stop, True
+        ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+        if "path" not in gcodes:
+            st.exact_stop = modal
+    if arc3d and st.arc3d_mid is not None and not ended and any(w.letter != "N" for w in words):  # G02.4 pair
+        arc3d_interrupted(st, where)
+    if st.rigid_tap_at is not None:  # Fanuc M29 waiting for its G84/G74 (interpolators.iso_rigid_tap)
+        rigid_tap_moved(st, any(b.kind != "dwell" for b in blocks[before:]), where)
     return ended
 
 
@@ -1135,7 +1144,7 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
-            st.rigid_tap = False
+            end_rigid_tap(st, words)
         else:
             if key >= 730 and not in_cycle:  # a new series of cycles: remember the initial level
                 # LinuxCNC keeps the last dwell P across series (settings->cycle_p; interp_cycles.cc
@@ -1144,11 +1153,11 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
                 carried = st.cycle.p if st.context.dialect.name == "linuxcnc" else None
                 st.cycle = CycleWords(motion_before=st.motion, p=carried)
             st.motion = key
-            if key < 730 and not any(w.letter == "M" and w.value == 29 for w in words):
-                st.rigid_tap = False  # a group 01 code ends the cycle as G80 does, and M29's rigid mode with it
+            if key not in (740, 840) and not any(w.letter == "M" and w.value == 29 for w in words):
+                end_rigid_tap(st, words)  # a group 01 code ends the cycle as G80 does, another cycle the tap
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
-        st.rigid_tap = False
+        end_rigid_tap(st, words)
 
 
 def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:

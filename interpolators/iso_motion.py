@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 import numpy as np
 
@@ -30,7 +30,8 @@ from toolpaths.geometry import PLANE_AXES, Arc, Line
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "move_feed", "initial_feed", "per_rev_spindle",
+__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "move_feed", "initial_feed", "per_rev_missing",
+           "per_rev_spindle",
            "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P", "dwell_p_point_note",
            "dwell_p_seconds"]
 
@@ -325,8 +326,7 @@ def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
     if st.feed_zero:
         why = f"F0, a zero feed rate ({_ZERO_FEED.get(st.context.dialect.name, _ZERO_FEED_ANY)})"
     elif st.per_rev:
-        why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
-               "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
+        per_rev_missing(st, where, code, mcol, mtok)
     elif st.uncalled_feed:
         why += f" ({st.uncalled_feed} is not executed: LinuxCNC runs an M98 block as a call only)"
     elif st.subprogram:
@@ -339,6 +339,23 @@ def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
         why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
     where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok,
                expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
+
+
+def per_rev_missing(st: State, where: Where, code: str, mcol: int, mtok: str) -> NoReturn:
+    """The error of a feed move (``code``: the move or cycle, for the message) under G95 without a feed: F (per
+    revolution) x S (the spindle speed), saying which of the two is missing. LinuxCNC refuses S0 ("Cannot feed with
+    zero spindle speed in feed per rev mode", rs274); elsewhere F x S0 is no feed at all."""
+    unit = "in/rev" if st.scale != 1.0 else "mm/rev"
+    if st.feed_per_rev is None:
+        where.fail(f"{code} under G95 feed per revolution: no F word since G95", column=mcol, text=mtok,
+                   expected=f"F<feed per revolution> > 0 [{unit}] after G95")
+    dialect = st.context.dialect.name
+    said = ('rs274: "Cannot feed with zero spindle speed in feed per rev mode"' if dialect == "linuxcnc" else
+            f"F{st.feed_per_rev_word:g} per revolution x S0 is no feed")
+    cleared = ", or the S of a rigid tap (M29), cleared at its end" if dialect == "fanuc" else ""
+    where.fail(f"{code} under G95 feed per revolution without a spindle speed: S0 (no S word > 0 before it{cleared}; "
+               f"{said})", column=mcol, text=mtok,
+               expected="S<spindle speed> > 0 [rev/min] (and M3/M4) before a feed move under G95")
 
 
 def per_rev_spindle(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
