@@ -165,6 +165,7 @@ from interpolators.iso_motion import (
     check_polar,
     dwell_block,
     fanuc_polar,
+    linuxcnc_modal_axis_words,
     motion_block,
 )
 from interpolators.iso_offsets import (
@@ -653,7 +654,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
         dwell_block(gcodes, seen, st, blocks, where, number, notes)
-        if "motion" not in gcodes:
+        if "motion" not in gcodes and not ("P" in seen and linuxcnc_modal_axis_words(seen, st)):
             return ended
         seen = {k: v for k, v in seen.items() if k != "P"}
     polar = [w for w in POLAR_LETTERS if w in seen]
@@ -1311,7 +1312,7 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.home, st.home_extra = st.pos.copy(), st.extra.copy()
         else:
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 520:
         local_offset(seen, axis_words, st, where, w)
         notes.add("G52 local offset")
@@ -1344,11 +1345,11 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
         st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
         st.g92_applied = False
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 923:
         st.g92, st.g92_extra = st.g92_saved.copy(), st.g92_extra_saved.copy()
         st.g92_applied = True
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 100:
         if "L" in seen and seen["L"].value == 0:
             # LinuxCNC g-code.adoc "G10 L0 Reload Tool Table Data" (interp_convert.cc convert_modal_0: an
