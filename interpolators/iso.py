@@ -152,6 +152,7 @@ from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_dwo import carry_work_zero, dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
+from interpolators.iso_fanuc_nurbs import NurbsCurve, g062_block, unfinished_g062
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
@@ -167,6 +168,7 @@ from interpolators.iso_motion import (
     fanuc_polar,
     linuxcnc_modal_axis_words,
     motion_block,
+    move_feed,
 )
 from interpolators.iso_offsets import (
     P_SELECT_CODES,
@@ -331,6 +333,7 @@ class State:
     # reading, the Fadal manual's cycle section was not found), K no repeat count (Fadal repeats with L)
     fadal: bool = False
     arc3d_mid: np.ndarray | None = None  # Fanuc G02.4/G03.4: the intermediate point read [mm] (iso_arc3d)
+    g062: NurbsCurve | None = None  # Fanuc G06.2: the NURBS being read (iso_fanuc_nurbs)
     arc3d_line: int = 0  # its line
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
@@ -484,6 +487,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         finish_compensation(st, blocks, source)
     expression_notes(text, params, dialect.name, notes)
     unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
+    unfinished_g062(st, Where(source, st.g062.line if st.g062 is not None else 0, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = program_axes(used, blocks)
     if st.extra_used:
@@ -685,6 +689,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
             return ended
+    if _g062(seen, gcodes, st):  # Fanuc G06.2 NURBS: its P (rank), K (knots) and R (weights)
+        if st.g062 is not None and gcodes.get("motion", (62,))[0] != 62:
+            unfinished_g062(st, where)
+        _motion_mode(gcodes, words, st)
+        target = block_target(seen, [a for a in "XYZ" if a in seen], st, machine=False)
+        g062_block(seen, gcodes, target, st, blocks, used, where, number, move_feed)
+        return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
     if st.arc3d_mid is not None and st.motion not in ARC3D_CODES:
@@ -720,6 +731,14 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _g062(seen, gcodes, st: State) -> bool:
+    """True for a block of a Fanuc G06.2 NURBS (:mod:`interpolators.iso_fanuc_nurbs`): the G06.2 block, a block
+    while a curve is being read, or under the modal G06.2 a block with X Y Z or K (which starts another curve)."""
+    if st.g062 is not None or gcodes.get("motion", (0,))[0] == 62:
+        return True
+    return "motion" not in gcodes and st.motion == 62 and any(a in seen for a in "XYZK")
 
 
 def _no_move(seen, gcodes, arc_words: list[str], st: State, where: Where) -> bool:

@@ -1668,6 +1668,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
         m.reread = m.comp_closed
+    if 62 in g:  # Fanuc G06.2 NURBS: its curve is not modelled here
+        raise ReferenceError("G06.2 NURBS")
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
         # G04 X<s> alone: X is the dwell time (Fanuc, Haas); with a motion code ("G4 P.001 G0 X1") X is that

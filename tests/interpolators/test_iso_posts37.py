@@ -6,11 +6,13 @@ block order as the post prints them); the posts were read, not run."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"])
 
@@ -52,3 +54,76 @@ def test_linuxcnc_dwell_with_p_leaves_x_to_the_motion():
     # alone stays Fanuc's dwell, noted). Before: "G04 needs exactly one of P or X"
     dwell_x = checked_iso("G21 G90\nG0 X1 Y2 Z10\nG1 F100\nG4 P0.5 X3\nM2\n", LINUXCNC)
     assert [(b.kind, float(b.target[0])) for b in dwell_x.blocks][1:] == [("dwell", 1.0), ("line", 3.0)]
+
+
+FANUC = MachineContext(dialect=DIALECTS["fanuc"])
+
+#: Siemens NX Post Builder's Fanuc 30i post (Unigraphics/PostBuilder fanuc_30i.def): block template ``nurbs``
+#: "G06.2 X Y Z K F P<rank>", a block "X Y Z K" per control point, then ``knots`` "K" alone, rank times; here the
+#: rational quadratic (rank 3) whose middle weight cos 45 deg makes it a quarter of the circle of radius 50 about
+#: X0 Y0 (control points X50 Y0, X50 Y50, X0 Y50; knots 0 0 0 1 1 1).
+NX_FANUC_NURBS = ("%\nO0001\nN0010 G40 G17 G90 G21\nN0020 G91 G28 Z0.0\nN0030 T01 M06\n"
+                  "N0040 G00 G90 G54 X50. Y0.0 S5000 M03\nN0050 G43 Z10. H01\nN0060 G05.1 Q1\n"
+                  "N0070 G01 Z0.0 F500.\nN0080 G06.2 X50. Y0.0 Z0.0 K0.0 F1000. P3\nN0090 X50. Y50. K0.0 R.70710678\n"
+                  "N0100 X0.0 Y50. K0.0\nN0110 K1.\nN0120 K1.\nN0130 K1.\nN0140 G01 Y60.\nN0150 G05.1 Q0\n"
+                  "N0160 G91 G28 Z0\nN0170 G90\nN0180 M30\n%\n")
+
+
+def _nurbs_rows(prog):
+    return [b for b in prog.blocks if b.line == 15]  # the last knot block's line
+
+
+def test_fanuc_g06_2_nurbs_runs_the_curve_of_its_knots_and_weights():
+    # FANUC Series 15i/150i-MA operator's manual (programming), "NURBS interpolation (G06.2)": "G06.2 [P_] K_ IP_
+    # [R_] [F_] ; K_ IP_ [R_] ; ... K_ ; K_ ;", P the rank (2-4, default 4), R the weight (default 1.0), K the knots
+    # (control points + rank of them), P(t) = sum N_ik w_i P_i / sum N_ik w_i. Before: refused ("G06.2 NURBS
+    # interpolation (Fanuc option): not supported")
+    prog = parse_program(NX_FANUC_NURBS, context=FANUC)
+    rows = _nurbs_rows(prog)
+    ends = np.array([b.target for b in rows])
+    assert len(rows) > 4 and all(b.kind == "line" for b in rows)
+    assert np.allclose(rows[0].start, [50.0, 0.0, 0.0]) and np.allclose(ends[-1], [0.0, 50.0, 0.0])
+    # every chord end on the circle, every chord within 1 um of it (its middle at most 1 um inside)
+    assert np.abs(np.hypot(ends[:, 0], ends[:, 1]) - 50.0).max() < 1e-6  # R.70710678: cos 45 deg to 8 digits
+    mids = np.array([(b.start + b.target) / 2 for b in rows])
+    assert 50.0 - np.hypot(mids[:, 0], mids[:, 1]).min() <= 1e-3
+    assert rows[0].feed * 60 == pytest.approx(1000.0)  # F1000. [mm/min] of the G06.2 block; feeds in mm/s
+    after = [b for b in prog.blocks if b.line == 16]
+    assert after[0].target.tolist() == pytest.approx([0.0, 60.0, 0.0])  # G01 Y60. ends the NURBS mode
+
+
+def test_fanuc_g06_2_rank_2_is_the_polygon_of_its_control_points():
+    # rank 2 (degree one): the curve is the polygon; knots 0 0 1 2 2 (the first and last two equal). The first
+    # block's control point omitted: the current position (15i-MA: "If a control point command is omitted in the
+    # first block, the current position where NURBS interpolation is started is the first control point")
+    text = "G21 G90 G17\nG00 X0 Y0 Z0\nG01 F600.\nG06.2 P2 K0.\nK0. X10. Y0.\nK1. X10. Y10.\nK2.\nK2.\nM30\n"
+    prog = parse_program(text, context=FANUC)
+    ends = np.array([b.target for b in prog.blocks if b.line == 8])
+    assert np.allclose(ends[-1], [10.0, 10.0, 0.0])
+    on_first = np.isclose(ends[:, 1], 0.0) & (ends[:, 0] <= 10.0 + 1e-12)
+    on_second = np.isclose(ends[:, 0], 10.0)
+    assert np.all(on_first | on_second) and any(np.allclose(p, [10.0, 0.0, 0.0]) for p in ends)
+
+
+@pytest.mark.parametrize(("edit", "message"), [
+    (("N0120 K1.\n", "N0120 X5. K1.\n"), r"a control point after the knot-only blocks began"),
+    (("N0100 X0.0 Y50. K0.0\n", "N0100 X0.0 Y50.\n"), r":12:.*without its knot K \(Fanuc alarm 1002\)"),
+    (("N0110 K1.\n", "N0110 K.5\n"), r"the first 3 knots are not equal, nor the last 3 \(Fanuc alarm 1007"),
+    (("N0130 K1.\n", "N0130 G01 X0.\n"), r":15:.*G06.2 NURBS of line 10: 1 knot-only block\(s\) K missing"),
+    (("N0080 G06.2 X50.", "N0080 G06.2 X45."), r"the first control point is not the current position"),
+    (("P3\n", "P5\n"), r"G06.2 NURBS rank P5: the rank is 2, 3 or 4"),
+    (("N0070 G01 Z0.0", "N0070 G91 G01 Z0.0"), r"G06.2 NURBS under G91"),
+])
+def test_fanuc_g06_2_refusals_name_what_is_wrong(edit, message):
+    with pytest.raises(GCodeError, match=message):
+        parse_program(NX_FANUC_NURBS.replace(*edit), context=FANUC)
+    # the program's end before the last knot block
+    with pytest.raises(GCodeError, match=r"G06.2 NURBS of line 10: 3 knot-only block"):
+        parse_program(NX_FANUC_NURBS.split("N0110")[0], context=FANUC)
+
+
+def test_g06_2_stays_a_named_refusal_outside_fanuc():
+    for dialect in ("linuxcnc", "haas"):
+        with pytest.raises(GCodeError, match=r"G06.2 NURBS interpolation \(Fanuc option; --dialect fanuc\)"):
+            parse_program(NX_FANUC_NURBS.replace("G05.1 Q1", "").replace("G05.1 Q0", ""),
+                          context=MachineContext(dialect=DIALECTS[dialect]))
