@@ -694,7 +694,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
             unfinished_g062(st, where)
         _motion_mode(gcodes, words, st)
         target = block_target(seen, [a for a in "XYZ" if a in seen], st, machine=False)
-        g062_block(seen, gcodes, target, st, blocks, used, where, number, move_feed)
+        g062_block(seen, gcodes, target, st, blocks, used, where, number, move_feed, notes)
         return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)

@@ -69,10 +69,10 @@ class NurbsCurve:
 
 
 def g062_block(seen, gcodes, target: np.ndarray, st: State, blocks: list[Block], used: set[int], where: Where,
-               number, move_feed) -> None:
+               number, move_feed, notes) -> None:
     """One block under G06.2 (``target``: its end as an ordinary move reads it, machine coordinates): a control
     point with its knot, or a knot alone; the last knot block runs the curve (``move_feed(st, segment)``: the
-    chords' feed)."""
+    chords' feed) and adds its note to ``notes``."""
     w = gcodes["motion"][1] if "motion" in gcodes else next(iter(seen.values()))
     _refuse(seen, st, where, w)
     moves = [a for a in "XYZ" if a in seen]
@@ -111,6 +111,7 @@ def g062_block(seen, gcodes, target: np.ndarray, st: State, blocks: list[Block],
     curve.knot_only += 1
     if curve.knot_only == curve.rank:
         _run(curve, st, blocks, used, where, number, move_feed, w)
+        notes.add("G06.2 NURBS run as chords within 1 um of the curve")
 
 
 def _refuse(seen, st: State, where: Where, w) -> None:

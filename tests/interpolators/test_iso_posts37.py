@@ -88,6 +88,7 @@ def test_fanuc_g06_2_nurbs_runs_the_curve_of_its_knots_and_weights():
     mids = np.array([(b.start + b.target) / 2 for b in rows])
     assert 50.0 - np.hypot(mids[:, 0], mids[:, 1]).min() <= 1e-3
     assert rows[0].feed * 60 == pytest.approx(1000.0)  # F1000. [mm/min] of the G06.2 block; feeds in mm/s
+    assert "G06.2 NURBS run as chords within 1 um of the curve" in prog.notes
     after = [b for b in prog.blocks if b.line == 16]
     assert after[0].target.tolist() == pytest.approx([0.0, 60.0, 0.0])  # G01 Y60. ends the NURBS mode
 
