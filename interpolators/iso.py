@@ -152,6 +152,7 @@ from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_dwo import carry_work_zero, dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
+from interpolators.iso_fanuc_nurbs import NurbsCurve, g062_block, unfinished_g062
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
@@ -165,7 +166,9 @@ from interpolators.iso_motion import (
     check_polar,
     dwell_block,
     fanuc_polar,
+    linuxcnc_modal_axis_words,
     motion_block,
+    move_feed,
 )
 from interpolators.iso_offsets import (
     P_SELECT_CODES,
@@ -333,6 +336,7 @@ class State:
     # reading, the Fadal manual's cycle section was not found), K no repeat count (Fadal repeats with L)
     fadal: bool = False
     arc3d_mid: np.ndarray | None = None  # Fanuc G02.4/G03.4: the intermediate point read [mm] (iso_arc3d)
+    g062: NurbsCurve | None = None  # Fanuc G06.2: the NURBS being read (iso_fanuc_nurbs)
     arc3d_line: int = 0  # its line
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
@@ -486,6 +490,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         finish_compensation(st, blocks, source)
     expression_notes(text, params, dialect.name, notes)
     unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
+    unfinished_g062(st, Where(source, st.g062.line if st.g062 is not None else 0, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = program_axes(used, blocks)
     if st.extra_used:
@@ -662,7 +667,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
         dwell_block(gcodes, seen, st, blocks, where, number, notes)
-        if "motion" not in gcodes:
+        if "motion" not in gcodes and not ("P" in seen and linuxcnc_modal_axis_words(seen, st)):
             return ended
         seen = {k: v for k, v in seen.items() if k != "P"}
     polar = [w for w in POLAR_LETTERS if w in seen]
@@ -693,6 +698,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
             return ended
+    if _g062(seen, gcodes, st):  # Fanuc G06.2 NURBS: its P (rank), K (knots) and R (weights)
+        if st.g062 is not None and gcodes.get("motion", (62,))[0] != 62:
+            unfinished_g062(st, where)
+        _motion_mode(gcodes, words, st)
+        target = block_target(seen, [a for a in "XYZ" if a in seen], st, machine=False)
+        g062_block(seen, gcodes, target, st, blocks, used, where, number, move_feed, notes)
+        return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
     if st.arc3d_mid is not None and st.motion not in ARC3D_CODES:
@@ -728,6 +740,14 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _g062(seen, gcodes, st: State) -> bool:
+    """True for a block of a Fanuc G06.2 NURBS (:mod:`interpolators.iso_fanuc_nurbs`): the G06.2 block, a block
+    while a curve is being read, or under the modal G06.2 a block with X Y Z or K (which starts another curve)."""
+    if st.g062 is not None or gcodes.get("motion", (0,))[0] == 62:
+        return True
+    return "motion" not in gcodes and st.motion == 62 and any(a in seen for a in "XYZK")
 
 
 def _no_move(seen, gcodes, arc_words: list[str], st: State, where: Where) -> bool:
@@ -1320,7 +1340,7 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.home, st.home_extra = st.pos.copy(), st.extra.copy()
         else:
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key in (520, 920):
         refuse_wrapped_offset(seen, st, where, f"G{key // 10}")
     if key == 520:
@@ -1355,11 +1375,11 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
         st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
         st.g92_applied = False
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 923:
         st.g92, st.g92_extra = st.g92_saved.copy(), st.g92_extra_saved.copy()
         st.g92_applied = True
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 100:
         if "L" in seen and seen["L"].value == 0:
             # LinuxCNC g-code.adoc "G10 L0 Reload Tool Table Data" (interp_convert.cc convert_modal_0: an

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 __all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "move_feed", "initial_feed", "per_rev_missing",
            "per_rev_spindle",
            "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P", "dwell_p_point_note",
-           "dwell_p_seconds"]
+           "dwell_p_seconds", "linuxcnc_modal_axis_words"]
 
 #: an M98 subprogram call in a line (a word M98, not M980)
 _M98 = re.compile(r"(?<![A-Z])M0*98(?![0-9.])", re.IGNORECASE)
@@ -541,19 +541,33 @@ def dwell_p_point_note(word: Word, st: State, notes: Notes | None) -> None:
                   "(where P is seconds, as on LinuxCNC and grbl: --dialect linuxcnc, it dwells 1000 times longer)")
 
 
+def linuxcnc_modal_axis_words(seen, st: State) -> bool:
+    """True when the block's axis words move by the modal motion although a group 0 code is in it: under
+    ``linuxcnc``, whose group 0 codes other than G10, G28, G30, G52 and G92 do not use axis words (rs274ngc
+    interp_check.cc ``enhance_block``: ``mode_zero_covets_axes``; "if there is an axis value in the block and no
+    g-code to use it ... set motion_to_be to be the last motion saved"). So ``G28.1 Z3`` (SheetCAM's Mach3
+    floating-head posts) stores the position, then moves to Z3 by G0/G1, as do G30.1, G92.1-G92.3 and a dwell
+    ``G4 P..`` (LinuxCNC order of execution: the dwell and the group 0 code before the motion)."""
+    return st.context.dialect.name == "linuxcnc" and any(a in seen for a in ("X", "Y", "Z", *EXTRA_LETTERS))
+
+
 def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
     key, gw = gcodes["dwell"]
     if "motion" in gcodes and "P" not in seen:
         w = gcodes["motion"][1]
         where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
                    expected="G04 P<time> G01 X..")
-    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen]
+    moves = "motion" in gcodes or ("P" in seen and linuxcnc_modal_axis_words(seen, st))
+    axis = ("Y", "Z", *EXTRA_LETTERS) if moves else ()
+    bad = [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen and w not in axis]
+    if "motion" in gcodes:
+        bad = []
     if bad:
         w = seen[bad[0]]
         where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
                    expected="G04 P<time> or G04 X<s>")
     unit = st.context.dialect.dwell_p_unit
-    if "motion" in gcodes:  # X belongs to the motion; the dwell time is P
+    if moves:  # X belongs to the motion; the dwell time is P
         seen = {k: v for k, v in seen.items() if k != "X"}
     if ("P" in seen) == ("X" in seen):
         where.fail(f"G04 needs exactly one of P or X{firmware_dwell_hint(seen)}", column=gw.column, text=gw.text,

@@ -1224,9 +1224,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code in (270, 290, 600) and m.ctx.dialect.name in ("fanuc", "haas"):
             _from_reference(m, line, code, words)
             return True
-        if code in (281, 301):
+        if code in (281, 301):  # LinuxCNC: the block's axis words move by the modal motion (enhance_block)
             m.home[code - 1] = m.pos.copy()
-            return True
+            return m.ctx.dialect.name != "linuxcnc"
         if code == 531:
             raise ReferenceError(f"G{code / 10:g}")
         if code == 100:
@@ -1767,10 +1767,14 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
         m.reread = m.comp_closed
+    if 62 in g:  # Fanuc G06.2 NURBS: its curve is not modelled here
+        raise ReferenceError("G06.2 NURBS")
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
-        if not any(c in (0, 10, 20, 30) for c in g):  # G04 X<s> alone: X is the dwell time (Fanuc, Haas);
-            words.pop("x", None)  # with a motion code ("G4 P.001 G0 X1") X is that motion's
+        # G04 X<s> alone: X is the dwell time (Fanuc, Haas); with a motion code ("G4 P.001 G0 X1") X is that
+        # motion's, and under LinuxCNC with P also without one ("G4 P0.5 X3": the modal motion, enhance_block)
+        if not any(c in (0, 10, 20, 30) for c in g) and not ("p" in words and m.ctx.dialect.name == "linuxcnc"):
+            words.pop("x", None)
     if m.ctx.dialect.name == "fanuc" and m.ctx.decimal_point_input == "increment":
         _least_increments(m, g, words, ln.text)
     _modes(m, g, words, ln.text)

@@ -849,8 +849,9 @@ def test_unsupported_control_specific_g_codes_are_named(code, name):
     # Haas NGC mill manual "G254 Dynamic Work Offset (DWO)": read under haas on a table's kinematics (session 36,
     # test_iso_posts36.py), named elsewhere
     ("fanuc", "G254", "G254 dynamic work offset (Haas DWO"), ("fanuc", "G255", "G255 dynamic work offset cancel"),
-    # Fanuc "NURBS interpolation (G06.2)", as an industrial post (PowerMill, NX) writes it
-    ("fanuc", "G06.2 P3 K0. X0 Y0 Z0 R1.", "G06.2 NURBS interpolation (Fanuc option)")])
+    # Fanuc "NURBS interpolation (G06.2)", as an industrial post (PowerMill, NX) writes it: read under fanuc
+    # (posts37, test_iso_posts37.py), named elsewhere
+    ("haas", "G06.2 P3 K0. X0 Y0 Z0 R1.", "G06.2 NURBS interpolation (Fanuc option; --dialect fanuc)")])
 def test_industrial_post_codes_without_known_motion_are_named(dialect, code, name):
     with pytest.raises(GCodeError, match=rf"2:1: {re.escape(name)}.*: not supported"):
         parse_program(f"G21 G90\n{code}\nG0 X1.\n", context=_in_dialect(dialect))
