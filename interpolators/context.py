@@ -310,7 +310,10 @@ class Dialect:
         G00-G03 block (:func:`interpolators.iso_offsets.length_travel`); an absolute Z word takes it up; a G43, G44
         or G49 block of G00 or G01 without a Z word (``G43 H1`` alone, ``G49 X0 Y0``) moves Z by the change in that
         block, at its rapid or feed (:func:`interpolators.iso_offsets.length_moves_now`: what 12.5.2 says TOS = 1
-        does not do), under G90 and G91 alike; an arc or a canned cycle leaves it to the next Z word. Haas (its G43
+        does not do), under G90 and G91 alike; an arc or a canned cycle leaves it to the next Z word. Z at its
+        reference (G28, G30) or at a machine coordinate (G53) cancels the offset vector, G43 staying, and the next Z
+        move restores it (Fanuc 0i-MB B-63844EN/02 14.1.2; :func:`interpolators.iso_offsets.length_cancelled`): a
+        ``G49`` after ``G91 G28 Z0`` moves nothing. Haas (its G43
         "Tool Length Compensation + (Add)" takes the Fanuc words) and Fadal (its Format 2 is Fanuc's) follow
         Fanuc's default here: no Haas or Fadal text we found says otherwise. A machine file's ``[program]
         length_offset_motion`` sets it for its machine (false: Fanuc TOS = 1).

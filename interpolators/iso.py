@@ -171,6 +171,7 @@ from interpolators.iso_offsets import (
     P_SELECT_CODES,
     g10,
     g54_takes_p,
+    length_cancelled,
     length_compensation,
     length_moves_now,
     length_travel,
@@ -1300,10 +1301,14 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         if now:
             used.add(2)
         machine = not _incremental_g53(st, notes) if axis_words else True
-        # a Z in machine coordinates takes up a tool length change not yet travelled; Fanuc's G53 under G91 moves
-        # by its words, and travels it as any incremental Z (iso_offsets.length_travel)
-        target = length_travel(block_target(seen, axis_words, st, machine=machine), axis_words, st, now=now)
+        # a Z in machine coordinates moves by its words alone, the tool length offset vector cancelled (Fanuc 0i-MB
+        # 14.1.2: restored by the next Z move, iso_offsets.length_cancelled)
+        target = block_target(seen, axis_words, st, machine=machine)
+        if "Z" not in axis_words:
+            target = length_travel(target, axis_words, st, now=now)
         motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=machine)
+        if "Z" in axis_words:
+            length_cancelled(st)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
             and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's

@@ -11,7 +11,7 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target
 from interpolators.iso_motion import block_target, rapid_move
-from interpolators.iso_offsets import length_travel
+from interpolators.iso_offsets import length_cancelled, length_travel
 from interpolators.iso_polar import POLAR_LETTERS
 from interpolators.iso_reference import FANUC_CODES, MILL_CODES, off_reference, stored_intermediate
 
@@ -25,7 +25,8 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
     """G28/G30: through the programmed intermediate point to the reference, only the axes named
     (A-W words too); without axis words every axis, A-W to their reference positions. A tool length change not yet
     travelled (Fanuc, Haas, Fadal: :func:`interpolators.iso_offsets.length_travel`) is taken up by the intermediate
-    point's incremental Z, and is gone once Z is at its reference."""
+    point's incremental Z; at its reference the offset vector is cancelled, to be restored by the next Z move
+    (:func:`interpolators.iso_offsets.length_cancelled`)."""
     ref = st.home if key == 280 else st.reference2
     ref_rot = st.home_extra if key == 280 else st.reference2_extra
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
@@ -49,8 +50,10 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
             for a in rot_words:
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
         rapid_move(end, st, blocks, used, where, number, axis_words, rot=end_rot)
+        if "Z" in axis_words:
+            length_cancelled(st)
     else:
-        st.length_pending = 0.0  # Z goes to its reference
+        length_cancelled(st)  # Z goes to its reference
         st.intermediate = st.to_program(st.pos)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
         rapid_move(ref.copy(), st, blocks, used, where, number, ["X", "Y", "Z"], rot=ref_rot.copy() if back else None)

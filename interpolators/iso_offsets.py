@@ -88,7 +88,7 @@ if TYPE_CHECKING:
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
            "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "length_travel",
-           "length_moves_now", "reference_p", "local_offset", "g10"]
+           "length_moves_now", "length_cancelled", "reference_p", "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -414,6 +414,18 @@ def length_travel(target: np.ndarray, axis_words: list[str], st: State, *, now: 
         target[2] += st.length_pending
     st.length_pending = 0.0
     return target
+
+
+def length_cancelled(st: State) -> None:
+    """Z has reached its reference (G28, G30) or a machine coordinate (G53): under compensation by an axis movement
+    the tool length offset vector is cancelled there and restored by the next Z move, the modal G43/G44 and H
+    staying (FANUC Series 0i-MB operator's manual B-63844EN/02, 14.1.2 "G53, G28, and G30 Commands in Tool Length
+    Offset Mode": the vector of the tool length offset axis is "canceled upon movement to a reference position being
+    performed", G53's "upon movement being performed according to a specified value"; "the previously specified modal
+    G code remains displayed"): the whole offset is left to travel (:func:`length_travel`), so a ``G49`` after
+    ``G91 G28 Z0`` (Fusion 360's Fanuc post) moves nothing, and an incremental Z after it travels the offset again.
+    Under a coordinate shift nothing is left to travel."""
+    st.length_pending = st.tool_length if st.context.dialect.length_offset_motion else 0.0
 
 
 def length_moves_now(gcodes, motion: int | None, st: State) -> bool:

@@ -1137,10 +1137,12 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             axes = [i for i, a in enumerate("xyz") if a in words]
             extra = m.extra_words(words)
             mid = m.target(words)
-            if "z" in words:  # Fanuc: an incremental Z travels the tool length change too; at the reference it is gone
+            if "z" in words:  # Fanuc: an incremental Z travels the tool length change too
                 mid[2] += m.length_change if m.incremental else 0.0
             if "z" in words or not axes and not extra:
-                m.length_change = 0.0
+                # Fanuc 0i-MB B-63844EN/02 14.1.2: the length vector is cancelled at the reference, G43 staying;
+                # the next Z move restores it
+                m.length_change = m.tool_length if m.length_moves else 0.0
             m.intermediate[axes] = mid[axes]  # Fanuc/Haas G29 returns through it
             if not axes and not extra:
                 m.intermediate = m.to_program(m.pos)
@@ -1381,9 +1383,11 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         for i, a in enumerate("xyz"):
             if a in words:
                 end[i] = end[i] * steps + words[a][-1] * m.scale
-        if "z" in words or now:  # machine Z takes up a tool length change not yet travelled; G53 under G91 travels it
-            end[2] += m.length_change if steps or now else 0.0
+        if now:  # "G53 G49" without Z: the change moves Z
+            end[2] += m.length_change
             m.length_change = 0.0
+        if "z" in words:  # 14.1.2: a G53 Z cancels the length vector (G43 staying), the next Z move restores it
+            m.length_change = m.tool_length if m.length_moves else 0.0
         m.extra = m.extra_end(words, machine=not steps)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return

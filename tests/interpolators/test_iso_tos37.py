@@ -134,3 +134,32 @@ def test_a_linuxcnc_machine_with_tos_0_moves_like_fanuc():
     """The setting is the machine's, whatever the dialect: a linuxcnc context with it moves Z in "G43 H1"."""
     ctx = context("linuxcnc", length_offset_motion=True)
     assert np.allclose(checked_iso("G21 G90 G0 X0 Y0 Z0\nG43 H1\nM30\n", ctx).blocks[-1].target, [0.0, 0.0, 50.0])
+
+
+# FANUC Series 0i-MB operator's manual B-63844EN/02, 14.1.2 "G53, G28, and G30 Commands in Tool Length Offset Mode":
+# the vector of the tool length offset axis is "canceled upon movement to a reference position being performed"
+# (G53: "upon movement being performed according to a specified value"), "the previously specified modal G code
+# remains displayed", and restored afterwards.
+FUSION_END = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG28 G91 Z0\nG90\nG49\nG28 G91 X0 Y0\nM30\n"
+
+
+@pytest.mark.parametrize("dialect", MOVING)
+def test_g49_after_a_reference_return_moves_nothing(dialect):
+    """Fusion 360's Fanuc post ends "G28 G91 Z0 / G90 / G49": the vector is cancelled at the reference already, so the
+    G49 moves nothing and Z stays home (a guard: moving Z in a G49 block must not plunge the tool 50 mm here)."""
+    assert [r[2][2] for r in rows(FUSION_END, context(dialect))] == [0.0, 60.0, 60.0, 0.0, 0.0, 0.0]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+@pytest.mark.parametrize("to_z", ["G91 G28 Z0", "G90 G53 G0 Z0"])
+def test_the_next_incremental_z_restores_the_vector(dialect, to_z):
+    """14.1.2: after G28 Z (or G53 Z) under G43 H1 the vector is restored by the next Z move: G91 Z-5. ends at the
+    reference + 50 - 5. Before: the reference return took the offset up for good, Z ended at -5."""
+    text = f"G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\n{to_z}\nG91 G0 Z-5.\nM30\n"
+    assert rows(text, context(dialect))[-1][2][2] == pytest.approx(45.0)
+
+
+def test_an_absolute_z_after_the_reference_return_is_unchanged():
+    """Under G90 the restored vector is in the end point already: G43 H1, G91 G28 Z0, G90 Z10. ends at 10 + 50."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG91 G28 Z0\nG90 G0 Z10.\nM30\n"
+    assert rows(text, context("fanuc"))[-1][2][2] == pytest.approx(60.0)
