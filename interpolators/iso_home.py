@@ -61,7 +61,8 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
 
 def mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where: Where, number,
                       notes: Notes) -> None:
-    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes."""
+    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes; an incremental Z
+    travels a tool length change not yet travelled (:func:`interpolators.iso_offsets.length_travel`)."""
     name = {**MILL_CODES, **FANUC_CODES}[key][1]
     code = name.split()[0]
     bad = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "I", "J", "K", "R") if a in seen), None)
@@ -80,7 +81,10 @@ def mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where:
             where.fail(f"{name}: no G28/G30 intermediate point for axis {word.letter} (no G28/G30 named it before)",
                        column=word.column, text=word.text, expected=f"G28 {word.letter}.. before {code}")
         rapid_move(st.to_machine(mid), st, blocks, used, where, number, axis_words)
-    rapid_move(block_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
+        if "Z" in axis_words:  # a program point: the length vector a G28 Z cancelled is back in it (length_cancelled)
+            st.length_pending = 0.0
+    target = length_travel(block_target(seen, axis_words, st, machine=False), axis_words, st)
+    rapid_move(target, st, blocks, used, where, number, axis_words)
     if key == 270:
         missed = off_reference(st.pos, st.home, axis_words)
         notes.add(f"{name}" + (f": {', '.join(missed)} not at the reference position (the control alarms: PS0092)"

@@ -1204,7 +1204,13 @@ def _from_reference(m: _Machine, line: int, code: int, words: dict) -> None:
             if a in words:
                 mid[i] = m.intermediate[i]
         m.move(line, "rapid", mid, optional=True)
-    m.move(line, "rapid", m.target(words), optional=True)
+        if "z" in words:  # a program point: the length vector a G28 Z cancelled is back in it
+            m.length_change = 0.0
+    end = m.target(words)
+    if "z" in words:  # an incremental Z travels a tool length change not yet travelled
+        end[2] += m.length_change if m.incremental else 0.0
+        m.length_change = 0.0
+    m.move(line, "rapid", end, optional=True)
 
 
 def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:

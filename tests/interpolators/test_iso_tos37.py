@@ -163,3 +163,19 @@ def test_an_absolute_z_after_the_reference_return_is_unchanged():
     """Under G90 the restored vector is in the end point already: G43 H1, G91 G28 Z0, G90 Z10. ends at 10 + 50."""
     text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG91 G28 Z0\nG90 G0 Z10.\nM30\n"
     assert rows(text, context("fanuc"))[-1][2][2] == pytest.approx(60.0)
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_g29_brings_the_vector_back_once(dialect):
+    """G29 Z through the G28 intermediate point (a program point, the offset in it): after it a G91 Z-5. moves 5
+    alone (the restored vector is not travelled twice)."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG91 G28 Z0\nG90 G29 Z20.\nG91 G0 Z-5.\nM30\n"
+    assert [r[2][2] for r in rows(text, context(dialect))][-2:] == [70.0, 65.0]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_an_incremental_g60_z_travels_the_change(dialect):
+    """G60 single-direction positioning (a rapid here) under G91 after a reference return: its Z word travels the
+    restored vector as any incremental Z (14.1.2)."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG91 G28 Z0\nG91 G60 Z-5.\nG0 Z-5.\nM30\n"
+    assert [r[2][2] for r in rows(text, context(dialect))][-2:] == [45.0, 40.0]
