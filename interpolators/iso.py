@@ -1294,20 +1294,15 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                            "with G53\")", column=w.column, text=w.text,
                            expected="G53 G0 X.. (a move in machine coordinates), or --dialect fanuc/grbl, where a "
                                     "bare G53 does nothing")
-            if not length_moves_now(gcodes, motion, st):
-                return True  # no axis word: nothing moves (a "G53 G0" alone)
-        # Fanuc TOS = 0: G49 in "G53 G49 M05" (a Fanuc post's) moves Z by the change at once (iso_offsets)
-        now = length_moves_now(gcodes, motion, st)
-        if now:
-            used.add(2)
-        machine = not _incremental_g53(st, notes) if axis_words else True
-        # a Z in machine coordinates moves by its words alone, the tool length offset vector cancelled (Fanuc 0i-MB
-        # 14.1.2: restored by the next Z move, iso_offsets.length_cancelled)
+            if "length compensation" in gcodes:
+                length_cancelled(st)
+            return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
+        machine = not _incremental_g53(st, notes)
+        # a Z in machine coordinates moves by its words alone; it and a G43/G49 of the block cancel the tool length
+        # vector without moving Z (Fanuc 0i-MB 14.1.2, "G49 G53": restored by the next Z move, iso_offsets)
         target = block_target(seen, axis_words, st, machine=machine)
-        if "Z" not in axis_words:
-            target = length_travel(target, axis_words, st, now=now)
         motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=machine)
-        if "Z" in axis_words:
+        if "Z" in axis_words or "length compensation" in gcodes:
             length_cancelled(st)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \

@@ -421,7 +421,8 @@ def length_cancelled(st: State) -> None:
     the tool length offset vector is cancelled there and restored by the next Z move, the modal G43/G44 and H
     staying (FANUC Series 0i-MB operator's manual B-63844EN/02, 14.1.2 "G53, G28, and G30 Commands in Tool Length
     Offset Mode": the vector of the tool length offset axis is "canceled upon movement to a reference position being
-    performed", G53's "upon movement being performed according to a specified value"; "the previously specified modal
+    performed", G53's and ``G49 G53``'s "upon movement being performed according to a specified value", a G49 in a
+    G53 block without a Z word moving no Z; "the previously specified modal
     G code remains displayed"): the whole offset is left to travel (:func:`length_travel`), so a ``G49`` after
     ``G91 G28 Z0`` (Fusion 360's Fanuc post) moves nothing, and an incremental Z after it travels the offset again.
     Under a coordinate shift nothing is left to travel."""
@@ -442,8 +443,9 @@ def length_moves_now(gcodes, motion: int | None, st: State) -> bool:
     20.2, whose "N2 G43 H01;" and "N8 G49;" have no axis word). Our reading
     for other blocks: an arc or a canned cycle keeps the change for the next Z word (a cycle's R-point positioning
     takes it, Fanuc 15i-MA B-63784EN "Tool length compensation" in a canned cycle), and so does a block before any
-    motion code."""
-    return bool(st.length_pending) and "length compensation" in gcodes and motion in (0, 10)
+    motion code; under tool centre point control (G43.4, G234) the tip is programmed, and a G53 block cancels the
+    vector instead (:func:`length_cancelled`)."""
+    return bool(st.length_pending) and "length compensation" in gcodes and motion in (0, 10) and not st.tcp
 
 
 def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:

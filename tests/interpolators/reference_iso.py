@@ -1378,9 +1378,12 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         _nurbs(m, line, words, axes)
         return
     # TOS = 0 (B-63943EN-1/02 12.5.2): a G43/G44/G49 block (Fadal: its H) of G00/G01 without Z moves Z by the change
-    now = (bool(m.length_change) and m.motion in (0, 10) and not m.tcp and "z" not in words
-           and any(c in (430, 431, 440, 490) for c in g))
-    if 530 in g and (axes or now):
+    length_code = any(c in (430, 431, 440, 490) for c in g)
+    now = bool(m.length_change) and m.motion in (0, 10) and not m.tcp and "z" not in words and length_code \
+        and 530 not in g
+    if 530 in g and length_code and not axes:  # "G53 G49 M05": the vector cancelled, no move (0i-MB 14.1.2)
+        m.length_change = m.tool_length if m.length_moves else 0.0
+    if 530 in g and axes:
         if m.motion not in (0, 10):
             raise ReferenceError("G53 without G0/G1 motion")
         # under G91 Fanuc/Haas move by the words (Mitsubishi M700V 14.4 (4)); grbl keeps them machine positions
@@ -1389,10 +1392,8 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         for i, a in enumerate("xyz"):
             if a in words:
                 end[i] = end[i] * steps + words[a][-1] * m.scale
-        if now:  # "G53 G49" without Z: the change moves Z
-            end[2] += m.length_change
-            m.length_change = 0.0
-        if "z" in words:  # 14.1.2: a G53 Z cancels the length vector (G43 staying), the next Z move restores it
+        if "z" in words or length_code:  # 14.1.2: a G53 Z or G49 G53 cancels the length vector, no Z travel; the
+            # next Z move restores it (G43 staying)
             m.length_change = m.tool_length if m.length_moves else 0.0
         m.extra = m.extra_end(words, machine=not steps)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)

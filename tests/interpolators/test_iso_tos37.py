@@ -67,11 +67,13 @@ def test_g49_alone_under_g01_feeds_z_back_by_the_offset(dialect):
 
 
 @pytest.mark.parametrize("dialect", ["fanuc", "haas"])
-def test_a_fanuc_posts_g53_g49_moves_z_by_the_change(dialect):
-    """A Fanuc post's "G53 G49 M05" (no axis word) under TOS = 0: its G49 moves Z by -50 (the machine Z it ends at is
-    the Z before it minus the offset). Before: nothing moved there."""
-    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG53 G49 M05\nM30\n"
-    assert rows(text, context(dialect))[-1] == (3, "rapid", [0.0, 0.0, 10.0])
+@pytest.mark.parametrize("g53", ["G53 G49 M05", "G49 G53 G0 X5. Y5."])
+def test_g49_in_a_g53_block_cancels_the_vector_without_moving_z(dialect, g53):
+    """Fanuc 0i-MB B-63844EN/02 14.1.2, "G49G53P_;": the length vector is cancelled with the block's movement, not
+    travelled: a Fanuc post's "G53 G49 M05" leaves Z where it is, and the G91 Z-5. after it moves 5 alone. Before:
+    the -50 mm change waited for that Z-5. and ended 50 mm low (Z 5)."""
+    text = f"G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\n{g53}\nG91 G0 Z-5.\nM30\n"
+    assert [r[2][2] for r in rows(text, context(dialect))][-2:] == [60.0, 55.0]
 
 
 @pytest.mark.parametrize("dialect", ["fanuc", "haas"])
