@@ -622,8 +622,8 @@ def _structure(lines: list[_Line]) -> dict:
         program_of[i] = program_start
         if name is None:
             continue
-        if k is None:
-            fanuc[name] = i
+        if k is None:  # O01000 (Haas numbers programs O00001-O99999) is the program M98 P1000 calls
+            fanuc[str(int(name)) if name.isdigit() else name] = i
         elif k in ("sub", "if", "repeat") or (k == "while" and not (stack and stack[-1][:2] == (name, "do"))) \
                 or k == "do":
             stack.append((name, k, i))
@@ -2057,7 +2057,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc)
     if fadal:
         lines = _fadal_lines(lines)
-    own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
+    own = {str(int(ln.oname)) if ln.oname.isdigit() else ln.oname for ln in lines
+           if ln.oname is not None and ln.okey is None}
     for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"(?:m0*98|g0*65)p(\d+)", ln.text)}
                          - own):
         other = resolve(target) if resolve is not None else None
@@ -2119,16 +2120,21 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "m99":
             if not frames or frames[-1]["kind"] not in ("m98", "g65"):
                 break
-            pc = _m99_return(ln, frames, st, params)
+            pc = _m99_return(ln, frames, st, params, pc=pc, haas=context.dialect.name == "haas")
             continue
         pc += 1
     return m.out
 
 
-def _m99_return(ln, frames: list[dict], st, params) -> int:  # noqa: ANN001
+def _m99_return(ln, frames: list[dict], st, params, *, pc: int, haas: bool) -> int:  # noqa: ANN001
     """The line an M99 goes on at in an M98 or G65 frame: the called program again while repeats are left, else
-    the caller's next line (or its block N<n> for an M99 P<n>, Haas, Fanuc); a G65's locals #1-#33 as they
-    were."""
+    the caller's next line (or its block N<n> for an M99 P<n>, Fanuc); a G65's locals #1-#33 as they were. Haas's
+    M99 P<n> branches to N<n> of the running subprogram and stays in it (Haas mill operator's manual 96-8000,
+    "Macros", "Conditional Expressions": "M99 ... branch unconditionally to any line in the current subroutine ...
+    It does not return to the calling program")."""
+    words, _ = _words(ln.text, params)
+    if haas and "p" in words:
+        return _goto(words["p"][-1], pc, st)
     f = frames[-1]
     if f["kind"] == "g65":
         frames.pop()
@@ -2138,7 +2144,6 @@ def _m99_return(ln, frames: list[dict], st, params) -> int:  # noqa: ANN001
         f["left"] -= 1
         return f["start"]
     frames.pop()
-    words, _ = _words(ln.text, params)
     return _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
 
 
