@@ -44,7 +44,7 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
-            "cycle_sub", "g52_rotated", "external", "tcp")
+            "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -777,6 +777,93 @@ class _Gen:
         self.emit(f"G43 H{t} {self.xyz(z=50)}")
         self.comp_section(t)
 
+    def length_motion_section(self) -> None:
+        """A tool length offset changed under G91 as posts write it, the change travelled by the next incremental
+        Z, ``G28`` or ``G53`` (FANUC B-63943EN-1/02 12.5.2, TOS = 0: compensation by an axis movement; Haas, as
+        Fanuc): FreeCAD's ``G91 G0 G43 Z-.. H..``, ``G49`` then ``G91 G28 Z0.`` (Fusion's fanuc.cps tool end),
+        ``G49`` then ``G53 G0 Z0.``, a ``G91 G43 H..`` block without Z before an X move and a Z one, ``G91 G49 Z0.``;
+        the tool's offset set again by an absolute ``G43 H.. Z..`` after."""
+        self.start(30)
+        t = self.r.randint(1, 6)
+        kind = self.r.choice(("freecad", "g49_g28", "g49_g53", "h_alone", "g49_z0"))
+        if kind == "freecad":
+            self.emit(f"G91 G0 G43 {self.xyz(z=self.pos[2] - self.r.choice((5, 10, 20)), inc=True)} H{t}")
+            self.emit("G90")
+            self.tool = t
+            self.emit(f"G0 {self.xyz(z=40)}")
+            return
+        if kind == "h_alone":
+            self.emit(f"G91 G43 H{t}")
+            self.emit(f"G0 {self.xyz(self.pos[0] + self.r.randint(-4, 4) * 2.5, inc=True)}")
+            self.emit(f"G0 {self.xyz(z=self.pos[2] - self.r.choice((5, 10)), inc=True)}")
+            self.emit("G90")
+            self.tool = t
+            self.emit(f"G0 {self.xyz(z=40)}")
+            return
+        if kind == "g49_g28":
+            self.emit("G49")
+            self.emit("G91 G28 Z0.")
+        elif kind == "g49_g53":
+            self.emit("G49")
+            self.emit(f"G53 G0 Z{_num(-self.r.choice((0, 10)) * self.unit)}")
+        else:
+            self.emit("G91 G49 Z0.")
+        self.emit("G90")
+        self.tool = self.tool or t
+        self.emit(f"G43 H{self.tool} {self.xyz(z=50)}")
+
+    def rigid_tap_section(self) -> None:
+        """Tapping fed per revolution, the feed the thread's pitch: Fanuc ``M29 S..`` then ``G84 .. F<pitch>``
+        under G95 (0i-B connection manual B-63833EN "Rigid tapping": "G99 ; M29 S1000 ; G84 Z-100. R-20. F1. ;",
+        as Fusion's fanuc.cps writes it, ``P0``), Haas ``G84`` under G95 (haas.cps); ``G80``, ``G94`` after."""
+        self.start(20)
+        pitch = self.r.choice((0.8, 1.0, 1.25, 1.5)) * (0.04 if self.unit < 1 else 1)
+        self.emit("G95")
+        if self.fanuc:
+            self.emit(f"M29 S{self.r.choice((300, 500, 800))}")
+        ret = self.r.choice(("G98", "G99"))
+        dwell = " P0" if self.fanuc and self.r.random() < 0.5 else ""
+        self.emit(f"{ret} G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)}{dwell} "
+                  f"F{_num(pitch)}")
+        for _ in range(self.r.randint(0, 2)):
+            self.emit(self.xyz(self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + 5))
+        self.emit("G80")
+        self.emit("G94")
+        self.pos[2] = 20 if ret == "G98" else 3
+        self.emit(f"G0 {self.xyz(z=25)} {self.feed()}")
+
+    def haas_g73k_section(self) -> None:
+        """Haas ``G73`` with ``Q`` (each peck) and ``K`` (back to R when the pecks since the last return total K),
+        as haas.cps writes chip breaking with an accumulated depth (Haas mill operator's manual 96-8000 "G73");
+        on Fanuc the plain cycles."""
+        if self.fanuc:
+            return self.cycles_section()
+        self.start(20)
+        q = self.r.choice((1.5, 2, 3))
+        k = q * self.r.choice((2, 3)) + self.r.choice((0, 0.5))
+        self.emit(f"G90 {self.r.choice(('G98', 'G99'))} G73 {self.xyz(self.pos[0] + 5, self.pos[1])} "
+                  f"Z{self.v(-self.r.choice((8, 12, 15)))} R{self.v(2)} Q{self.v(q)} K{self.v(k)} {self.feed()}")
+        if self.r.random() < 0.5:
+            self.emit(self.xyz(self.pos[0] + 5, self.pos[1]))
+        self.emit("G80")
+        self.pos[2] = 20
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def m99_branch_section(self) -> None:
+        """Haas ``M99 P<n>`` inside a subprogram branches to its block ``N<n>`` (Haas mill operator's manual
+        96-8000, "Macros", "Conditional Expressions": "M99 ... branch unconditionally to any line in the current
+        subroutine ... It does not return"): a forward branch past a block, then the subprogram's own ``M99``.
+        Fanuc's ``M99 P`` returns to the caller's ``N<n>`` instead: there the plain subprogram."""
+        if self.fanuc:
+            return self.subprogram_section()
+        prog = 3500 + len(self.subs) * 10
+        label = 7000 + len(self.subs) * 10
+        self.subs.append([f"O{prog} (BRANCH)", f"G91 G1 X{self.v(5)} {self.feed()}", f"M99 P{label}",
+                          f"G1 Y{self.v(40)}", f"N{label} G1 Y{self.v(5)}", "G90", "M99"])
+        self.start()
+        count = self.r.randint(1, 2)
+        self.emit(f"M98 P{prog}" + (f" L{count}" if count > 1 else ""))
+
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)
         self.emit("G91 G28 Z0.")
@@ -815,7 +902,9 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
              "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section,
              "g10_tools": g.g10_tools_section, "cycle_sub": g.cycle_sub_section,
-             "g52_rotated": g.g52_rotated_section, "external": g.external_section, "tcp": g.tcp_section}
+             "g52_rotated": g.g52_rotated_section, "external": g.external_section, "tcp": g.tcp_section,
+             "length_motion": g.length_motion_section, "rigid_tap": g.rigid_tap_section,
+             "haas_g73k": g.haas_g73k_section, "m99_branch": g.m99_branch_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
