@@ -10,7 +10,9 @@ moves, drilling cycles ``G73 G81 G82 G83 G84 G85 G86 G89`` with ``R``, ``Q``, ``
 ``L``) and ``G98``/``G99`` in ``G90`` and ``G91``, ``G04``, ``M98``/``M99`` subprograms after ``M30``, Macro B
 (``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation (also inside a
 ``G52`` local system), ``G51`` scaling and mirror (Fanuc ``G51.1``, Haas ``G101``), a drilling series whose hole
-positions are in a subprogram, ``G10 L2 P0`` (the external offset, also of the rotary B).
+positions are in a subprogram, ``G10 L2 P0`` (the external offset, also of the rotary B), a tool length offset
+changed under ``G91`` and travelled by the next incremental Z, ``G28``/``G30`` or ``G53``, ``G84`` fed per revolution
+(Fanuc after ``M29 S..``), Haas ``G73 .. Q K`` and Haas ``M99 P<n>`` inside an ``M98``/``M97`` subprogram.
 
 Sources for what each dialect defines: Haas mill operator's manual, G-code chapter ("G02/G03", "G10", "G12",
 "G28", "G41/G42", "G52", "G54.1/G154/G110-G129", "G65", "G68", "G73"-"G89", "G98/G99", "G101"), M-code chapter
@@ -802,7 +804,8 @@ class _Gen:
             return
         if kind == "g49_g28":
             self.emit("G49")
-            self.emit("G91 G28 Z0.")
+            up = self.r.choice((0, 0, 5))  # an intermediate point above: it travels the change too
+            self.emit(f"G91 {self.r.choice(('G28', 'G28', 'G30'))} Z{self.v(up)}")
         elif kind == "g49_g53":
             self.emit("G49")
             self.emit(f"G53 G0 Z{_num(-self.r.choice((0, 10)) * self.unit)}")
@@ -823,10 +826,17 @@ class _Gen:
             self.emit(f"M29 S{self.r.choice((300, 500, 800))}")
         ret = self.r.choice(("G98", "G99"))
         dwell = " P0" if self.fanuc and self.r.random() < 0.5 else ""
-        self.emit(f"{ret} G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)}{dwell} "
-                  f"F{_num(pitch)}")
-        for _ in range(self.r.randint(0, 2)):
-            self.emit(self.xyz(self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + 5))
+        if self.r.random() < 0.3:  # a row of holes in G91, repeated (Fanuc K, Haas L)
+            count = self.r.randint(2, 3)
+            self.emit(f"G91 {ret} G84 X{self.v(5)} Y0. Z{self.v(-13)} R{self.v(-17)}{dwell} "
+                      f"{'K' if self.fanuc else 'L'}{count} F{_num(pitch)}")
+            self.emit("G90")
+            self.pos[0] += 5 * count
+        else:
+            self.emit(f"{ret} G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)}{dwell} "
+                      f"F{_num(pitch)}")
+            for _ in range(self.r.randint(0, 2)):
+                self.emit(self.xyz(self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + 5))
         self.emit("G80")
         self.emit("G94")
         self.pos[2] = 20 if ret == "G98" else 3
@@ -841,12 +851,21 @@ class _Gen:
         self.start(20)
         q = self.r.choice((1.5, 2, 3))
         k = q * self.r.choice((2, 3)) + self.r.choice((0, 0.5))
-        self.emit(f"G90 {self.r.choice(('G98', 'G99'))} G73 {self.xyz(self.pos[0] + 5, self.pos[1])} "
-                  f"Z{self.v(-self.r.choice((8, 12, 15)))} R{self.v(2)} Q{self.v(q)} K{self.v(k)} {self.feed()}")
-        if self.r.random() < 0.5:
-            self.emit(self.xyz(self.pos[0] + 5, self.pos[1]))
-        self.emit("G80")
-        self.pos[2] = 20
+        ret = self.r.choice(("G98", "G99"))
+        if self.r.random() < 0.3:  # in G91 from the initial level, repeated by L
+            count = self.r.randint(1, 3)
+            self.emit(f"G91 {ret} G73 X{self.v(5)} Y{self.v(5)} Z{self.v(-self.r.choice((10, 14)))} R{self.v(-18)} "
+                      f"Q{self.v(q)} K{self.v(k)}" + (f" L{count}" if count > 1 else "") + f" {self.feed()}")
+            self.emit("G80 G90")
+            self.pos[0] += 5 * count
+            self.pos[1] += 5 * count
+        else:
+            self.emit(f"G90 {ret} G73 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-self.r.choice((8, 12, 15)))} "
+                      f"R{self.v(2)} Q{self.v(q)} K{self.v(k)} {self.feed()}")
+            if self.r.random() < 0.5:
+                self.emit(self.xyz(self.pos[0] + 5, self.pos[1]))
+            self.emit("G80")
+        self.pos[2] = 20 if ret == "G98" else 2
         self.emit(f"G0 {self.xyz(z=25)}")
 
     def m99_branch_section(self) -> None:
@@ -858,11 +877,17 @@ class _Gen:
             return self.subprogram_section()
         prog = 3500 + len(self.subs) * 10
         label = 7000 + len(self.subs) * 10
-        self.subs.append([f"O{prog} (BRANCH)", f"G91 G1 X{self.v(5)} {self.feed()}", f"M99 P{label}",
-                          f"G1 Y{self.v(40)}", f"N{label} G1 Y{self.v(5)}", "G90", "M99"])
+        body = [f"G91 G1 X{self.v(5)} {self.feed()}", f"M99 P{label}", f"G1 Y{self.v(40)}",
+                f"N{label} G1 Y{self.v(5)}", "G90", "M99"]
         self.start()
         count = self.r.randint(1, 2)
-        self.emit(f"M98 P{prog}" + (f" L{count}" if count > 1 else ""))
+        repeat = f" L{count}" if count > 1 else ""
+        if self.r.random() < 0.5:  # haas.cps's local subprogram after M30, called by M97
+            self.subs.insert(0, [f"N{prog + 5000} (BRANCH)", *body])
+            self.emit(f"M97 P{prog + 5000}{repeat}")
+        else:
+            self.subs.append([f"O{prog} (BRANCH)", *body])
+            self.emit(f"M98 P{prog}{repeat}")
 
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)

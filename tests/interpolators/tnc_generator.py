@@ -6,9 +6,10 @@ compensated contours entered and left by ``L`` or ``APPR``/``DEP``, ``F``/``FMAX
 incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/IPA), ``RND``/``CHF``, Q parameters
 (``FN 0``-``FN 4``, formulas) in coordinates and feeds, ``LBL``/``CALL LBL REP`` (nested, and a subprogram after
 ``M30``), cycles 7 (absolute and incremental), 9, 32, drilling 1/200/203/205 called by ``CYCL CALL``, ``M99``,
-``CYCL CALL POS`` and ``CYCL CALL PAT``, pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``;
-on a B/C table (:func:`context`, a quarter of the seeds) ``PLANE SPATIAL``/``PLANE RESET`` and ``M128`` with B C
-(:meth:`_Gen.tilted`).
+``CYCL CALL POS`` and ``CYCL CALL PAT`` (``PATTERN DEF`` items continued by ``~`` or on lines of their own),
+pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``; on a B/C table (:func:`context`, a quarter
+of the seeds) ``PLANE SPATIAL`` (also followed by ``PLANE RELATIV``)/``PLANE RESET`` and ``M128`` with B C or
+``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`).
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
 Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
