@@ -569,7 +569,8 @@ class _Gen:
         self.emit(f"G0 {self.xyz(z=10)}")
 
     def haas_peck_section(self) -> None:
-        """Haas G83 with I (first peck) J (less each time) K (at least): Haas "G83 Normal Peck Drilling"."""
+        """Haas G83 with I (first peck) J (less each time) K (at least): Haas "G83 Normal Peck Drilling"; Fadal
+        the same (Fusion's fadal.cps)."""
         if self.fanuc:
             return self.cycles_section()
         self.start(20)
@@ -900,7 +901,8 @@ class _Gen:
 
 
 def generate(seed: int, dialect: str = "fanuc") -> str:
-    """A valid ``fanuc`` or ``haas`` mill program, the same for the same seed."""
+    """A valid ``fanuc``, ``haas`` or ``fadal`` (:data:`FADAL_FEATURES`) mill program, the same for the same
+    seed."""
     r = random.Random(f"{dialect}:{seed}")
     inch = r.random() < 0.25
     chosen = features(seed, dialect)
@@ -941,7 +943,14 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
     return "\n".join(g.lines) + "\n"
 
 
+#: The sections of a ``fadal`` program: Fadal reads Haas's cycle words (Fusion's fadal.cps writes ``G83 .. I J K``
+#: and ``G73 .. Q K`` as its Haas post), not Haas's extended offsets, patterns, pockets, macros or M97.
+FADAL_FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", "subprogram", "rotation",
+                  "g52", "g92", "g28_g53", "dwell", "g91_arcs", "tool_length", "haas_peck", "haas_g73k",
+                  "length_motion", "depth_passes")
+
+
 def features(seed: int, dialect: str = "fanuc") -> list[str]:
     """The sections :func:`generate` chose for ``seed`` (for counting programs per feature)."""
     r = random.Random(f"{dialect}:{seed}:features")
-    return [r.choice(FEATURES) for _ in range(r.randint(3, 7))]
+    return [r.choice(FADAL_FEATURES if dialect == "fadal" else FEATURES) for _ in range(r.randint(3, 7))]

@@ -1,13 +1,19 @@
 """The reference's faults fuzz37 found when tests/interpolators/fanuc_generator.py learned session 36's Haas forms
 (``M99 P<n>`` inside a subprogram, ``G73 .. Q K``) and Fanuc/Haas tool length changes under G91: each program
-hand-written, read by the reader and checked block by block against ``reference_iso``."""
+hand-written, read by the reader and checked block by block against ``reference_iso``; and the generator's Fadal
+programs."""
 
 from __future__ import annotations
 
 import pytest
 
+from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.fanuc_generator import FADAL_FEATURES, context, features, generate
 from tests.interpolators.iso_checks import checked_iso
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks, reader_rows
+from vcnc.commands.interpolate import blocks_table
 
 HAAS = MachineContext(dialect=DIALECTS["haas"])
 FANUC = MachineContext(dialect=DIALECTS["fanuc"])
@@ -42,3 +48,15 @@ def test_haas_m99_p_branch_in_a_repeated_call(count):
             "\nG90 G0 X0. Y0.\nM30\nO3500 (BRANCH)\nG91 G1 X5. F500\nM99 P7000\nG1 Y40.\nN7000 G1 Y5.\nG90\nM99\n%\n")
     xy = [e[:2] for e in ends(text, HAAS)]
     assert xy[-2] == [5.0 * count, 5.0 * count]
+
+
+def test_generated_fadal_programs_are_read_as_the_reference_reads_them():
+    # fanuc_generator's fadal seeds (FADAL_FEATURES): Fadal G83 I J K and G73 Q K as Fusion's fadal.cps writes them,
+    # tool length changes under G91, cycles, subprograms, G52/G92, rotation; none refused
+    seen = set()
+    for seed in range(40):
+        text, ctx = generate(seed, "fadal"), context(seed, "fadal")
+        match = match_blocks(iso_reference(text, ctx), reader_rows(*blocks_table(parse_program(text, context=ctx))))
+        assert match.mismatch is None, (seed, match.mismatch)
+        seen.update(features(seed, "fadal"))
+    assert {"haas_peck", "haas_g73k", "length_motion"} <= seen <= set(FADAL_FEATURES)
