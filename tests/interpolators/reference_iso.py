@@ -2219,7 +2219,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                    linuxcnc=context.dialect.name == "linuxcnc")
     if fadal:
         lines = _fadal_lines(lines)
-    own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
+    own = {str(int(ln.oname)) if ln.oname.isdigit() else ln.oname for ln in lines
+           if ln.oname is not None and ln.okey is None}
     for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"(?:m0*98|g0*65)p(\d+)", ln.text)}
                          - own):
         other = resolve(target) if resolve is not None else None
