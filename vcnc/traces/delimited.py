@@ -356,7 +356,9 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
     of rows ended there (seed 35100 case 105730: 'only one row of numbers' among 400 rows). Where every full row of
     numbers ends (or starts) each cell at the same places, a shorter row's cells are put in the columns they end (start)
     at, and its blank cells read as missing values, as a ``NaN`` cell (:func:`_nan_cells`). Lines with a tab, ``;`` or
-    ``|`` and rows whose cells do not fall on the columns are left alone (tracewild10)."""
+    ``|`` and rows whose cells do not fall on the columns are left alone (tracewild10). Each column is aligned at an
+    edge of its own: ``%-6d`` sample numbers start at one place, ``%9.3f`` positions end at one (tracewild37, seeds
+    41000762 and 41000969)."""
     words = [line.split() if not any(c in line for c in "\t;|") else [] for line in lines]
     counts = [len(w) if len(w) >= 2 and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
     width = max(counts, default=0)
@@ -372,17 +374,17 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
     full = [sp for _, sp in rows if len(sp) == width]
     if len(full) < 2 or len(full) == len(rows):
         return lines
-    for edge in (1, 0):  # right-aligned columns, else left-aligned
-        places = [p[edge] for p in full[0]]
-        if all([p[edge] for p in sp] == places for sp in full):
-            break
-    else:
+    edges = [next((e for e in (1, 0) if len({sp[k][e] for sp in full}) == 1), None) for k in range(width)]
+    if None in edges:
         return lines
+    places = [full[0][k][e] for k, e in enumerate(edges)]
     out = list(lines)
     for i, sp in rows:
-        cells = {p[edge]: lines[i][p[0]:p[1]] for p in sp}
-        if len(sp) < width and set(cells) <= set(places):
-            out[i] = " ".join(cells.get(p, "nan") for p in places)
+        at = [[k for k, e in enumerate(edges) if p[e] == places[k]] for p in sp]
+        ks = [k[0] for k in at if len(k) == 1]
+        if len(sp) < width and len(ks) == len(sp) and ks == sorted(set(ks)):
+            cells = dict(zip(ks, (lines[i][a:b] for a, b in sp)))
+            out[i] = " ".join(cells.get(k, "nan") for k in range(width))
     return out
 
 
@@ -676,6 +678,7 @@ def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: s
     lines of text it is a program's printout or log with one line of numbers in it (tracewild8)."""
     if data.shape[0] >= 2:
         return
+    _check_ragged_rows(lines, row_lines[0], src)
     text_lines = sum(1 for ln in lines if ln.strip()) - 1
     if text_lines > 20:
         raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: no "
@@ -684,6 +687,22 @@ def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: s
     raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a column "
                        "per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
                        file=src, line=row_lines[0])
+
+
+def _check_ragged_rows(lines: list[str], line: int, src: str) -> None:
+    """An error for rows of numbers above the last one that hold another number of cells: a table separated by
+    spaces whose blank cells are not aligned on its columns (:func:`_aligned_blanks` places only those that are), read
+    as one row (trace_fuzz seeds 41000762 and 41000969 were named a printout with one row among text)."""
+    above = next((k for k in range(line - 2, -1, -1) if lines[k].strip()), None)
+    if above is None:
+        return
+    cells = lines[above].split()
+    width = len(lines[line - 1].split())
+    if len(cells) >= 2 and len(cells) != width and _numbers(cells, True) is not None:
+        raise CaptureError(f"rows of numbers with {len(cells)} and {width} cells (lines {above + 1} and {line}): a "
+                           "cell left blank in columns separated by spaces that are not aligned cannot be placed; "
+                           "expected the same number of cells in every row (write the missing value as nan, or "
+                           "separate the columns with ';' or tab)", file=src, line=above + 1)
 
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
