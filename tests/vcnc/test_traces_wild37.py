@@ -62,3 +62,32 @@ def test_spaced_rows_with_unaligned_blank_cells_are_named_as_such(tmp_path):
     with pytest.raises(CaptureError, match=r"rows of numbers with 3 and 2 cells \(lines 7 and 8\)") as err:
         read_capture(f, sample_time=0.001)
     assert f"{f}:7" in str(err.value)
+
+
+def test_whole_numbers_grouped_by_thousands_are_named(tmp_path):
+    """Quoted cells of whole numbers with two or more group marks (``"20,296,998"`` nm) are digits grouped by
+    thousands whatever the decimal mark: the error names the cell (it said no rows were found: trace_fuzz seed
+    41001082), also where such a row above the rows was taken for the names (seed 41000672)."""
+    f = tmp_path / "grouped.csv"
+    rows = ['"y_ref","y_act"', '"[nm]","[nm]"'] + [f'"{s * 1e5:,.0f}","{a * 1e5:,.0f}"' for s, a in zip(_SET, _ACT)]
+    f.write_text("\n".join(rows[:2] + rows[3:]) + "\n")  # the row of zeros left out: every row has grouped cells
+    with pytest.raises(CaptureError, match=r"'10,000,000' \(line 3\) writes its digits grouped by thousands"):
+        read_capture(f, sample_time=0.001)
+    f = tmp_path / "grouped_names.csv"
+    rows = ['"No.","x_cmd[nm]","x_fb[nm]","Current[A]"', '"0","1,000,000","1,000,000","1.5"']
+    rows += [f'"{k}","{s:,.3f}","{a:,.3f}","1.5"' for k, (s, a) in enumerate(zip(_SET, _ACT), 1)]
+    f.write_text("# Sample time: 1 ms\n" + "\n".join(rows) + "\n")
+    with pytest.raises(CaptureError, match=r"'1,000,000' writes its digits grouped by thousands") as err:
+        read_capture(f)
+    assert f"{f}:3" in str(err.value)
+
+
+def test_positions_grouped_by_thousands_in_whole_thousands_are_refused(tmp_path):
+    """``"100,000"`` nm beside ``"0"`` is grouped by thousands even where every position is a whole number of
+    thousands (it read 100 nm, a thousand times too small: the check looked only at columns with a fraction)."""
+    f = tmp_path / "thousands.csv"
+    rows = ['"No.","x_cmd[nm]","x_fb[nm]"']
+    rows += [f'"{k}","{s * 1e3:,.0f}","{a * 1e3:,.0f}"' for k, (s, a) in enumerate(zip(_SET[:5], _ACT[:5]))]
+    f.write_text("# Sample time: 1 ms\n" + "\n".join(rows) + "\n")
+    with pytest.raises(CaptureError, match=r"'100,000' beside whole numbers like '0' reads as digits grouped"):
+        read_capture(f)

@@ -438,6 +438,9 @@ def _table(text: str, src: str) -> _Table:
 
     header = units_row = None
     j = above(first)
+    for k in (j, above(j)):  # a row whose cells are grouped by thousands ends the rows: no names (tracewild37)
+        if k is not None and (hint := _grouped_hint([lines[k]])):
+            raise CaptureError("the line above the rows of numbers is no header" + hint, file=src, line=k + 1)
     if j is not None:
         header = names_at(j)
         if header is not None and is_unit_row(header):  # names above a row of units
@@ -517,8 +520,10 @@ def _hex_dump(lines: list[str]) -> str:
             "a row per sample")
 
 
-#: A number with both marks, digits grouped by thousands before the decimal mark: ``4,263.66``, ``-1.234.567,5``.
-_GROUPED_DECIMAL = re.compile(r"[+-]?[1-9]\d{0,2}(?:,\d{3})+\.\d+|[+-]?[1-9]\d{0,2}(?:\.\d{3})+,\d+")
+#: A number with both marks, digits grouped by thousands before the decimal mark: ``4,263.66``, ``-1.234.567,5``;
+#: or a whole number with two marks or more of one kind, which no decimal mark reads (``20,296,998``, tracewild37).
+_GROUPED_DECIMAL = re.compile(r"[+-]?[1-9]\d{0,2}(?:,\d{3})+\.\d+|[+-]?[1-9]\d{0,2}(?:\.\d{3})+,\d+"
+                              r"|[+-]?[1-9]\d{0,2}(?:,\d{3}){2,}|[+-]?[1-9]\d{0,2}(?:\.\d{3}){2,}")
 
 
 def _grouped_hint(lines: list[str]) -> str:
@@ -821,9 +826,9 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
     spreadsheet's digit grouping writes such a column of counts (``"1,234"`` with the delimiter ``,``, ``1.234`` in
     a German export); read as decimals it is a thousand times too small, and a column of decimals with three places
     always has the mark (tracefuzz; our reading). The cells are only read when the numbers are whole in
-    thousandths."""
+    thousandths (also when all are whole: ``"100,000"`` nm beside ``"0"``, tracewild37)."""
     with np.errstate(over="ignore", invalid="ignore"):  # a number beyond reach is the reach check's error
-        suspect = [k for k in idx if k != "t" and _whole(d[:, idx[k]] * 1000) and (d[:, idx[k]] % 1 != 0).any()]
+        suspect = [k for k in idx if k != "t" and _whole(d[:, idx[k]] * 1000) and (d[:, idx[k]] != 0).any()]
     if not suspect:
         return
     rows = cells()
