@@ -91,3 +91,19 @@ def test_positions_grouped_by_thousands_in_whole_thousands_are_refused(tmp_path)
     f.write_text("# Sample time: 1 ms\n" + "\n".join(rows) + "\n")
     with pytest.raises(CaptureError, match=r"'100,000' beside whole numbers like '0' reads as digits grouped"):
         read_capture(f)
+
+
+@pytest.mark.parametrize("lines", [
+    [f"<Run|MPos:{k * 0.1:.3f},0.000,-1.000|FS:600,0>" for k in range(6)],  # Grbl v1.1, the log's first line
+    ["Grbl 1.1h ['$' for help]", *(f"ok\n<Run|WPos:{k * 0.1:.3f},0.000,0.000|Bf:15,128|FS:600,0>" for k in range(6))],
+    [f"<Run,MPos:{k * 0.1:.3f},0.000,0.000,WPos:{k * 0.1:.3f},0.000,0.000>" for k in range(6)],  # Grbl v0.9
+])
+def test_grbl_status_report_log_is_named(tmp_path, lines):
+    """A sender's log of Grbl's status reports (grbl/grbl doc/markdown/interface.md, 'Real-time Status Reports') is
+    named as such with the fields it holds, no trace (it was called an XML file with root <Run>, or a file with no
+    rows of numbers)."""
+    f = tmp_path / "grbl.log"
+    f.write_text("\n".join(lines) + "\n")
+    with pytest.raises(CaptureError, match=r"Grbl's real-time status reports \(6 reports .*fields \[.*Pos'") as err:
+        read_capture(f)
+    assert str(f) in str(err.value) and "no commanded position" in str(err.value)

@@ -13,7 +13,7 @@
   :mod:`vcnc.traces.diadem`), as delimited text under the channels' names.
 
 MTConnect data (an agent's streams XML, an adapter's SHDR lines) is recognised and refused, naming the positions it
-holds (:mod:`vcnc.traces.mtconnect`).
+holds (:mod:`vcnc.traces.mtconnect`); so is a sender's log of Grbl's status reports (:mod:`vcnc.traces.grbl`).
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, mtconnect, sinumerik, tncscope, twincat
+from vcnc.traces import emps, grbl, mtconnect, sinumerik, tncscope, twincat
 from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -46,7 +46,8 @@ __all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "rea
 def trace_format(path: str | os.PathLike[str]) -> str:
     """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
     ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"capture-csv"``, ``"delimited"``, or
-    ``"xml"`` for other XML and ``"shdr"`` for an MTConnect adapter's stream (which no reader takes)."""
+    ``"xml"`` for other XML, ``"shdr"`` for an MTConnect adapter's stream and ``"grbl"`` for a log of Grbl's status
+    reports (which no reader takes)."""
     src = str(path)
     try:
         with Path(path).open("rb") as f:
@@ -60,6 +61,8 @@ def trace_format(path: str | os.PathLike[str]) -> str:
         return "tncscope"
     if any(m in text[:4096] for m in sinumerik.MAGICS):
         return "sinumerik"
+    if grbl.looks_like_status_log(text):
+        return "grbl"
     if text.startswith("<"):
         return "xml"
     if looks_like_halscope(text):
@@ -159,6 +162,8 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
                            file=str(p))
     if fmt == "shdr":
         raise CaptureError(mtconnect.shdr_reason(read_text(p, str(p))), file=str(p))
+    if fmt == "grbl":
+        raise CaptureError(grbl.status_reason(read_text(p, str(p))), file=str(p))
     if fmt == "xml":
         head = _xml_head(p)
         root = _xml_root(head)
