@@ -107,3 +107,25 @@ def test_grbl_status_report_log_is_named(tmp_path, lines):
     with pytest.raises(CaptureError, match=r"Grbl's real-time status reports \(6 reports .*fields \[.*Pos'") as err:
         read_capture(f)
     assert str(f) in str(err.value) and "no commanded position" in str(err.value)
+
+
+def test_ipoc_with_its_unit_after_a_slash_is_the_time(tmp_path):
+    """KUKA RSI's ``IPOC`` named with its unit after a slash (``IPOC/ms``, DIN 1313's quantity/unit) is the time as
+    ``IPOC`` and ``IPOC [ms]`` are (trace_fuzz seed 42000516 asked which column is the time)."""
+    f = _table(tmp_path / "rsi.csv", ["IPOC/ms", "X_RSol/mm", "X_RIst/mm"], step=12.0)
+    cap = read_capture(f)
+    assert cap.axes == ("x",)
+    np.testing.assert_allclose(np.diff(cap.t), 0.012)
+    np.testing.assert_array_equal(cap.reference[:, 0], _SET)
+
+
+def test_one_row_among_rows_grouped_by_thousands_names_the_grouping(tmp_path):
+    """Rows whose cells are mostly grouped by thousands (``"94,157,019.0"``) leave one row that reads as numbers:
+    the error names the grouping (it said 'only one row of numbers among text': trace_fuzz seed 42000917)."""
+    rows = ['"No.","Y Sollposition [nm]","Y Schleppabstand [nm]","Speed [mm/s]"', '"0","1,000.5","0.0","0.0"']
+    rows += [f'"{k}","{s * 1e3 + 1000:,.1f}","{(s - a) * 1e3 + 1000:,.1f}","17.5"'
+             for k, (s, a) in enumerate(zip(_SET, _ACT), 1)]
+    f = tmp_path / "grouped_rows.csv"
+    f.write_text("Abtastzeit: 125 us\n" + "\n".join(rows + [f"# {k}" for k in range(20)]) + "\n")
+    with pytest.raises(CaptureError, match=r"only one row of numbers .*'1,000.5' \(line 3\) writes its digits grouped"):
+        read_capture(f)

@@ -684,14 +684,15 @@ def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: s
     if data.shape[0] >= 2:
         return
     _check_ragged_rows(lines, row_lines[0], src)
+    grouped = _grouped_hint(lines)  # rows whose cells are grouped by thousands are no rows (trace_fuzz 42000917)
     text_lines = sum(1 for ln in lines if ln.strip()) - 1
-    if text_lines > 20:
+    if text_lines > 20 and not grouped:
         raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: no "
                            "table of samples (a program's printed output or a log?); a trace has a row per sample and "
                            "a column per channel", file=src, line=row_lines[0])
-    raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a column "
-                       "per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
-                       file=src, line=row_lines[0])
+    raise CaptureError(f"only one row of numbers ({data.shape[1]} values)" + (grouped or (
+        ": a trace has a row per sample and a column per channel"
+        + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""))), file=src, line=row_lines[0])
 
 
 def _check_ragged_rows(lines: list[str], line: int, src: str) -> None:
