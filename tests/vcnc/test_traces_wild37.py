@@ -129,3 +129,34 @@ def test_one_row_among_rows_grouped_by_thousands_names_the_grouping(tmp_path):
     f.write_text("Abtastzeit: 125 us\n" + "\n".join(rows + [f"# {k}" for k in range(20)]) + "\n")
     with pytest.raises(CaptureError, match=r"only one row of numbers .*'1,000.5' \(line 3\) writes its digits grouped"):
         read_capture(f)
+
+
+def _indraworks_xml(signals: list[tuple[str, list[float], list[float]]]) -> str:
+    """An IndraWorks oscilloscope XML export after the layout a real parser of them reads (root / OscilloscopeData /
+    Devices / Device / Measurements / Measurement / Signals / Signal with Name, XValue, YValue joined by '|')."""
+    ns = "http://www.boschrexroth.de/indraworks.textformatter.xsd"
+    sig = "".join(f"<Signal><Name>{n}</Name><XValue>{'|'.join(f'{v:g}' for v in x)}</XValue>"
+                  f"<YValue>{'|'.join(f'{v:g}' for v in y)}</YValue></Signal>" for n, x, y in signals)
+    return (f'<?xml version="1.0" encoding="utf-8"?>\n<root xmlns="{ns}"><OscilloscopeData><Devices><Device>'
+            f"<Measurements><Measurement><Signals>{sig}</Signals></Measurement></Measurements></Device></Devices>"
+            "</OscilloscopeData></root>\n")
+
+
+def test_indraworks_oscilloscope_xml_is_read_by_its_signal_names(tmp_path):
+    """Rexroth IndraWorks saves oscilloscope data as XML, each signal its name (IDN and name) and its time stamps
+    and values joined by '|': read under the names, S-0-0047 commanded and S-0-0051 measured (it was refused as
+    an XML file with root <root>); signals on other time stamps are an error naming the signal."""
+    t = [k * 0.0005 for k in range(len(_SET))]
+    f = tmp_path / "osc.xml"
+    f.write_text(_indraworks_xml([("S-0-0047.0.0 Position command value", t, _SET),
+                                  ("S-0-0051.0.0 Position feedback value 1", t, _ACT),
+                                  ("S-0-0040.0.0 Velocity feedback value", t, [0.0] * len(t))]))
+    cap = read_capture(f)
+    assert cap.axes == ("x",) and "IndraWorks" in cap.meta["format"]
+    np.testing.assert_array_equal(cap.reference[:, 0], _SET)
+    np.testing.assert_array_equal(cap.measured[:, 0], _ACT)
+    np.testing.assert_allclose(np.diff(cap.t), 0.0005)
+    f.write_text(_indraworks_xml([("S-0-0047.0.0 Position command value", t, _SET),
+                                  ("S-0-0051.0.0 Position feedback value 1", [v + 0.0002 for v in t], _ACT)]))
+    with pytest.raises(CaptureError, match=r"'S-0-0051.0.0 Position feedback value 1'.*time stamps"):
+        read_capture(f)

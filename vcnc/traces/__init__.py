@@ -9,6 +9,7 @@
 - LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text (LinuxCNC
   halsampler output among it), with a column mapping (:mod:`vcnc.traces.delimited`);
 - the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`);
+- Rexroth IndraWorks oscilloscope XML, read as a table of its signals (:mod:`vcnc.traces.indraworks`);
 - DIAdem DAT headers, read with the binary files beside them (KUKA.Trace of a KR C4 among their writers,
   :mod:`vcnc.traces.diadem`), as delimited text under the channels' names.
 
@@ -26,7 +27,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, grbl, mtconnect, sinumerik, tncscope, twincat
+from vcnc.traces import emps, grbl, indraworks, mtconnect, sinumerik, tncscope, twincat
 from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -45,7 +46,8 @@ __all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "rea
 
 def trace_format(path: str | os.PathLike[str]) -> str:
     """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
-    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"capture-csv"``, ``"delimited"``, or
+    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"indraworks"``, ``"capture-csv"``,
+    ``"delimited"``, or
     ``"xml"`` for other XML, ``"shdr"`` for an MTConnect adapter's stream and ``"grbl"`` for a log of Grbl's status
     reports (which no reader takes)."""
     src = str(path)
@@ -63,6 +65,8 @@ def trace_format(path: str | os.PathLike[str]) -> str:
         return "sinumerik"
     if grbl.looks_like_status_log(text):
         return "grbl"
+    if indraworks.looks_like_oscilloscope(text[:4000]):
+        return "indraworks"
     if text.startswith("<"):
         return "xml"
     if looks_like_halscope(text):

@@ -114,6 +114,7 @@ from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.diadem import looks_like_diadem, read_diadem_channels
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
+from vcnc.traces.indraworks import looks_like_oscilloscope, read_oscilloscope_signals
 from vcnc.traces.names import (
     columns_from_names,
     counted,
@@ -189,6 +190,8 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if gcs is not None:
         return _gcs_array(text.lstrip("\ufeff"), src, gcs, columns=columns, time_unit=time_unit, unit=unit,
                           resample=resample, sample_time=sample_time)
+    if looks_like_oscilloscope(text[:4000]):
+        return _indraworks(text, src, columns=columns, time_unit=time_unit, unit=unit, resample=resample)
     if looks_like_diadem(text[:40000]):
         return _diadem(text, Path(path), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
                        sample_time=sample_time)
@@ -213,6 +216,22 @@ def _diadem(text: str, path: Path, src: str, *, columns: Mapping[str, str] | Non
     except CaptureError as exc:  # the table's lines are not the file's: name the channel headers' line instead
         raise CaptureError(exc.message, file=src, line=channels.header_line, expected=exc.expected) from None
     capture.meta["format"] = f"DIAdem DAT header with {', '.join(channels.files) or 'implicit channels'}"
+    return capture
+
+
+def _indraworks(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None, unit: str | None,
+                resample: bool) -> Capture:
+    """An IndraWorks oscilloscope XML export (:mod:`vcnc.traces.indraworks`): its signals as a table under their
+    names, mapped as any table's."""
+    signals = read_oscilloscope_signals(text, src)
+    table = ["\t".join(signals.names)]
+    table += ["\t".join(repr(float(v)) for v in row) for row in signals.values.tolist()]
+    try:
+        capture = _generic("\n".join(table), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
+                           sample_time=None)
+    except CaptureError as exc:  # the table's lines are not the file's
+        raise CaptureError(exc.message, file=src, expected=exc.expected) from None
+    capture.meta["format"] = "Rexroth IndraWorks oscilloscope XML"
     return capture
 
 
