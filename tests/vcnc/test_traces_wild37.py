@@ -160,3 +160,26 @@ def test_indraworks_oscilloscope_xml_is_read_by_its_signal_names(tmp_path):
                                   ("S-0-0051.0.0 Position feedback value 1", [v + 0.0002 for v in t], _ACT)]))
     with pytest.raises(CaptureError, match=r"'S-0-0051.0.0 Position feedback value 1'.*time stamps"):
         read_capture(f)
+
+
+def test_two_column_spaced_table_with_a_lone_cell_row(tmp_path):
+    """In a table of two columns aligned by spaces, a row whose other cell is blank holds one number: placed by its
+    edge as well (trace_fuzz seed 43000558, 'pos_cmd/um   pos_fb/um' with the first and last feedback blank, said
+    the file had no header line)."""
+    rows = ["Sample time [ms]: 1", f"{'pos_cmd/um':<12}{'pos_fb/um':<12}", f"{_SET[0]:<12.2f}"]
+    rows += [f"{s:<12.2f}{a:<12.2f}" for s, a in zip(_SET[1:], _ACT[1:])] + [f"{1100.0:<12.2f}"]
+    f = tmp_path / "two.txt"
+    f.write_text("\n".join(rows) + "\n")
+    cap = read_capture(f)
+    np.testing.assert_array_equal(cap.reference[:, 0], np.array(_SET[1:]) * 1e-3)
+    np.testing.assert_array_equal(cap.measured[:, 0], np.array(_ACT[1:]) * 1e-3)
+
+
+def test_unaligned_lone_cell_above_the_rows_is_named(tmp_path):
+    """A row of one number above rows of two, in columns that do not line up, is named as a blank cell that cannot be
+    placed (it said the file had no header line: trace_fuzz seed 43000558)."""
+    rows = ["pos_cmd/um   pos_fb/um", "-40920.13", *(f"{s:g}   {a:g}" for s, a in zip(_SET[1:], _ACT[1:]))]
+    f = tmp_path / "ragged_two.txt"
+    f.write_text("\n".join(rows) + "\n")
+    with pytest.raises(CaptureError, match=r"rows of numbers with 1 and 2 cells \(lines 2 and 3\)"):
+        read_capture(f, sample_time=0.001)

@@ -379,7 +379,7 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
     edge of its own: ``%-6d`` sample numbers start at one place, ``%9.3f`` positions end at one (tracewild37, seeds
     41000762 and 41000969)."""
     words = [line.split() if not any(c in line for c in "\t;|") else [] for line in lines]
-    counts = [len(w) if len(w) >= 2 and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
+    counts = [len(w) if w and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
     width = max(counts, default=0)
     if width < 2 or all(c in (0, width) for c in counts):
         return lines  # every row as wide as the widest: nothing blank (the common case, one split a line)
@@ -388,7 +388,10 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
         spans = [m.span() for m in re.finditer(r"\S+", lines[i])]
         return spans if _numbers([lines[i][a:b] for a, b in spans], True) is not None else None
 
-    rows = [(i, sp) for i, c in enumerate(counts) if c >= 2 and (sp := cells_at(i)) is not None]
+    def lone_cell_row(i: int) -> bool:  # one number beside a full row: a row of two columns, one blank (43000558)
+        return counts[i] == 1 and any(0 <= j < len(counts) and counts[j] == width for j in (i - 1, i + 1))
+
+    rows = [(i, sp) for i, c in enumerate(counts) if (c >= 2 or lone_cell_row(i)) and (sp := cells_at(i)) is not None]
     width = max((len(sp) for _, sp in rows), default=0)
     full = [sp for _, sp in rows if len(sp) == width]
     if len(full) < 2 or len(full) == len(rows):
@@ -714,16 +717,18 @@ def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: s
         + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""))), file=src, line=row_lines[0])
 
 
-def _check_ragged_rows(lines: list[str], line: int, src: str) -> None:
-    """An error for rows of numbers above the last one that hold another number of cells: a table separated by
-    spaces whose blank cells are not aligned on its columns (:func:`_aligned_blanks` places only those that are), read
-    as one row (trace_fuzz seeds 41000762 and 41000969 were named a printout with one row among text)."""
+def _check_ragged_rows(lines: list[str], line: int, src: str, *, fewest: int = 2) -> None:
+    """An error for a row of numbers (of ``fewest`` cells or more) above the rows from ``line`` that holds another
+    number of cells: a table separated by spaces whose blank cells are not aligned on its columns
+    (:func:`_aligned_blanks` places only those that are), read as one row (trace_fuzz seeds 41000762 and 41000969 were
+    named a printout with one row among text), or whose rows from ``line`` were read without the names above the
+    short one (seed 43000558: 'no header line')."""
     above = next((k for k in range(line - 2, -1, -1) if lines[k].strip()), None)
     if above is None:
         return
     cells = lines[above].split()
     width = len(lines[line - 1].split())
-    if len(cells) >= 2 and len(cells) != width and _numbers(cells, True) is not None:
+    if len(cells) >= fewest and len(cells) != width and _numbers(cells, True) is not None:
         raise CaptureError(f"rows of numbers with {len(cells)} and {width} cells (lines {above + 1} and {line}): a "
                            "cell left blank in columns separated by spaces that are not aligned cannot be placed; "
                            "expected the same number of cells in every row (write the missing value as nan, or "
@@ -750,6 +755,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
                                "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
                                "identifies a drive from a trace of its commanded and its measured position",
                                file=src, line=hline)
+        if columns is None and header is None:
+            _check_ragged_rows(lines, row_lines[0], src, fewest=1)
         if columns is None:
             raise CaptureError("which columns are time, commanded and measured position? give --columns "
                                f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
