@@ -131,11 +131,11 @@ def test_one_row_among_rows_grouped_by_thousands_names_the_grouping(tmp_path):
         read_capture(f)
 
 
-def _indraworks_xml(signals: list[tuple[str, list[float], list[float]]]) -> str:
+def _indraworks_xml(signals: list[tuple[str, list[float], list[float]]], units: str = "") -> str:
     """An IndraWorks oscilloscope XML export after the layout a real parser of them reads (root / OscilloscopeData /
     Devices / Device / Measurements / Measurement / Signals / Signal with Name, XValue, YValue joined by '|')."""
     ns = "http://www.boschrexroth.de/indraworks.textformatter.xsd"
-    sig = "".join(f"<Signal><Name>{n}</Name><XValue>{'|'.join(f'{v:g}' for v in x)}</XValue>"
+    sig = "".join(f"<Signal><Name>{n}</Name>{units}<XValue>{'|'.join(f'{v:g}' for v in x)}</XValue>"
                   f"<YValue>{'|'.join(f'{v:g}' for v in y)}</YValue></Signal>" for n, x, y in signals)
     return (f'<?xml version="1.0" encoding="utf-8"?>\n<root xmlns="{ns}"><OscilloscopeData><Devices><Device>'
             f"<Measurements><Measurement><Signals>{sig}</Signals></Measurement></Measurements></Device></Devices>"
@@ -145,21 +145,30 @@ def _indraworks_xml(signals: list[tuple[str, list[float], list[float]]]) -> str:
 def test_indraworks_oscilloscope_xml_is_read_by_its_signal_names(tmp_path):
     """Rexroth IndraWorks saves oscilloscope data as XML, each signal its name (IDN and name) and its time stamps
     and values joined by '|': read under the names, S-0-0047 commanded and S-0-0051 measured (it was refused as
-    an XML file with root <root>); signals on other time stamps are an error naming the signal."""
+    an XML file with root <root>); the time stamps' unit is asked for where the file states none; signals on
+    other time stamps are an error naming the signal."""
     t = [k * 0.0005 for k in range(len(_SET))]
     f = tmp_path / "osc.xml"
     f.write_text(_indraworks_xml([("S-0-0047.0.0 Position command value", t, _SET),
                                   ("S-0-0051.0.0 Position feedback value 1", t, _ACT),
                                   ("S-0-0040.0.0 Velocity feedback value", t, [0.0] * len(t))]))
-    cap = read_capture(f)
+    with pytest.raises(CaptureError, match=r"states no unit of its time stamps.*--time-unit"):
+        read_capture(f)
+    cap = read_capture(f, time_unit="s")
     assert cap.axes == ("x",) and "IndraWorks" in cap.meta["format"]
     np.testing.assert_array_equal(cap.reference[:, 0], _SET)
     np.testing.assert_array_equal(cap.measured[:, 0], _ACT)
     np.testing.assert_allclose(np.diff(cap.t), 0.0005)
+    f.write_text(_indraworks_xml([("S-0-0047.0.0 Position command value", [v * 1e3 for v in t], _SET),
+                                  ("S-0-0051.0.0 Position feedback value 1", [v * 1e3 for v in t], _ACT)],
+                                 units="<XUnit>ms</XUnit><YUnit>um</YUnit>"))  # a unit element, where one is written
+    cap = read_capture(f)
+    np.testing.assert_allclose(np.diff(cap.t), 0.0005)
+    np.testing.assert_allclose(cap.reference[:, 0], np.array(_SET) * 1e-3)
     f.write_text(_indraworks_xml([("S-0-0047.0.0 Position command value", t, _SET),
                                   ("S-0-0051.0.0 Position feedback value 1", [v + 0.0002 for v in t], _ACT)]))
     with pytest.raises(CaptureError, match=r"'S-0-0051.0.0 Position feedback value 1'.*time stamps"):
-        read_capture(f)
+        read_capture(f, time_unit="s")
 
 
 def test_two_column_spaced_table_with_a_lone_cell_row(tmp_path):

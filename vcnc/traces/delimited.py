@@ -224,6 +224,10 @@ def _indraworks(text: str, src: str, *, columns: Mapping[str, str] | None, time_
     """An IndraWorks oscilloscope XML export (:mod:`vcnc.traces.indraworks`): its signals as a table under their
     names, mapped as any table's."""
     signals = read_oscilloscope_signals(text, src)
+    if time_unit is None and unit_in_name(signals.names[0], "time") is None:  # never assumed: ms or s (our reading)
+        raise CaptureError(f"the IndraWorks oscilloscope export (signals {signals.names[1:]}) states no unit of its "
+                           "time stamps (XValue)", file=src, expected="--time-unit s, ms or us (the oscilloscope's "
+                           "time axis)")
     table = ["\t".join(signals.names)]
     table += ["\t".join(repr(float(v)) for v in row) for row in signals.values.tolist()]
     try:

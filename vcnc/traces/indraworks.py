@@ -10,7 +10,9 @@ names); an element of a signal whose name ends in ``Unit`` (``XUnit``, ``YUnit``
 unit of its time stamps or of its values. The signals make a table, one column per signal beside one of the shared
 time stamps, which :mod:`vcnc.traces.delimited` maps by the names as any table's (``S-0-0047`` Position command
 value, the commanded position; ``S-0-0051``/``S-0-0053`` Position feedback value 1/2, the measured one; the SERCOS
-IDNs, IEC 61800-7-204); a signal on other time stamps than the first one's is an error naming it.
+IDNs, IEC 61800-7-204); a signal on other time stamps than the first one's is an error naming it. The time stamps'
+unit is never assumed (the parser seen does not say it; the oscilloscope shows ms): without a unit element it is
+given with ``--time-unit``.
 """
 
 from __future__ import annotations
