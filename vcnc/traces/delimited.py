@@ -385,6 +385,9 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
     words = [line.split() if not any(c in line for c in "\t;|") else [] for line in lines]
     counts = [len(w) if w and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
     width = max(counts, default=0)
+    # one number is a row only beside a full row: a row of two columns, one blank (trace_fuzz seed 43000558)
+    counts = [c if c != 1 or any(0 <= j < len(counts) and counts[j] == width for j in (i - 1, i + 1)) else 0
+              for i, c in enumerate(counts)]
     if width < 2 or all(c in (0, width) for c in counts):
         return lines  # every row as wide as the widest: nothing blank (the common case, one split a line)
 
@@ -392,10 +395,7 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
         spans = [m.span() for m in re.finditer(r"\S+", lines[i])]
         return spans if _numbers([lines[i][a:b] for a, b in spans], True) is not None else None
 
-    def lone_cell_row(i: int) -> bool:  # one number beside a full row: a row of two columns, one blank (43000558)
-        return counts[i] == 1 and any(0 <= j < len(counts) and counts[j] == width for j in (i - 1, i + 1))
-
-    rows = [(i, sp) for i, c in enumerate(counts) if (c >= 2 or lone_cell_row(i)) and (sp := cells_at(i)) is not None]
+    rows = [(i, sp) for i, c in enumerate(counts) if c and (sp := cells_at(i)) is not None]
     width = max((len(sp) for _, sp in rows), default=0)
     full = [sp for _, sp in rows if len(sp) == width]
     if len(full) < 2 or len(full) == len(rows):
