@@ -739,6 +739,28 @@ def _check_ragged_rows(lines: list[str], line: int, src: str, *, fewest: int = 2
                            "separate the columns with ';' or tab)", file=src, line=above + 1)
 
 
+def _named_columns(table: _Table, hline: int | None, known: bool, src: str) -> dict[str, str]:
+    """The mapping read from a table's names (:func:`vcnc.traces.names.columns_from_names`; ``known``: the sampling
+    period is stated or given), else the error saying why: no position among the names, rows of another width above
+    the rows (a blank cell that cannot be placed), or the question asking for ``--columns``."""
+    header, data = table.header, table.data
+    columns, why = (columns_from_names(header, period_known=known) if header is not None
+                    else (None, "the file has no header line"))
+    if columns is not None:
+        return columns
+    if header is not None and no_positions(header):
+        raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
+                           "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
+                           "identifies a drive from a trace of its commanded and its measured position",
+                           file=src, line=hline)
+    if header is None:
+        _check_ragged_rows(table.lines, table.row_lines[0], src, fewest=1)
+    raise CaptureError("which columns are time, commanded and measured position? give --columns "
+                       f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
+                       f"(not read from the names: {why})" + _sample_step_hint(header, data)
+                       + (servo_period_hint(src) if header is None and not known else ""), file=src, line=hline)
+
+
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
              unit: str | None, resample: bool, sample_time: float | None) -> Capture:
     _check_no_recording(text, src)
@@ -751,22 +773,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
     if not columns:
-        known = period is not None or sample_time is not None
-        columns, why = (columns_from_names(header, period_known=known) if header is not None
-                        else (None, "the file has no header line"))
-        if columns is None and header is not None and no_positions(header):
-            raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
-                               "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
-                               "identifies a drive from a trace of its commanded and its measured position",
-                               file=src, line=hline)
-        if columns is None and header is None:
-            _check_ragged_rows(lines, row_lines[0], src, fewest=1)
-        if columns is None:
-            raise CaptureError("which columns are time, commanded and measured position? give --columns "
-                               f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
-                               f"(not read from the names: {why})" + _sample_step_hint(header, data)
-                               + (servo_period_hint(src) if header is None and not known else ""), file=src,
-                               line=hline)
+        columns = _named_columns(table, hline, period is not None or sample_time is not None, src)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
     for k, c in idx.items():
