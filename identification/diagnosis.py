@@ -23,7 +23,11 @@ Procedure (forward selection judged on held-out data)
 3. **Refit.** The ``top`` proposals with the lowest screening error are refitted jointly - all
    reduced parameters with the pole bounds of Eq. (3.8), the effect's parameters (including its
    nonlinear ones, except whole-sample delays and a load's window) and the parameters of the
-   effects already in - by output error (simulation error) on all active samples.
+   effects already in - by output error (simulation error) on all active samples. A screen is a rough cost (a
+   start with the loop moved by a Gauss-Newton step or two): when none of these proposals passes step 4, the
+   round refits the others too, those screened above the current model included, and judges the ``top`` whose
+   refit lowers the active samples' error most, by at least half of ``min_gain`` (:func:`_second_chance`;
+   the round's record lists them under ``second_chance``).
 4. **Judge.** Each refitted proposal is judged on every fold held out in turn (the fit refitted
    on the other folds by a few Levenberg-Marquardt iterations from it, sensitivities shared by
    the folds: :func:`_judge`). The proposal with the lowest pooled held-out simulation RMS is added when it
