@@ -210,7 +210,7 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     if st.stopped:
         st.stops_read.add(st.stop_line)  # noted by the reader: a jog at the stop is not modelled
     if base == 5021:
-        return _nine(st.pos, st.extra, st.scale)[n - 5021], ""
+        return _rolled(_nine(st.pos, st.extra, st.scale), st, fanuc)[n - 5021], ""
     if st.comp_side is not None:
         return None, "the current position cannot be read with cutter radius compensation on (LinuxCNC)"
     # under tool centre point control the program's X Y Z are the tip's on the part (iso_tcp.tip_point), so the
@@ -219,7 +219,27 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     # specified" by the program)
     point = part_point(st.context.kinematics, st.extra, st.pos, st.tool_length) if st.tcp else st.pos
     values = _nine(st.to_program(point), st.extra - st.extra_offset(), st.scale)
-    return values[n - base], ""
+    return _rolled(values, st, fanuc)[n - base], ""
+
+
+def _rolled(values: list[float], st: ReaderState, fanuc: bool) -> list[float]:
+    """``values`` (X Y Z A B C U V W) with the angles of the axes the machine wraps at 360 deg reduced to [0, 360)
+    under Fanuc and Haas, whose roll-over axis shows its coordinates within one rotation (Fanuc Series 0i-MC
+    B-63534EN/02, 20.2.1 "Rotary axis roll-over": A0, then ``G90 A-150.``: "absolute coordinate value after
+    movement end" 210; Power Mate i B-63172EN/01, 7.5: "The rotation axis roll-over function rounds the absolute
+    coordinate value and relative coordinate value ... within one rotation", 7.4: "The machine coordinate system is
+    always normalized to the range from 0deg to 360deg"). LinuxCNC's interpreter reads them unwrapped (rs274
+    2.9.0~pre1 with ``WRAPPED_ROTARY``: 350 deg then ``A10``, ``#5423`` = 370), as the blocks carry them."""
+    wrapped = st.context.wrapped_axes
+    if not fanuc or not wrapped:
+        return values
+    return [_within_turn(v) if 3 <= i < 6 and "abc"[i - 3] in wrapped else v for i, v in enumerate(values)]
+
+
+def _within_turn(angle: float) -> float:
+    """``angle`` [deg] reduced to [0, 360), a rounding residue below one revolution (-1e-12) read as 0."""
+    r = angle % 360.0
+    return 0.0 if r > 360.0 - 1e-9 else r
 
 
 def _work_offset(n: int, st: ReaderState) -> float | None:

@@ -1,0 +1,67 @@
+"""Review of session 37's rotary axes that wrap at 360 deg (:mod:`interpolators.rotary_wrap`): a Fanuc roll-over
+axis reads its position back within one rotation, and G53.1 turns a wrapping axis to a tilted plane the machine's
+way. Hand-written programs; the numbers are worked by hand from the manual text each test names."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from interpolators.context import DIALECTS, MachineContext
+from interpolators.iso import parse_iso
+from interpolators.tilted import Kinematics, RotaryAxis
+
+
+def _a_of(prog) -> list[float]:
+    return [float(b.extra_target[0]) for b in prog.blocks]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_fanuc_roll_over_axis_reads_its_position_within_one_rotation(dialect: str):
+    """Fanuc Series 0i-MC B-63534EN/02, 20.2.1 "Rotary axis roll-over": A0, then ``G90 A-150.`` moves -150 and the
+    "absolute coordinate value after movement end" is 210 (the machine's, Power Mate i B-63172EN/01 7.4: "normalized
+    to the range from 0deg to 360deg"). The blocks carry the motor's -150; #5044, #5024 and #5004 read 210 (before:
+    -150, as on a linear axis)."""
+    ctx = MachineContext(dialect=DIALECTS[dialect], extra_axes=("a",), wrapped_axes=("a",))
+    text = "G21 G90\nG0 A-150.\nG0 X#5044 Y#5024\nG0 X#5004\nM30\n"
+    prog = parse_iso(text, source="t.nc", context=ctx)
+    assert _a_of(prog) == [-150.0] * 3
+    assert prog.blocks[-1].target[:2].tolist() == pytest.approx([210.0, 210.0])
+    # the same machine without wrap reads the linear axis' -150
+    linear = parse_iso(text, source="t.nc", context=MachineContext(dialect=DIALECTS[dialect], extra_axes=("a",)))
+    assert linear.blocks[-1].target[:2].tolist() == pytest.approx([-150.0, -150.0])
+
+
+def test_a_full_turn_back_reads_zero_not_a_rounding_residue():
+    """A0, ``G91 A-360.``: the axis is back at 0 (Fanuc B-63534EN/02 20.2.1, N5: -840 ends at 0), read as 0."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], extra_axes=("a",), wrapped_axes=("a",))
+    prog = parse_iso("G21 G91\nG0 A-0.1\nG0 A-359.9\nG90 G0 X#5044\nM30\n", source="t.nc", context=ctx)
+    assert prog.blocks[-1].target[0] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_linuxcnc_reads_the_wrapped_axis_unwrapped():
+    """rs274 (LinuxCNC 2.9.0~pre1) -i an INI with ``[AXIS_A] WRAPPED_ROTARY = 1``: ``G0 A350``, ``G0 A10``,
+    ``G0 X#5423``: STRAIGHT_TRAVERSE(370, .., A 370): LinuxCNC's interpreter does not reduce the angle."""
+    ctx = MachineContext(dialect=DIALECTS["linuxcnc"], extra_axes=("a",), wrapped_axes=("a",))
+    prog = parse_iso("G21 G90\nG0 A350\nG0 A10\nG0 X#5423\nM2\n", source="t.ngc", context=ctx)
+    assert prog.blocks[-1].target[0] == pytest.approx(370.0)
+
+
+#: A tilting table: A about X (tilting), C about Z (the part's), pivots at the machine zero.
+_KIN = Kinematics(kind="table", axes=(RotaryAxis(name="a", direction="X", limits=(-120.0, 120.0)),
+                                      RotaryAxis(name="c", direction="Z")))
+
+
+@pytest.mark.parametrize(("wrapped", "c_end"), [(("c",), 450.0), ((), 90.0)])
+def test_g53_1_turns_a_wrapping_axis_the_machine_way(wrapped: tuple[str, ...], c_end: float):
+    """C at 370 (``G91 C370.``), ``G68.2 I90. J30. K0``, ``G53.1``: the plane needs A+30 C+90 (or A-30 C-90, 100
+    deg away). A roll-over C (Fanuc RAB = 0, B-63534EN/02 20.2.1: "the tool moves in the direction in which the
+    final coordinates are closest") turns +80 to 450 (before: -280 to 90, as a linear axis does, which it still
+    does without wrap)."""
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], extra_axes=("a", "c"), wrapped_axes=wrapped, kinematics=_KIN)
+    prog = parse_iso("G21 G90\nG0 A0 C0\nG91 G0 C370.\nG90\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n",
+                     source="t.nc", context=ctx)
+    last = prog.blocks[-1]
+    assert float(last.extra_target[0]) == pytest.approx(30.0)
+    assert float(last.extra_target[2]) == pytest.approx(c_end)
+    assert np.allclose(last.target, last.start)  # G53.1 turns the rotary axes only
