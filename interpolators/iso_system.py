@@ -108,6 +108,7 @@ from interpolators.iso_offsets import (
     tool_offset_variable,
     with_tool_offset,
 )
+from interpolators.rotary_wrap import within_turn
 from interpolators.tcp import part_point
 
 if TYPE_CHECKING:
@@ -233,13 +234,7 @@ def _rolled(values: list[float], st: ReaderState, fanuc: bool) -> list[float]:
     wrapped = st.context.wrapped_axes
     if not fanuc or not wrapped:
         return values
-    return [_within_turn(v) if 3 <= i < 6 and "abc"[i - 3] in wrapped else v for i, v in enumerate(values)]
-
-
-def _within_turn(angle: float) -> float:
-    """``angle`` [deg] reduced to [0, 360), a rounding residue below one revolution (-1e-12) read as 0."""
-    r = angle % 360.0
-    return 0.0 if r > 360.0 - 1e-9 else r
+    return [within_turn(v) if 3 <= i < 6 and "abc"[i - 3] in wrapped else v for i, v in enumerate(values)]
 
 
 def _work_offset(n: int, st: ReaderState) -> float | None:

@@ -4,12 +4,18 @@ way. Hand-written programs; the numbers are worked by hand from the manual text 
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from interpolators.context import DIALECTS, MachineContext
+from interpolators.heidenhain import parse_heidenhain
 from interpolators.iso import parse_iso
 from interpolators.tilted import Kinematics, RotaryAxis
+from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_match import match_blocks, reader_rows
+from vcnc.commands.interpolate import blocks_table
 
 
 def _a_of(prog) -> list[float]:
@@ -65,3 +71,50 @@ def test_g53_1_turns_a_wrapping_axis_the_machine_way(wrapped: tuple[str, ...], c
     assert float(last.extra_target[0]) == pytest.approx(30.0)
     assert float(last.extra_target[2]) == pytest.approx(c_end)
     assert np.allclose(last.target, last.start)  # G53.1 turns the rotary axes only
+
+
+#: A B/C tilting table (B about Y, C about Z), C wrapping at 360 deg, the TNC's own rule (no M126: "difference").
+_BC = Kinematics(kind="table", axes=(RotaryAxis(name="b", direction="Y", limits=(-120.0, 120.0)),
+                                     RotaryAxis(name="c", direction="Z")))
+TNC_C = MachineContext(extra_axes=("b", "c"), wrapped_axes=("c",), kinematics=_BC)
+
+
+def _tnc(body: str, context: MachineContext = TNC_C):
+    """The reader's blocks of ``body``, checked against tests/interpolators/reference_heidenhain.py."""
+    text = "0 BEGIN PGM W MM\nL X+0 Y+0 Z+50 B+0 C+0 FMAX\n" + body + "\nEND PGM W MM\n"
+    prog = parse_heidenhain(text, source="w.h", context=context)
+    match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
+    assert match.mismatch is None, match.mismatch
+    return prog
+
+
+def _c_of(prog) -> list[float]:
+    return [round(float(b.extra_target[2]), 9) + 0.0 for b in prog.blocks]
+
+
+def test_tnc_plane_turns_a_wrapping_c_from_the_angle_it_shows():
+    """C at 370 (``L IC+370``: shown 10). ``PLANE SPATIAL SPA+0 SPB+30 SPC+90 TURN`` needs C+90 (or C-90 with B-30);
+    as a nominal position of a wrapping C (TNC 640 user's manual, M126: without it "the difference between nominal
+    and actual position", the actual one shown below 360) it is +80 to 450 (before: -280 to 90). ``PLANE AXIAL
+    C+10`` then goes back to 370, and ``PLANE AXIAL B+20``, C not written, leaves C where it is (before: "C+370 is
+    outside the axis' limits -360..360", C's unwrapped angle checked)."""
+    prog = _tnc("L IC+370 FMAX\nPLANE SPATIAL SPA+0 SPB+30 SPC+90 TURN FMAX\nPLANE RESET STAY\n"
+                "PLANE AXIAL C+10 TURN FMAX\nPLANE RESET STAY\nPLANE AXIAL B+20 TURN FMAX\nPLANE RESET STAY")
+    assert _c_of(prog) == [0.0, 370.0, 450.0, 370.0, 370.0]
+    assert [round(float(b.extra_target[1]), 9) for b in prog.blocks] == [0.0, 0.0, 30.0, 30.0, 20.0]
+
+
+def test_tnc_plane_on_an_m126_machine_and_a_linear_c_as_before():
+    """With ``M126`` the same PLANE SPATIAL turns C the shorter way (10 to 90: +80, the same end); on a C that does not
+    wrap (no ``wrap``) it turns -280 to 90, as a linear axis does."""
+    body = "L IC+370 FMAX M126\nPLANE SPATIAL SPA+0 SPB+30 SPC+90 TURN FMAX\nPLANE RESET STAY"
+    assert _c_of(_tnc(body)) == [0.0, 370.0, 450.0]
+    linear = dataclasses.replace(TNC_C, wrapped_axes=())
+    assert _c_of(_tnc(body, linear)) == [0.0, 370.0, 90.0]
+
+
+def test_tnc_difference_rule_after_a_rounding_residue_stays():
+    """C+0.3, then ``IC-0.1`` three times leaves C at 0.3 - 3 x 0.1 = -2.8e-17 deg (floating point); ``L C+0`` is
+    then no move (the difference to the shown 0), not a whole turn of -360 deg (before: C ended at -360)."""
+    prog = _tnc("L C+0.3 FMAX\nL IC-0.1 FMAX\nL IC-0.1 FMAX\nL IC-0.1 FMAX\nL C+0 FMAX\nL X+1 FMAX")
+    assert abs(float(prog.blocks[-1].extra_target[2])) < 1e-9
