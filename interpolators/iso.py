@@ -122,7 +122,7 @@ import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
 from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
-from interpolators.iso_arc3d import ARC3D_CODES, unfinished_arc3d
+from interpolators.iso_arc3d import ARC3D_CODES, arc3d_interrupted, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, refuse_wrapped_offset, word_values
 from interpolators.iso_codes import (
@@ -152,6 +152,7 @@ from interpolators.iso_cycles import CycleWords
 from interpolators.iso_decimal import decimal_point_note, decimal_point_words
 from interpolators.iso_dwo import carry_work_zero, dwo_switch
 from interpolators.iso_fadal import core_context, fadal_lines, fadal_text
+from interpolators.iso_fanuc_nurbs import NurbsCurve, g062_block, unfinished_g062
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
@@ -165,7 +166,9 @@ from interpolators.iso_motion import (
     check_polar,
     dwell_block,
     fanuc_polar,
+    linuxcnc_modal_axis_words,
     motion_block,
+    move_feed,
 )
 from interpolators.iso_offsets import (
     P_SELECT_CODES,
@@ -181,6 +184,7 @@ from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_reference import FANUC_CODES
+from interpolators.iso_rigid_tap import end_rigid_tap, rigid_tap_moved
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
 from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
@@ -311,7 +315,9 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
-    rigid_tap: bool = False  # Fanuc M29 S.. since the last G80 or group 01 code: the next G84/G74 turns it
+    rigid_tap: bool = False  # Fanuc M29 S.. until its tapping cycle ends: the G84/G74 turns it (iso_rigid_tap)
+    rigid_tap_at: Where | None = None  # the M29 block while no G84/G74 has come since (iso_rigid_tap)
+    rigid_tap_s: float = 0.0  # the S [rev/min] of the rigid tap that ran (iso_rigid_tap)
     corner_word: Word | None = None  # the block's Fanuc/Haas ,R / ,C word, until its move takes it
     corner: PendingCorner | None = None  # a ,R / ,C waiting for the next move (interpolators.iso_corners)
     modal_calls: ModalCalls | None = None  # Fanuc G66/G66.1 in force (interpolators.iso_modal_call), fanuc only
@@ -330,6 +336,7 @@ class State:
     # reading, the Fadal manual's cycle section was not found), K no repeat count (Fadal repeats with L)
     fadal: bool = False
     arc3d_mid: np.ndarray | None = None  # Fanuc G02.4/G03.4: the intermediate point read [mm] (iso_arc3d)
+    g062: NurbsCurve | None = None  # Fanuc G06.2: the NURBS being read (iso_fanuc_nurbs)
     arc3d_line: int = 0  # its line
     lathe_marks: dict[str, tuple[str | None, int]] = dataclasses.field(default_factory=dict)  # Fanuc/Haas lathe
     # codes seen: their file and line
@@ -439,7 +446,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
                 tape_leader=dialect.name == "fanuc", on_comment=on_comment, on_note=notes.add,
                 decimal_point_input=context.decimal_point_input if dialect.name == "fanuc" else None,
                 on_call_words=functools.partial(_m98_words, st=st, notes=notes) if dialect.name == "linuxcnc" else None,
-                modal_calls=st.modal_calls, skip_after_number=dialect.name != "linuxcnc")
+                modal_calls=st.modal_calls, tape_forms=dialect.name != "linuxcnc")
     if fadal:
         lines = fadal_lines(lines, st, notes.add, plain.reset)
     for fl in lines:
@@ -483,6 +490,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         finish_compensation(st, blocks, source)
     expression_notes(text, params, dialect.name, notes)
     unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
+    unfinished_g062(st, Where(source, st.g062.line if st.g062 is not None else 0, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = program_axes(used, blocks)
     if st.extra_used:
@@ -620,13 +628,19 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     if st.context.dialect.name == "grbl":
         for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)
+    before, arc3d = len(blocks), st.arc3d_mid is not None
     if "exact stop check" not in gcodes:
-        return _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
-    notes.add("G09 exact stop (one block)")
-    modal, st.exact_stop = st.exact_stop, True
-    ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
-    if "path" not in gcodes:
-        st.exact_stop = modal
+        ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+    else:
+        notes.add("G09 exact stop (one block)")
+        modal, st.exact_stop = st.exact_stop, True
+        ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
+        if "path" not in gcodes:
+            st.exact_stop = modal
+    if arc3d and st.arc3d_mid is not None and not ended and any(w.letter != "N" for w in words):  # G02.4 pair
+        arc3d_interrupted(st, where)
+    if st.rigid_tap_at is not None:  # Fanuc M29 waiting for its G84/G74 (interpolators.iso_rigid_tap)
+        rigid_tap_moved(st, any(b.kind != "dwell" for b in blocks[before:]), where)
     return ended
 
 
@@ -653,7 +667,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         seen = {k: v for k, v in seen.items() if k != "P"}
     if "dwell" in gcodes:  # G4 runs before the block's motion (LinuxCNC order of execution)
         dwell_block(gcodes, seen, st, blocks, where, number, notes)
-        if "motion" not in gcodes:
+        if "motion" not in gcodes and not ("P" in seen and linuxcnc_modal_axis_words(seen, st)):
             return ended
         seen = {k: v for k, v in seen.items() if k != "P"}
     polar = [w for w in POLAR_LETTERS if w in seen]
@@ -684,6 +698,13 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         handled = _nonmodal(gcodes, seen, st, blocks, used, where, number, notes)
         if handled:
             return ended
+    if _g062(seen, gcodes, st):  # Fanuc G06.2 NURBS: its P (rank), K (knots) and R (weights)
+        if st.g062 is not None and gcodes.get("motion", (62,))[0] != 62:
+            unfinished_g062(st, where)
+        _motion_mode(gcodes, words, st)
+        target = block_target(seen, [a for a in "XYZ" if a in seen], st, machine=False)
+        g062_block(seen, gcodes, target, st, blocks, used, where, number, move_feed, notes)
+        return ended
     _check_p_q(seen, gcodes, st, where, mcodes)
     _motion_mode(gcodes, words, st)
     if st.arc3d_mid is not None and st.motion not in ARC3D_CODES:
@@ -719,6 +740,14 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
     motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
+
+
+def _g062(seen, gcodes, st: State) -> bool:
+    """True for a block of a Fanuc G06.2 NURBS (:mod:`interpolators.iso_fanuc_nurbs`): the G06.2 block, a block
+    while a curve is being read, or under the modal G06.2 a block with X Y Z or K (which starts another curve)."""
+    if st.g062 is not None or gcodes.get("motion", (0,))[0] == 62:
+        return True
+    return "motion" not in gcodes and st.motion == 62 and any(a in seen for a in "XYZK")
 
 
 def _no_move(seen, gcodes, arc_words: list[str], st: State, where: Where) -> bool:
@@ -1135,7 +1164,7 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
         in_cycle = st.motion is not None and st.motion >= 730
         if key == 800:
             st.motion = st.cycle.motion_before if in_cycle else st.motion
-            st.rigid_tap = False
+            end_rigid_tap(st, words)
         else:
             if key >= 730 and not in_cycle:  # a new series of cycles: remember the initial level
                 # LinuxCNC keeps the last dwell P across series (settings->cycle_p; interp_cycles.cc
@@ -1144,11 +1173,11 @@ def _motion_mode(gcodes, words: list[Word], st: State) -> None:
                 carried = st.cycle.p if st.context.dialect.name == "linuxcnc" else None
                 st.cycle = CycleWords(motion_before=st.motion, p=carried)
             st.motion = key
-            if key < 730 and not any(w.letter == "M" and w.value == 29 for w in words):
-                st.rigid_tap = False  # a group 01 code ends the cycle as G80 does, and M29's rigid mode with it
+            if key not in (740, 840) and not any(w.letter == "M" and w.value == 29 for w in words):
+                end_rigid_tap(st, words)  # a group 01 code ends the cycle as G80 does, another cycle the tap
     elif "G80" in (w.text.upper().replace("G080", "G80") for w in words if w.letter == "G"):
         st.motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
-        st.rigid_tap = False
+        end_rigid_tap(st, words)
 
 
 def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
@@ -1311,7 +1340,7 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.home, st.home_extra = st.pos.copy(), st.extra.copy()
         else:
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key in (520, 920):
         refuse_wrapped_offset(seen, st, where, f"G{key // 10}")
     if key == 520:
@@ -1346,11 +1375,11 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
         st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
         st.g92_applied = False
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 923:
         st.g92, st.g92_extra = st.g92_saved.copy(), st.g92_extra_saved.copy()
         st.g92_applied = True
-        return True
+        return not linuxcnc_modal_axis_words(seen, st)
     if key == 100:
         if "L" in seen and seen["L"].value == 0:
             # LinuxCNC g-code.adoc "G10 L0 Reload Tool Table Data" (interp_convert.cc convert_modal_0: an

@@ -23,8 +23,11 @@ vcnc runs the arc as chords within :data:`interpolators.iso_splines.SPLINE_TOLER
 block's feed (under G93 the pair of blocks takes the end block's 1/F minutes, our reading); the blocks carry the
 end point block's line. Refused, each an error naming it: under a G68 rotation, G51 scaling, mirror image or
 G10 R rotation, cutter compensation or tool centre point control, with A-W axis words (the manual's
-"arbitrary axis"), and an intermediate point whose end block never comes (another motion code or the program's
-end).
+"arbitrary axis"), an intermediate point whose end block never comes (another motion code or the program's
+end), and any other block between the two (``G02.4 X Y Z`` / ``G04 X1.`` / ``X Y Z``, or an M code alone): the
+manual's format is the two blocks in a row, "Intermediate point designation (1st block)", "End point designation
+(2nd block)" (our reading: a block between them is neither; the Fanuc text was not found). A macro statement
+between them (``#100 = 1``) is no NC block and is taken.
 """
 
 from __future__ import annotations
@@ -42,7 +45,7 @@ from toolpaths.geometry import Line
 if TYPE_CHECKING:
     from interpolators.iso import State
 
-__all__ = ["ARC3D_CODES", "arc3d_block", "circle_chords", "unfinished_arc3d"]
+__all__ = ["ARC3D_CODES", "arc3d_block", "arc3d_interrupted", "circle_chords", "unfinished_arc3d"]
 
 #: round(10 x G) of the three-dimensional arc codes, with their names.
 ARC3D_CODES = {24: "G02.4 three-dimensional circular interpolation",
@@ -116,3 +119,12 @@ def unfinished_arc3d(st: State, where: Where) -> None:
         where.fail(f"three-dimensional arc: the intermediate point of line {st.arc3d_line} has no end point block",
                    column=1, text=where.text or "", expected="the end point block X.. Y.. Z.. right after the "
                    "G02.4/G03.4 block of the intermediate point")
+
+
+def arc3d_interrupted(st: State, where: Where) -> None:
+    """Fail where a block (``where``) that is not the end point came after a G02.4/G03.4 intermediate point: the
+    two blocks must follow each other (the module text)."""
+    where.fail(f"three-dimensional arc: a block between the intermediate point (line {st.arc3d_line}) and its end "
+               "point block", column=1, text=where.text or "",
+               expected="the end point block X.. Y.. Z.. right after the G02.4/G03.4 block (a dwell, M code or "
+                        "other block before it or after the arc)")

@@ -90,10 +90,11 @@ G_UNSUPPORTED: dict[int, str] = {
     34: "G03.4 three-dimensional circular interpolation (Fanuc option; --dialect fanuc)",
     2680: "G268 feature coordinate system (Haas 5-axis)",
     # Haas NGC mill operator's manual "G254 Dynamic Work Offset (DWO) (Group 23)": read under --dialect haas
-    # (interpolators.iso_dwo). Fanuc "NURBS interpolation (G06.2)" (an option of the 30i series): control points,
-    # weights, knots; its motion needs the curve's knots as the control reads them.
+    # (interpolators.iso_dwo). Fanuc "NURBS interpolation (G06.2)" (an option of the 30i series): read under
+    # --dialect fanuc (interpolators.iso_fanuc_nurbs).
     2540: "G254 dynamic work offset (Haas DWO; --dialect haas)",
-    2550: "G255 dynamic work offset cancel (Haas DWO; --dialect haas)", 62: "G06.2 NURBS interpolation (Fanuc option)",
+    2550: "G255 dynamic work offset cancel (Haas DWO; --dialect haas)",
+    62: "G06.2 NURBS interpolation (Fanuc option; --dialect fanuc)",
     541: "G54.1 P additional work offsets (Fanuc; --dialect fanuc)",
     # FANUC Series 30i-B operator's manual (B-64484EN), "Workpiece setting error compensation (G54.4)": an option
     # whose error data the machine's probing stores; Fusion's fanuc.cps writes "G54.4 P<n>" after its probing
@@ -145,6 +146,7 @@ NORMAL_DIRECTION = {401: "G40.1 normal direction control cancel", 411: "G41.1 no
 DIALECT_G: dict[str, dict[int, tuple[str, str]]] = {
     "fanuc": {870: ("motion", "G87 back boring cycle"), 160: ("polar", "G16 polar coordinate command"),
               24: ("motion", "G02.4 three-dimensional circular interpolation"),  # interpolators.iso_arc3d
+              62: ("motion", "G06.2 NURBS interpolation"),  # interpolators.iso_fanuc_nurbs
               34: ("motion", "G03.4 three-dimensional circular interpolation"),
               434: ("length compensation", "G43.4 tool centre point control"),  # interpolators.iso_tcp
               435: ("length compensation", "G43.5 tool centre point control type 2"),

@@ -23,9 +23,11 @@ from interpolators.iso_motion import (
     initial_feed,
     long_dwell_note,
     nurbs_block,
+    per_rev_missing,
     per_rev_spindle,
     rapid_move,
 )
+from interpolators.iso_rigid_tap import rigid_tap_speed
 from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import Block
 from toolpaths.geometry import Line
@@ -164,7 +166,7 @@ def cycle_turns_spindle(st: State) -> bool:
     no M3/M4 before it: Haas's G84/G74 always (Haas mill operator's manual, "G84 Tapping Canned Cycle": "It is
     not necessary to start the spindle CW before this canned cycle. The control does this automatically"; our
     reading is the same for G74's CCW), Fanuc's after M29 S.. (rigid tapping,
-    :data:`interpolators.iso_mcodes.RIGID_TAP_NOTE`). Other cycles under G95 need the spindle turning,
+    :mod:`interpolators.iso_rigid_tap`). Other cycles under G95 need the spindle turning,
     :func:`interpolators.iso_motion.per_rev_spindle`."""
     if st.motion not in (740, 840):
         return False
@@ -190,9 +192,12 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
+    if st.context.dialect.name == "fanuc":
+        rigid_tap_speed(st, name, where, mw.column, mw.text)
+    if st.feed is None and st.motion != 0 and st.per_rev:
+        per_rev_missing(st, where, name, mw.column, mw.text)
     if st.feed is None and st.motion != 0 and not initial_feed(st, where):
-        where.fail(f"{name}: no feed rate" + (" (G95: F and S > 0 per revolution)" if st.per_rev else ""),
-                   column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
+        where.fail(f"{name}: no feed rate", column=mw.column, text=mw.text, expected="F > 0 [mm/min]")
     if st.per_rev and st.motion != 0 and not cycle_turns_spindle(st):
         per_rev_spindle(st, where, name, mw.column, mw.text)
     tap = tap_spindle_error(st.motion // 10, st.spindle_turning, st.spindle_ccw)

@@ -185,6 +185,21 @@ def _refuse_colon_block(line: str, column: int, where: Where) -> NoReturn:
                column=column, text=line, expected="':' followed by the program number, e.g. :1234")
 
 
+def _refuse_colon(line: str, code: str, where: Where) -> NoReturn:
+    """The error for a line that starts with ':' (``code``: without its comments) and is not read as a program
+    number: a program number ``:1248`` where the dialect has no ISO-code address (LinuxCNC's rs274ngc knows no ':',
+    interp_read.cc ``read_one_item``: rs274 stops at ':1248' with "Bad character ':' used"; its numbered programs are
+    O-words, o-code.adoc "Fanuc-Style Numbered Programs"), else :func:`_refuse_colon_block`."""
+    column = code.index(":") + 1
+    number = _FANUC_PROGRAM.match(code)
+    if number is None:
+        _refuse_colon_block(line, column, where)
+    n = number.group(1)
+    where.fail("':' before a program number (ISO code's program-number address, O of EIA code): LinuxCNC refuses "
+               "it (rs274: \"Bad character ':' used\")", column=column, text=line,
+               expected=f"O{n} (--dialect fanuc reads :{n} as O{n})")
+
+
 def _refuse_foreign_header(line: str, where: Where) -> None:
     """Refuse a ``%`` line that heads a program of a control whose native language is not ISO G-code, or a
     Heidenhain TNC program in DIN/ISO (:func:`refuse_heidenhain_iso`)."""
@@ -306,10 +321,10 @@ class _Program:
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
                  subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
-                 abbreviations: bool = False, skip_levels: bool = False, skip_after_number: bool = True) -> None:
+                 abbreviations: bool = False, skip_levels: bool = False, tape_forms: bool = True) -> None:
         self.source = source
         self.skip_levels = skip_levels
-        self.skip_after_number = skip_after_number
+        self.tape_forms = tape_forms
         self.subroutine_path = subroutine_path
         self.tape_leader = tape_leader
         self.raw: list[str] = []
@@ -384,9 +399,9 @@ class _Program:
             if s.startswith("/"):
                 code = _block_delete(code, where, levels=self.skip_levels)
             elif "/" in code:
-                code = _skip_after_number(code, where, levels=self.skip_levels, reads=self.skip_after_number)
-            if s.startswith(":") and not _FANUC_PROGRAM.match(code):
-                _refuse_colon_block(s, code.index(":") + 1, where)
+                code = _skip_after_number(code, where, levels=self.skip_levels, reads=self.tape_forms)
+            if s.startswith(":") and not (self.tape_forms and _FANUC_PROGRAM.match(code)):
+                _refuse_colon(s, code, where)
             if self.macro.add_line(i, code, self.span, where) is not None:
                 self.code.append(None)  # IF / GOTO / WHILE .. DO / END: run by self.macro
                 continue
@@ -654,7 +669,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         on_comment: Callable[[str, str, Where], None] | None = None,
         on_note: Callable[[str], None] | None = None, decimal_point_input: str | None = None,
         on_call_words: Callable[[list[Word], Where], None] | None = None,
-        modal_calls: ModalCalls | None = None, skip_after_number: bool = True) -> Iterator[FlowLine]:
+        modal_calls: ModalCalls | None = None, tape_forms: bool = True) -> Iterator[FlowLine]:
     """Yield the lines of a program in execution order, their words read.
 
     ``max_lines`` bounds the lines executed, ``max_loop_passes`` the times one macro B loop end or backward GOTO sends
@@ -668,8 +683,8 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     ``on_call_words(words, where)``: when given, an M98 block only calls and its other words, read and not executed, go
     to it (LinuxCNC, :func:`_call_words_only`); without it they run before the call (Fanuc, Haas). ``modal_calls``: G66,
     G66.1 and G67 run as Fanuc's modal macro calls (:mod:`interpolators.iso_modal_call`), in force in it; without it
-    they are yielded as words (which the reader refuses). ``skip_after_number``: a '/' right after the line's sequence
-    number runs as block delete (Fanuc, Haas, grbl); False: refused, as LinuxCNC does (:func:`_skip_after_number`).
+    they are yielded as words (which the reader refuses). ``tape_forms``: a '/' right after the line's sequence number
+    runs as block delete (Fanuc, Haas, grbl) and ``:1234`` is program O1234; False: both refused, as LinuxCNC does.
 
     The caller stops iterating at the program end (M2/M30). ``M99`` in the main program yields a
     line whose ``M99`` is replaced by ``M30``.
@@ -682,7 +697,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     params = Parameters() if params is None else params
     prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
                     tape_leader=tape_leader, abbreviations=params.fanuc, skip_levels=params.fanuc,
-                    skip_after_number=skip_after_number)
+                    tape_forms=tape_forms)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from interpolators._words import Where
 from interpolators.iso_codes import LINUXCNC_M
+from interpolators.iso_rigid_tap import arm_rigid_tap, end_rigid_tap
 from interpolators.iso_words import Word, foreign_hint
 
 if TYPE_CHECKING:
@@ -29,13 +30,6 @@ _M_NOTES = {
     70: "M70-M73 modal state", 71: "M70-M73 modal state", 72: "M70-M73 modal state", 73: "M70-M73 modal state",
     **{m: "M62-M68 digital/analog I/O" for m in range(62, 69)},
 }
-
-
-#: Fanuc's rigid tapping M code (parameter No. 5210, M29 by default): Fanuc 0i-B connection manual (function)
-#: B-63833EN, "Rigid tapping": "M29 S1000 ; G84 Z-100. R-20. F1. ;" under G99 (feed per revolution), with no M03:
-#: the control drives the spindle in step with the tapping axis for the G84/G74 that follows, until G80 or a group 01
-#: code (G00, G01, ..) ends the cycle (our reading).
-RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
 
 
 #: Haas's own M codes above M99 that move nothing (Haas mill operator's manual, NGC, "M-codes": "M130 Display
@@ -125,12 +119,12 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
         if m in (2, 30):
             ended = True
             st.spindle_turning = False
+            end_rigid_tap(st)
         elif m == 6:
             st.tool_current = st.tool_selected
             notes.add("T/M6 tool change")
-        elif m == 29 and st.context.dialect.name == "fanuc":
-            st.rigid_tap = True
-            notes.add(RIGID_TAP_NOTE)
+        elif m == 29 and st.context.dialect.name == "fanuc":  # Fanuc rigid tapping (parameter No. 5210: M29)
+            arm_rigid_tap(st, where, notes)
         elif m == 61:
             if "Q" in seen:
                 st.tool_current = int(seen["Q"].value)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 import numpy as np
 
@@ -30,9 +30,10 @@ from toolpaths.geometry import PLANE_AXES, Arc, Line
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "move_feed", "initial_feed", "per_rev_spindle",
+__all__ = ["block_target", "fanuc_polar", "check_polar", "motion_block", "move_feed", "initial_feed", "per_rev_missing",
+           "per_rev_spindle",
            "nurbs_block", "rapid_move", "dwell_block", "long_dwell_note", "LONG_DWELL_P", "dwell_p_point_note",
-           "dwell_p_seconds"]
+           "dwell_p_seconds", "linuxcnc_modal_axis_words"]
 
 #: an M98 subprogram call in a line (a word M98, not M980)
 _M98 = re.compile(r"(?<![A-Z])M0*98(?![0-9.])", re.IGNORECASE)
@@ -325,8 +326,7 @@ def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
     if st.feed_zero:
         why = f"F0, a zero feed rate ({_ZERO_FEED.get(st.context.dialect.name, _ZERO_FEED_ANY)})"
     elif st.per_rev:
-        why = ("G95 feed per revolution: no F word since G95" if st.feed_per_rev is None else
-               "G95 feed per revolution with spindle speed S0 (LinuxCNC: cannot feed with zero spindle speed)")
+        per_rev_missing(st, where, code, mcol, mtok)
     elif st.uncalled_feed:
         why += f" ({st.uncalled_feed} is not executed: LinuxCNC runs an M98 block as a call only)"
     elif st.subprogram:
@@ -339,6 +339,23 @@ def _no_feed(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
         why = f"F#{vacant.group(1)} is vacant (never set), which leaves the F word out; no F word before it"
     where.fail(f"{code} feed move without a feed: {why}", column=mcol, text=mtok,
                expected="F > 0 [mm/min] (or a machine's initial feed: --initial-feed F, [program] initial_feed)")
+
+
+def per_rev_missing(st: State, where: Where, code: str, mcol: int, mtok: str) -> NoReturn:
+    """The error of a feed move (``code``: the move or cycle, for the message) under G95 without a feed: F (per
+    revolution) x S (the spindle speed), saying which of the two is missing. LinuxCNC refuses S0 ("Cannot feed with
+    zero spindle speed in feed per rev mode", rs274); elsewhere F x S0 is no feed at all."""
+    unit = "in/rev" if st.scale != 1.0 else "mm/rev"
+    if st.feed_per_rev is None:
+        where.fail(f"{code} under G95 feed per revolution: no F word since G95", column=mcol, text=mtok,
+                   expected=f"F<feed per revolution> > 0 [{unit}] after G95")
+    dialect = st.context.dialect.name
+    said = ('rs274: "Cannot feed with zero spindle speed in feed per rev mode"' if dialect == "linuxcnc" else
+            f"F{st.feed_per_rev_word:g} per revolution x S0 is no feed")
+    cleared = ", or the S of a rigid tap (M29), cleared at its end" if dialect == "fanuc" else ""
+    where.fail(f"{code} under G95 feed per revolution without a spindle speed: S0 (no S word > 0 before it{cleared}; "
+               f"{said})", column=mcol, text=mtok,
+               expected="S<spindle speed> > 0 [rev/min] (and M3/M4) before a feed move under G95")
 
 
 def per_rev_spindle(st: State, where: Where, code: str, mcol: int, mtok: str) -> None:
@@ -524,19 +541,33 @@ def dwell_p_point_note(word: Word, st: State, notes: Notes | None) -> None:
                   "(where P is seconds, as on LinuxCNC and grbl: --dialect linuxcnc, it dwells 1000 times longer)")
 
 
+def linuxcnc_modal_axis_words(seen, st: State) -> bool:
+    """True when the block's axis words move by the modal motion although a group 0 code is in it: under
+    ``linuxcnc``, whose group 0 codes other than G10, G28, G30, G52 and G92 do not use axis words (rs274ngc
+    interp_check.cc ``enhance_block``: ``mode_zero_covets_axes``; "if there is an axis value in the block and no
+    g-code to use it ... set motion_to_be to be the last motion saved"). So ``G28.1 Z3`` (SheetCAM's Mach3
+    floating-head posts) stores the position, then moves to Z3 by G0/G1, as do G30.1, G92.1-G92.3 and a dwell
+    ``G4 P..`` (LinuxCNC order of execution: the dwell and the group 0 code before the motion)."""
+    return st.context.dialect.name == "linuxcnc" and any(a in seen for a in ("X", "Y", "Z", *EXTRA_LETTERS))
+
+
 def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:
     key, gw = gcodes["dwell"]
     if "motion" in gcodes and "P" not in seen:
         w = gcodes["motion"][1]
         where.fail("G04 with a motion code needs its time as P", column=w.column, text=w.text,
                    expected="G04 P<time> G01 X..")
-    bad = [] if "motion" in gcodes else [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen]
+    moves = "motion" in gcodes or ("P" in seen and linuxcnc_modal_axis_words(seen, st))
+    axis = ("Y", "Z", *EXTRA_LETTERS) if moves else ()
+    bad = [w for w in ("Y", "Z", "I", "J", "K", "R", *EXTRA_LETTERS) if w in seen and w not in axis]
+    if "motion" in gcodes:
+        bad = []
     if bad:
         w = seen[bad[0]]
         where.fail(f"word {bad[0]} not allowed in a dwell block", column=w.column, text=w.text,
                    expected="G04 P<time> or G04 X<s>")
     unit = st.context.dialect.dwell_p_unit
-    if "motion" in gcodes:  # X belongs to the motion; the dwell time is P
+    if moves:  # X belongs to the motion; the dwell time is P
         seen = {k: v for k, v in seen.items() if k != "X"}
     if ("P" in seen) == ("X" in seen):
         where.fail(f"G04 needs exactly one of P or X{firmware_dwell_hint(seen)}", column=gw.column, text=gw.text,

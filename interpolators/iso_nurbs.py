@@ -50,14 +50,17 @@ def _basis(u: np.ndarray, knots: np.ndarray, n: int, k: int) -> np.ndarray:
     return b[:, : n + 1]
 
 
-def nurbs_points(control: np.ndarray, weights: np.ndarray, order: int, u: np.ndarray) -> np.ndarray:
-    """Points [mm] of the curve at the parameters ``u`` (0 .. ``n - order + 2``)."""
+def nurbs_points(control: np.ndarray, weights: np.ndarray, order: int, u: np.ndarray,
+                 knots: np.ndarray | None = None) -> np.ndarray:
+    """Points [mm] of the curve at the parameters ``u`` (``knots[0]`` .. ``knots[-1]``; LinuxCNC's
+    :func:`knot_vector` when ``knots`` is None: 0 .. ``n - order + 2``)."""
     n = len(control) - 1
-    nw = _basis(np.asarray(u, dtype=float), knot_vector(n, order), n, order) * weights
+    knots = knot_vector(n, order) if knots is None else np.asarray(knots, dtype=float)
+    nw = _basis(np.asarray(u, dtype=float), knots, n, order) * weights
     return (nw @ control) / nw.sum(axis=1)[:, None]
 
 
-def nurbs_chords(control: np.ndarray, weights: np.ndarray, order: int, *,
+def nurbs_chords(control: np.ndarray, weights: np.ndarray, order: int, *, knots: np.ndarray | None = None,
                  tolerance: float = SPLINE_TOLERANCE) -> list[np.ndarray]:
     """End points of the chords of the curve (the first point, ``control[0]``, left out; the last exactly
     ``control[-1]``): ``4 (n + 1)`` equal parameter steps as LinuxCNC's canon divides it, each halved until
@@ -71,24 +74,27 @@ def nurbs_chords(control: np.ndarray, weights: np.ndarray, order: int, *,
         Their weights (> 0).
     order : int
         The order ``k`` (degree ``k - 1``), ``2 <= k <= n + 1``.
+    knots : ndarray, shape (n + k + 1,), optional
+        The knot vector, non-decreasing, its first and last ``k`` knots equal (the curve then starts at
+        ``control[0]`` and ends at ``control[-1]``: Fanuc's G06.2); default LinuxCNC's :func:`knot_vector`.
     """
     control = np.asarray(control, dtype=float)
     weights = np.asarray(weights, dtype=float)
     n = len(control) - 1
-    umax = float(n - order + 2)
-    u = np.linspace(0.0, umax, 4 * (n + 1) + 1)
+    knots = knot_vector(n, order) if knots is None else np.asarray(knots, dtype=float)
+    u = np.linspace(knots[0], knots[-1], 4 * (n + 1) + 1)
     for _ in range(40):
         a, b = u[:-1], u[1:]
-        pa, pb = nurbs_points(control, weights, order, a), nurbs_points(control, weights, order, b)
+        pa, pb = (nurbs_points(control, weights, order, a, knots), nurbs_points(control, weights, order, b, knots))
         worst = np.zeros(len(a))
         for f in (0.25, 0.5, 0.75):
-            p = nurbs_points(control, weights, order, a + f * (b - a))
+            p = nurbs_points(control, weights, order, a + f * (b - a), knots)
             worst = np.maximum(worst, _distance_to_chord(p, pa, pb))
         bad = worst > tolerance
         if not bad.any() or len(u) > MAX_CHORDS:
             break
         u = np.sort(np.concatenate([u, 0.5 * (a[bad] + b[bad])]))
-    points = nurbs_points(control, weights, order, u[1:])
+    points = nurbs_points(control, weights, order, u[1:], knots)
     points[-1] = control[-1]  # the last control point exactly
     return list(points)
 

@@ -556,7 +556,7 @@ def _unskipped(s: str, *, fanuc: bool) -> str:
     return s[2:] if fanuc and re.match(r"/[1-9]", s) else s[1:]
 
 
-def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]:
+def _lines(text: str, *, grbl: bool = False, fanuc: bool = False, linuxcnc: bool = False) -> list[_Line]:
     out = []
     for no, raw in enumerate(_split(text), start=1):
         s = clean_line(raw)
@@ -578,6 +578,8 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False) -> list[_Line]
             s = _unskipped(s, fanuc=fanuc)
         s = _unabbreviated(s) if fanuc else s
         seq = int(n.group(1)) if n else None
+        if linuxcnc and s.startswith(":"):  # rs274ngc reads no ':' (rs274: "Bad character ':' used")
+            raise ReferenceError(f"line {no}: ':' refused under LinuxCNC")
         if re.match(r":\d", s):  # ISO code's program-number address ':' (O of EIA code): ":0097" is O0097
             s = "o" + s[1:]
         m = _OWORD.match(s)
@@ -612,7 +614,7 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
             key = ev.param_ref()
             ev.expect("=")
             sets.append((key, ev.chain(closed=False)))
-        elif c in "@^" or c.isalpha():
+        elif c in "@^$" or c.isalpha():
             ev.i += 1
             value = ev.real()
             if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
@@ -650,8 +652,8 @@ def _structure(lines: list[_Line]) -> dict:
         program_of[i] = program_start
         if name is None:
             continue
-        if k is None:
-            fanuc[name] = i
+        if k is None:  # O01000 is program 1000 (Fanuc program numbers: M98 P1000 calls it)
+            fanuc[str(int(name)) if name.isdigit() else name] = i
         elif k in ("sub", "if", "repeat") or (k == "while" and not (stack and stack[-1][:2] == (name, "do"))) \
                 or k == "do":
             stack.append((name, k, i))
@@ -742,6 +744,13 @@ class _Machine:
         self.tcp_vector = False  # Fanuc G43.5: the tool direction I J K instead of rotary words
         self.selected = self.loaded = 0
         self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
+        self.spindle = 0.0  # S [rev/min] (Fanuc rigid tapping: _rigid_tap)
+        self.rigid = False  # Fanuc M29 until its tapping cycle ends
+        self.rigid_at: int | None = None  # the line of that M29 until a G84/G74 runs
+        self.rigid_s = 0.0  # the S of the rigid tap that ran
+        self.dwo_on = False  # Haas G254 dynamic work offset (_dwo)
+        self.arc3d: tuple[np.ndarray, int] | None = None  # Fanuc G02.4's intermediate point [mm] and line (_arc3d)
+        self.dwo = np.zeros(3)  # its shift of the work zero [mm]
         self.comp_radius: float | None = None
         self.comp_entry = False
         self.comp_side = "left"
@@ -791,16 +800,17 @@ class _Machine:
         return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]])
 
     def to_machine(self, prog: np.ndarray) -> np.ndarray:
-        """Machine position of a program point: rotation(program + G92) + work offset + tool length."""
+        """Machine position of a program point: rotation(program + G92) + work offset (+ Haas G254's shift of it,
+        :func:`_dwo`) + tool length."""
         p = np.where(self.mirror, 2 * self.mirror_at - prog, np.asarray(prog, float))
         p = self.scale_centre + self.factors * (p - self.scale_centre)
-        m = self._rot(self._g68_turn(p, 1.0) + self.g92, 1.0) + self.offsets[self.wcs]
+        m = self._rot(self._g68_turn(p, 1.0) + self.g92, 1.0) + self.offsets[self.wcs] + self.dwo
         m[2] += self.tool_length
         m[:2] += self.tool_xy
         return m
 
     def to_program(self, machine: np.ndarray) -> np.ndarray:
-        v = machine - self.offsets[self.wcs]
+        v = machine - self.offsets[self.wcs] - self.dwo
         v[2] -= self.tool_length
         v[:2] -= self.tool_xy
         p = self._g68_turn(self._rot(v, -1.0) - self.g92, -1.0)
@@ -1059,6 +1069,30 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
             m.arc_absolute = code == 901
         elif code in (980, 990):
             m.retract = code // 10
+    if m.ctx.dialect.name == "haas":
+        _dwo(m, g, words)
+
+
+def _dwo(m: _Machine, g: list[int], words: dict) -> None:
+    """Haas G254 dynamic work offset (Haas mill operator's manual (NGC) "G254 Dynamic Work Offset (DWO)": for 3+1 /
+    3+2 positioning "DWO uses the current rotary positions and the machine rotary zero point (MRZP) to compute where
+    the work offset has gone"; "G255 cancels DWO"), on the context's tilting table: the work zero in force (work
+    offset and G92 shift, machine coordinates with the rotary axes at 0) carried by the table to the rotary
+    positions (:func:`_table`, the pivots standing for the MRZP) shifts every position, incremental moves included
+    (an offset, which a G91 move does not see: it goes from where the tool is). A rotary word under it, a G68 frame
+    or TCPC are not modelled (ReferenceError)."""
+    if 2550 in g:
+        m.dwo_on, m.dwo = False, np.zeros(3)
+    if 2540 in g:
+        kin = m.ctx.kinematics
+        if kin is None or kin.kind != "table" or m.g68 is not None or m.tcp:
+            raise ReferenceError("G254 without a tilting table, or under G68 / G234")
+        m.dwo_on = True
+    if m.dwo_on:
+        if any(a in words for a in "abc"):
+            raise ReferenceError("a rotary axis word under G254")
+        zero = m.offsets[m.wcs] + m._rot(m.g92, 1.0)
+        m.dwo = _table(m, zero, m.extra) - zero
 
 
 def _use_system(m: _Machine, code: str) -> None:
@@ -1192,9 +1226,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code in (270, 290, 600) and m.ctx.dialect.name in ("fanuc", "haas"):
             _from_reference(m, line, code, words)
             return True
-        if code in (281, 301):
+        if code in (281, 301):  # LinuxCNC: the block's axis words move by the modal motion (enhance_block)
             m.home[code - 1] = m.pos.copy()
-            return True
+            return m.ctx.dialect.name != "linuxcnc"
         if code == 531:
             raise ReferenceError(f"G{code / 10:g}")
         if code == 100:
@@ -1393,7 +1427,8 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     nurbs = (52, 53) if m.ctx.dialect.name == "linuxcnc" else ()
     if 52 in nurbs and 52 in g and m.motion != 52:  # a new G5.2 block: the current position is its first point
         m.nurbs_end = m.pos.copy()
-    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800, *nurbs) or c // 10 in cycles]
+    arcs3d = (24, 34) if m.ctx.dialect.name == "fanuc" else ()
+    explicit = [c for c in g if c in (0, 10, 20, 30, 50, 51, 330, 331, 800, *nurbs, *arcs3d) or c // 10 in cycles]
     for code in explicit:
         m.motion = code
         if code // 10 not in cycles:
@@ -1441,7 +1476,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if shift and m.ctx.dialect.name == "fanuc":
         end = _position_offset(m, shift[0], words, end)
     m.extra = m.extra_end(words)
-    if m.motion in (0, 10, 330):
+    if m.motion in (24, 34):
+        _arc3d(m, line, words, end)
+    elif m.motion in (0, 10, 330):
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
     elif m.motion == 331:  # g-code.adoc "G33.1 Rigid Tapping": to the end point and back to the start
         start = m.pos.copy()
@@ -1465,6 +1502,22 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                centre_tolerance=1e-6 + slack)
     else:  # G5 / G5.1: the reader's chords, the last at the end of the spline
         m.emit(line, "feed", end, rows="last")
+
+
+def _arc3d(m: _Machine, line: int, words: dict, end: np.ndarray) -> None:
+    """Fanuc G02.4 / G03.4 (Mitsubishi M700V programming manual 6.14, which describes the same command: "G02.4
+    Xx1 Yy1 Zz1 ; Intermediate point designation (1st block) / Xx2 Yy2 Zz2 ; End point designation (2nd block)"):
+    the first block's point is kept, the second runs the arc (the reader's chords, the last checked at its end);
+    an end coordinate the second block omits is the intermediate point's, under G91 it counts from there."""
+    if m.arc3d is None:
+        m.arc3d = (end, line)
+        return
+    mid, m.arc3d = m.arc3d[0], None
+    if m.incremental:
+        end = end + (mid - m.pos)
+    else:
+        end = np.array([end[i] if a in words else mid[i] for i, a in enumerate("xyz")])
+    m.emit(line, "feed", end, rows="last")
 
 
 def _nurbs(m: _Machine, line: int, words: dict, axes: bool) -> None:
@@ -1612,6 +1665,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
     if code in (73, 83):
         # Haas "G83": I the first peck, each next J less, never below K (instead of Q)
         haas = (m.ctx.dialect.name == "haas" or m.fadal) and bool(m.sticky.get("i"))  # fadal.cps writes them too
+        if not haas and "q" not in m.sticky:  # every control refuses a peck cycle without its peck depth
+            raise ReferenceError(f"G{code} without Q")
         delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
@@ -1693,6 +1748,10 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     for key, value in sets:
         params.set(key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
+    for value in words.pop("$", []):  # LinuxCNC's spindle of S/M3-M5/M19/G33 (m-code.adoc "M3, M4, M5": "M3 $0
+        # S1000", $-1 all of them); one spindle here, $0 or $-1 (rs274 takes the integer part: "M3 $0.9" runs)
+        if m.ctx.dialect.name != "linuxcnc" or int(value) not in (0, -1):
+            raise ReferenceError(f"line {ln.number}: spindle word ${value:g}")
     if 980 in mc and m.ctx.dialect.name == "linuxcnc":  # an M98 block is the call alone: its F, S, X.. do not run
         return "m98"
     if 650 in g:  # Fanuc/Haas G65 macro call: run by iso_reference (the called program, its arguments as locals)
@@ -1710,20 +1769,30 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         m.loaded = m.selected
     if (60 in mc or 610 in mc) and m.ctx.dialect.name == "linuxcnc":
         m.reread = m.comp_closed
+    if 62 in g:  # Fanuc G06.2 NURBS: its curve is not modelled here
+        raise ReferenceError("G06.2 NURBS")
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
-        if not any(c in (0, 10, 20, 30) for c in g):  # G04 X<s> alone: X is the dwell time (Fanuc, Haas);
-            words.pop("x", None)  # with a motion code ("G4 P.001 G0 X1") X is that motion's
+        # G04 X<s> alone: X is the dwell time (Fanuc, Haas); with a motion code ("G4 P.001 G0 X1") X is that
+        # motion's, and under LinuxCNC with P also without one ("G4 P0.5 X3": the modal motion, enhance_block)
+        if not any(c in (0, 10, 20, 30) for c in g) and not ("p" in words and m.ctx.dialect.name == "linuxcnc"):
+            words.pop("x", None)
     if m.ctx.dialect.name == "fanuc" and m.ctx.decimal_point_input == "increment":
         _least_increments(m, g, words, ln.text)
     _modes(m, g, words, ln.text)
     if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
         _fanuc_polar(m, g, words)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)
+    if m.ctx.dialect.name == "fanuc":
+        _rigid_tap(m, ln.number, g, mc, words)
     used = _non_modal(m, ln.number, g, words)
     count, start = len(m.out), m.pos.copy()
     if not used:
         _motion(m, ln.number, g, words, axes)
+    if m.rigid_at is not None:
+        _rigid_tap_after(m, ln.number, any(e.kind != "dwell" for e in m.out[count:]))
+    if m.arc3d is not None and m.arc3d[1] != ln.number and words:  # a block between G02.4's two (not a macro line)
+        raise ReferenceError(f"line {ln.number}: a block between a G02.4/G03.4 intermediate point and its end point")
     if m.corner is not None and len(m.out) > count:
         _corner(m, count)
     for key in (",r", ",c"):
@@ -1738,6 +1807,38 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 990 in mc:
         return "m99"
     return None
+
+
+def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict) -> None:
+    """Fanuc M29 rigid tapping (0i-B connection manual B-63833EN "Rigid tapping": "M29 S1000 ; G84 Z-100. R-20. F1.
+    ; ... G80 ;"; the operator's manuals' limitations and alarm list as we read them): G80, a group 01 code or
+    another canned cycle ends the rigid mode and clears the S of a tap that ran (an S word since, or in the block, is
+    kept);
+    M29 arms it for the next G84/G74, which needs S > 0 (alarm PS0200); the program end ends it."""
+    tapping = (740, 840)
+    ends = [c for c in g if c in (0, 10, 20, 30, 800) or c // 10 in _CYCLES + _MILL_CYCLES and c not in tapping]
+    if m.rigid and (ends or 20 in mc or 300 in mc) and 290 not in mc:
+        if m.rigid_at is None and m.spindle == m.rigid_s:  # no S word since the tap
+            m.spindle = 0.0
+        m.rigid = False
+    if "s" in words:
+        m.spindle = words["s"][-1]
+    if 290 in mc:
+        m.rigid, m.rigid_at = True, line
+    cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
+    if m.rigid and cycle in tapping and not m.spindle > 0:
+        raise ReferenceError(f"line {line}: G84/G74 after M29 with S0 (Fanuc alarm PS0200)")
+
+
+def _rigid_tap_after(m: _Machine, line: int, moved: bool) -> None:
+    """After a block while an M29 waits for its G84/G74: the tap takes it; an axis movement in a later block is
+    Fanuc's alarm PS0204 (:func:`_rigid_tap`)."""
+    if m.rigid and m.motion in (740, 840):
+        m.rigid_at, m.rigid_s = None, m.spindle
+    elif moved and line != m.rigid_at:
+        raise ReferenceError(f"line {line}: axis movement between M29 and G84/G74 (Fanuc alarm PS0204)")
+    elif not m.rigid:
+        m.rigid_at = None
 
 
 def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None:
@@ -2096,7 +2197,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     if fadal:  # Fadal's own words in a pass over the lines (_fadal_lines), Fanuc's rules for the rest
         context = dataclasses.replace(context, dialect=dataclasses.replace(context.dialect, name="fanuc"))
     fanuc = context.dialect.name == "fanuc"
-    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc)
+    lines = _lines(text.lstrip("\ufeff"), grbl=context.dialect.name == "grbl", fanuc=fanuc,
+                   linuxcnc=context.dialect.name == "linuxcnc")
     if fadal:
         lines = _fadal_lines(lines)
     own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
@@ -2161,26 +2263,31 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         if res == "m99":
             if not frames or frames[-1]["kind"] not in ("m98", "g65"):
                 break
-            pc = _m99_return(ln, frames, st, params)
+            pc = _m99_return(ln, pc, frames, st, params, haas=context.dialect.name == "haas")
             continue
         pc += 1
     return m.out
 
 
-def _m99_return(ln, frames: list[dict], st, params) -> int:  # noqa: ANN001
-    """The line an M99 goes on at in an M98 or G65 frame: the called program again while repeats are left, else
-    the caller's next line (or its block N<n> for an M99 P<n>, Haas, Fanuc); a G65's locals #1-#33 as they
-    were."""
+def _m99_return(ln, pc: int, frames: list[dict], st, params, *, haas: bool = False) -> int:  # noqa: ANN001
+    """The line an M99 (line ``pc``) goes on at in an M98 or G65 frame: the called program again while repeats are
+    left, else the caller's next line (or its block N<n> for an M99 P<n>, Fanuc B-64304EN "Subprogram"); a G65's
+    locals #1-#33 as they were. Haas's M99 P<n> branches to N<n> of the subprogram it stands in, the call still
+    open (Haas mill operator's manual 96-8000 "Conditional Expressions": "M99 in the HAAS control has the ability to
+    branch unconditionally to any line in the current subroutine ... It does not return control to the calling
+    subroutine")."""
     f = frames[-1]
     if f["kind"] == "g65":
         frames.pop()
         params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
         return f["ret"]
+    words, _ = _words(ln.text, params)
+    if haas and "p" in words:
+        return _goto(words["p"][-1], pc, st)
     if f["left"] > 0:
         f["left"] -= 1
         return f["start"]
     frames.pop()
-    words, _ = _words(ln.text, params)
     return _goto(words["p"][-1], f["ret"] - 1, st) if "p" in words else f["ret"]
 
 

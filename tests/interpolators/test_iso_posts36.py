@@ -91,11 +91,11 @@ def test_haas_m99_p_in_a_subprogram_branches_within_it():
     # "Conditional Expressions"): "M99 in the HAAS control has the ability to branch unconditionally to any line in
     # the current subroutine by placing a P code on the same line ... N50 M99 P10 ; branches to line N10. It does not
     # return control to the calling subroutine." Before: vcnc returned to the caller's N20 (Fanuc's rule)
-    prog = parse_program(M99_P_IN_SUB, context=HAAS)
+    prog = checked_iso(M99_P_IN_SUB, HAAS)  # the reference too since iso37 (it returned to the caller's N20)
     assert [b.target.tolist() for b in prog.blocks] == [
         [0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [1.0, 0.0, -1.0], [5.0, 0.0, -1.0], [5.0, 7.0, -1.0]]
     # Fanuc's M99 P20 returns to the calling program's N20 (B-64304EN "Subprogram", "Special usage")
-    prog = parse_program(M99_P_IN_SUB, context=FANUC)
+    prog = checked_iso(M99_P_IN_SUB, FANUC)
     assert [b.target.tolist() for b in prog.blocks] == [[0.0, 0.0, 10.0], [1.0, 0.0, 10.0], [1.0, 7.0, 10.0]]
 
 
@@ -161,7 +161,7 @@ def test_haas_dynamic_work_offset_carries_the_work_zero_with_the_table():
     # follows the rotary axes about their centres. The work zero (G54 at the origin, 50 mm above the A pivot) at
     # A30 is turned about X round (0, 0, -50): (0, 50 sin30, -50 + 50 cos30) = (0, 25, -6.699); C90 turns it about
     # the C axis through it, which leaves it in place. Before: "G254 dynamic work offset ...: not supported"
-    prog = parse_program(HAAS_DWO, context=_umc_context())
+    prog = checked_iso(HAAS_DWO, _umc_context())  # the reference models G254 since iso37
     zero = np.array([0.0, 25.0, -50.0 + 50.0 * np.cos(np.radians(30.0))])
     ends = {b.line: b.target for b in prog.blocks}
     assert ends[12][:2] == pytest.approx(zero[:2])  # X0 Y0: over the carried work zero
@@ -216,7 +216,7 @@ def test_fanuc_three_dimensional_arc_runs_through_its_three_points():
     # The circle through (10, 0, 0), (0, 10, 5) and (-10, 0, 0): centre on the perpendicular
     # bisector of the first and last points, in their plane z = y / 2: |c - a| = |c - m| gives c = (0, 1, 0.5).
     # Before: "unknown G code 'G02.4'"
-    prog = parse_program(FANUC_ARC3D, context=FANUC)
+    prog = checked_iso(FANUC_ARC3D, FANUC)  # the reference models G02.4 since iso37
     arc = [b for b in prog.blocks if b.line == 10]
     points = np.array([b.target for b in arc])
     a, m, e = np.array([10.0, 0.0, 0.0]), np.array([0.0, 10.0, 5.0]), np.array([-10.0, 0.0, 0.0])

@@ -9,6 +9,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"])
@@ -24,12 +25,12 @@ THS_PLASMA = ("%\n(THS vCarve Post)\nG20\nG90 G40\nG17 G91.1\nG64 P0.01 Q0.012\n
 def test_the_spindle_selection_word_of_linuxcnc():
     # LinuxCNC M-code reference "M3, M4, M5": "M3 $0 S1000"; $-1 all spindles. rs274 -g runs THS_PLASMA (its moves
     # match vcnc's: benchmarks/linuxcnc_diff.py). Before: "unknown word '$0' (a grbl setting ...)"
-    prog = parse_program(THS_PLASMA, context=LINUXCNC)
+    prog = checked_iso(THS_PLASMA, LINUXCNC)  # the reference reads $ since iso37
     assert prog.blocks[-1].target.tolist() == pytest.approx([0.0, 0.0, 0.0])
     assert prog.blocks[-2].target.tolist() == pytest.approx([2.5 * 25.4, 1.5 * 25.4, 0.0])
     assert any(n.startswith("$ spindle selection (one spindle: $0)") for n in prog.notes)
     for block in ("M3 $0.9 S1", "M3 $ -1 S1", "M3 $[-1] S1", "S100 $0", "M19 $0 R0"):  # rs274 runs each
-        parse_program(f"G21\n{block}\nG0 X1\nM2\n", context=LINUXCNC)
+        checked_iso(f"G21\n{block}\nG0 X1\nM2\n", LINUXCNC)
 
 
 @pytest.mark.parametrize("block, message", [

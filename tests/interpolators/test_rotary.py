@@ -204,7 +204,7 @@ def test_inch_programs_scale_xyz_but_not_angles():
 
 @pytest.mark.parametrize("text, feature", [
     ("G21 G0 Z5\nG81 X1 Y1 Z-1 R1 A10 F100\n", "G81 drilling cycle with axis word A"),
-    ("G21 G4 P1 A10\n", "word A not allowed in a dwell block"),
+    ("G21 G4 X1 A10\n", "word A not allowed in a dwell block"),  # with P, A is the modal motion's (linuxcnc)
     ("G21 G41.1 D2 G1 X10 F100\nX20 A30\n", "axis word A under cutter compensation"),
     ("G21 G5.1 X2 I1 J1 A10 F100\n", "G5 spline with axis word A"),
 ])

@@ -146,7 +146,7 @@ def test_machine_without_the_axis_is_a_clear_error():
 
 @pytest.mark.parametrize("text, feature", [
     ("G21 G0 Z5\nG81 X1 Y1 Z-1 R1 W10 F100\n", "G81 drilling cycle with axis word W"),
-    ("G21 G4 P1 U10\n", "word U not allowed in a dwell block"),
+    ("G21 G4 X1 U10\n", "word U not allowed in a dwell block"),  # with P, U is the modal motion's (linuxcnc)
     ("G21 G41.1 D2 G1 X10 F100\nX20 U30\n", "axis word U under cutter compensation"),
     ("G21 G5.1 X2 I1 J1 V10 F100\n", "G5 spline with axis word V"),
 ])

@@ -1,0 +1,88 @@
+"""Fanuc ``M29 S..`` rigid tapping: what arms it, what the tap needs, what ends it (``--dialect fanuc``).
+
+Fanuc 0i-B connection manual (function) B-63833EN-1/02, 9 "Spindle speed function", "Rigid tapping" (stored at
+cncmanuals.com, page 540 of the manual): "M29 S1000 ; G84 Z-100. R-20. F1. ; ... G80 ;" under G99 (feed per
+revolution) or G98 (per minute, F/S the lead), with no M03: the control drives the spindle in step with the tapping
+axis for the G84 (G74: left-handed) that follows. What vcnc reads of it:
+
+- ``M29`` arms the rigid mode; the S in force is the tap's speed (``M29 S..`` sets it in the same block). A tapping
+  cycle that runs armed with no spindle speed (S0, or no S word since the start or since the last rigid tap ended)
+  is refused: the Fanuc alarm lists name it PS0200 "ILLEGAL S CODE COMMAND" (in the rigid tap, an S value is out of
+  the range or is not specified).
+- An axis movement after the M29 block and before its G84/G74 is refused: the alarm lists' PS0204 "ILLEGAL AXIS
+  OPERATION" (an axis movement between the rigid M code (M29) block and the G84 (G74) block). A movement in the
+  M29 block itself is taken (``G00 Z15. M29 S500``).
+- The rigid mode ends with the tapping cycle: at G80, at a group 01 code (G00-G03; B-64304EN "Canned cycle for
+  drilling": a cycle is canceled by G80 or a group 01 G code), at a canned cycle other than G84/G74 (``M29 S.. ;
+  G84 .. ; G81 .. ; G84 ..``: the second G84 is a floating-holder tap again) and at the program end (a reset);
+  with it the S of the rigid tap is cleared, as if S0 were specified (the operator's manuals' "Rigid tapping"
+  limitations, "S command": "specify an S command again after cancellation of rigid tapping"); an S word given
+  since the tap, or in the block that ends it (``G80 S1000 M03``), is the next operation's and kept.
+
+The alarm texts and the S and cancel rules are taken from the Fanuc 0i/16i operator's manuals' "Rigid tapping"
+section and alarm lists as we know them; none of those pages is in the texts searchable here (the connection
+manual page above is): our reading where they are not quoted.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from interpolators._words import Where
+
+if TYPE_CHECKING:
+    from interpolators.iso import Notes, State
+    from interpolators.iso_words import Word
+
+__all__ = ["RIGID_TAP_NOTE", "arm_rigid_tap", "end_rigid_tap", "rigid_tap_moved", "rigid_tap_speed"]
+
+#: The note of a program that arms Fanuc's rigid tapping.
+RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
+
+#: round(10 x G) of the tapping cycles M29 arms.
+_TAPPING = (740, 840)
+
+
+def arm_rigid_tap(st: State, where: Where, notes: Notes) -> None:
+    """``M29`` (``st.context.dialect`` fanuc): the next G84/G74 is a rigid tap; ``where`` is the M29 block."""
+    st.rigid_tap = True
+    st.rigid_tap_at = where
+    notes.add(RIGID_TAP_NOTE)
+
+
+def rigid_tap_moved(st: State, moved: bool, where: Where) -> None:
+    """After each block while an M29 waits for its tap: a tapping cycle in force takes it; an axis movement
+    (``moved``: the block made motion) in any later block before it is refused (PS0204, the module text), also when
+    the block's own code ended the rigid mode (``M29 S.. ; G00 X..``)."""
+    armed = st.rigid_tap_at
+    if st.rigid_tap and st.motion in _TAPPING:
+        st.rigid_tap_at = None
+        st.rigid_tap_s = st.spindle_speed
+    elif moved and (armed.file, armed.line) != (where.file, where.line):
+        where.fail(f"axis movement after M29 (line {armed.line}) before its G84/G74: Fanuc refuses it (alarm PS0204 "
+                   "illegal axis operation)", column=1, text=where.text,
+                   expected="M29 S.. right before the G84/G74 block, or in it; position the tool before the M29")
+    elif not st.rigid_tap:
+        st.rigid_tap_at = None
+
+
+def rigid_tap_speed(st: State, name: str, where: Where, column: int, text: str) -> None:
+    """A tapping cycle (``name``) armed by M29 needs a spindle speed (PS0200, the module text)."""
+    if st.rigid_tap and st.motion in _TAPPING and not st.spindle_speed > 0:
+        where.fail(f"{name} after M29 rigid tapping without a spindle speed (S0): Fanuc refuses it (alarm PS0200 "
+                   "illegal S code command)", column=column, text=text,
+                   expected="M29 S<spindle speed> > 0 [rev/min] before the G84/G74 (the S of an earlier rigid tap "
+                            "is cleared when it ends)")
+
+
+def end_rigid_tap(st: State, words: tuple[Word, ...] | list[Word] = ()) -> None:
+    """The tapping cycle M29 armed ends (G80, a group 01 code, another canned cycle, the program end; ``words``: the
+    block's): the rigid mode ends, and the S of a rigid tap that ran is cleared (the module text), but for an S word
+    in the block or since the tap (``G80 S1000 M03``, ``S1000 M03`` then ``G81``: given for what follows). An M29
+    still waiting for its tap is judged after the block (:func:`rigid_tap_moved`)."""
+    if st.rigid_tap and st.rigid_tap_at is None and st.spindle_speed == st.rigid_tap_s and not any(
+            w.letter == "S" for w in words):
+        st.spindle_speed = 0.0
+        if st.per_rev:  # F x S: no feed until an S again
+            st.feed = st.feed_rotary = None
+    st.rigid_tap = False
