@@ -3067,6 +3067,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _reduce_display(t, _m_words(up, t.q)[1])
             ms = [int(v) for v in re.findall(r"M(\d+)", _m_words(up, t.q)[0])]
             _tcpm_switch(t, ms)
+            if t.ctx.wrapped_axes and {126, 127} & set(ms):  # M126 / M127 in a block of their own (TNC 640 manual)
+                t.m126 = 126 in ms
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
                 _run_cycle(t, line)

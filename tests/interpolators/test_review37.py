@@ -118,3 +118,11 @@ def test_tnc_difference_rule_after_a_rounding_residue_stays():
     then no move (the difference to the shown 0), not a whole turn of -360 deg (before: C ended at -360)."""
     prog = _tnc("L C+0.3 FMAX\nL IC-0.1 FMAX\nL IC-0.1 FMAX\nL IC-0.1 FMAX\nL C+0 FMAX\nL X+1 FMAX")
     assert abs(float(prog.blocks[-1].extra_target[2])) < 1e-9
+
+
+def test_tnc_m127_in_a_block_of_its_own_ends_the_shorter_way_in_the_reference_too():
+    """``L C+350``, ``L C+10 M126`` (+20 to 370), ``M127`` alone, ``L C+350``: the shown 10 to 350 by the difference,
+    +340 to 710 (TNC 640 user's manual, M126/M127). The reader did so; the reference kept M126 (350), so a program
+    with M127 on its own line was compared against the wrong end."""
+    prog = _tnc("L C+350 FMAX\nL C+10 FMAX M126\nM127\nL C+350 FMAX", dataclasses.replace(TNC_C, kinematics=None))
+    assert _c_of(prog) == [0.0, 350.0, 370.0, 710.0]
