@@ -16,6 +16,7 @@ from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
 
 
 def _a_of(prog) -> list[float]:
@@ -126,3 +127,13 @@ def test_tnc_m127_in_a_block_of_its_own_ends_the_shorter_way_in_the_reference_to
     with M127 on its own line was compared against the wrong end."""
     prog = _tnc("L C+350 FMAX\nL C+10 FMAX M126\nM127\nL C+350 FMAX", dataclasses.replace(TNC_C, kinematics=None))
     assert _c_of(prog) == [0.0, 350.0, 370.0, 710.0]
+
+
+def test_plane_axial_without_an_angle_is_an_error_naming_the_line():
+    """TNC7 basic user's manual 81762x-19, "PLANE AXIAL": the plane is defined "with anywhere from one to three
+    absolute or incremental axis angles". ``PLANE AXIAL TURN FMAX`` with none was taken as the present axes, silently;
+    it is now an error naming the line (the reference refused it already)."""
+    text = "0 BEGIN PGM W MM\nL X+0 Y+0 Z+50 B+0 C+0 FMAX\nPLANE AXIAL TURN FMAX\nEND PGM W MM\n"
+    with pytest.raises(GCodeError, match=r"w\.h:3:.*PLANE AXIAL without an axis angle.*expected PLANE AXIAL B\.\."):
+        parse_heidenhain(text, source="w.h", context=TNC_C)
+    assert _c_of(_tnc("PLANE AXIAL B+0 TURN FMAX\nPLANE RESET STAY")) == [0.0]  # one angle, already there: no move
