@@ -353,7 +353,9 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return (st.tool_length / st.scale if n == 5083 else 0.0), ""
     if 5161 <= n <= 5169 or 5181 <= n <= 5189:
         home = st.home if n < 5180 else st.reference2
-        rot = st.home_extra if n < 5180 else st.reference2_extra
+        rot = (st.home_extra if n < 5180 else st.reference2_extra).copy()
+        for a in st.context.wrapped_axes:  # G28.1/G30.1 store a wrapped axis' angle reduced to [0, 360) (LinuxCNC
+            rot["abc".index(a)] = within_turn(rot["abc".index(a)])  # rs274 2.9.0~pre1: A370 reads 10, A-370 350)
         linear = np.zeros(3) if home is None else home
         return _nine(linear, rot, _stored(st))[n - (5161 if n < 5180 else 5181)], ""
     if n == 5210:

@@ -137,3 +137,15 @@ def test_plane_axial_without_an_angle_is_an_error_naming_the_line():
     with pytest.raises(GCodeError, match=r"w\.h:3:.*PLANE AXIAL without an axis angle.*expected PLANE AXIAL B\.\."):
         parse_heidenhain(text, source="w.h", context=TNC_C)
     assert _c_of(_tnc("PLANE AXIAL B+0 TURN FMAX\nPLANE RESET STAY")) == [0.0]  # one angle, already there: no move
+
+
+@pytest.mark.parametrize(("turn", "stored"), [(370.0, 10.0), (-370.0, 350.0), (-10.0, 350.0), (720.0, 0.0)])
+def test_linuxcnc_g28_1_and_g30_1_store_a_wrapped_angle_within_one_turn(turn: float, stored: float):
+    """rs274 (LinuxCNC 2.9.0~pre1) -i an INI with ``[AXIS_A] WRAPPED_ROTARY = 1``: ``G91 G0 A<turn>``, ``G90``,
+    ``G28.1`` (``G30.1``), ``G0 X#5164`` (``#5184``): X 10, 350, 350, 0 for A370, A-370, A-10, A720 (vcnc read the
+    unwrapped 370 .. before)."""
+    ctx = MachineContext(dialect=DIALECTS["linuxcnc"], extra_axes=("a",), wrapped_axes=("a",))
+    for code, n in (("G28.1", 5164), ("G30.1", 5184)):
+        prog = parse_iso(f"G21\nG91 G0 A{turn:g}\nG90\n{code}\nG0 X#{n}\nM2\n", source="t.ngc", context=ctx)
+        assert prog.blocks[-1].target[0] == pytest.approx(stored)
+        assert float(prog.blocks[-1].extra_target[0]) == turn  # the axis itself stays unwrapped
