@@ -498,13 +498,15 @@ def subroutines() -> tuple[list[str], list[str]]:
 
 
 def chunk_mcodes(w: _Writer) -> None:
-    """M codes and G codes that do not move (spindle, coolant, overrides, digital outputs, dwell, path mode)
-    between straight moves; sometimes the modal state saved by M70, units and distance mode changed, and restored
-    by M72 (m-code.adoc "M70 Save Modal State", "M72 Restore Modal State")."""
+    """M codes and G codes that do not move (spindle, also with the ``$`` spindle word, m-code.adoc "M3, M4, M5":
+    ``$0`` the first spindle, ``$-1`` all; coolant, overrides, digital outputs, dwell, path mode) between straight
+    moves; sometimes the modal state saved by M70, units and distance mode changed, and restored by M72 (m-code.adoc
+    "M70 Save Modal State", "M72 Restore Modal State")."""
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(0, 10))
     codes = ["M3 S1200", "M4 S800", "M5", "M7", "M8", "M9", "M48", "M49", "M50 P1", "M51 P0", "M52 P1", "M53 P0",
              "M62 P1", "M63 P1", "M64 P2", "M65 P2", "G4 P0.2", "M1", "G40", "G61", "G64", "G17", "distance",
+             "M3 $0 S1500", "M4 $-1 S600", "M5 $-1", "M5 $0",
              *([] if w.tool_offset else ["units"])]
     saved = (w.inch, w.incremental) if rng.random() < 0.5 else None
     if saved:

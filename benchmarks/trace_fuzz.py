@@ -107,10 +107,9 @@ def _fmt(v: float, dec: int, comma: bool, thousands: str) -> str:
         sign, s = ("-", s[1:]) if s.startswith("-") else ("", s)
         whole, _, frac = s.partition(".")
         groups = [whole[max(0, i - 3):i] for i in range(len(whole), 0, -3)][::-1]
-        s = sign + thousands.join(groups) + ("." + frac if frac else "")
-        if comma:
-            s = s.replace(thousands, "\0").replace(".", ",").replace("\0", thousands)
-        return s
+        # the decimal mark written as such (replacing '.' after grouping by '.' turned it into a group mark: seed
+        # 41000863's '-52.920.3' for -52920.3 with a decimal comma, refused as no number)
+        return sign + thousands.join(groups) + (("," if comma else ".") + frac if frac else "")
     return s.replace(".", ",") if comma else s
 
 

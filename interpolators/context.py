@@ -308,11 +308,16 @@ class Dialect:
         the machine where it was, where LinuxCNC moves it 50 mm down (g-code.adoc "G43": "The next time a
         compensated axis is moved, that axis's endpoint is the compensated location"). Under G90 both end at the
         programmed Z plus the new offset. vcnc adds the change not yet travelled to the next incremental Z word of a
-        G00-G03 block (:func:`interpolators.iso_offsets.length_travel`); an absolute Z word takes it up; a block
-        without a Z word leaves Z where it is (the Fanuc control, TOS = 0, moves Z by the change in the G43/G49
-        block itself: the end points of the blocks between it and the next Z word differ by the change, those
-        after it do not). Haas (its G43 "Tool Length Compensation + (Add)" takes the Fanuc words) and Fadal (its
-        Format 2 is Fanuc's) follow Fanuc's default here: no Haas or Fadal text we found says otherwise.
+        G00-G03 block (:func:`interpolators.iso_offsets.length_travel`); an absolute Z word takes it up; a G43, G44
+        or G49 block of G00 or G01 without a Z word (``G43 H1`` alone, ``G49 X0 Y0``) moves Z by the change in that
+        block, at its rapid or feed (:func:`interpolators.iso_offsets.length_moves_now`: what 12.5.2 says TOS = 1
+        does not do), under G90 and G91 alike; an arc or a canned cycle leaves it to the next Z word. Z at its
+        reference (G28, G30) or at a machine coordinate (G53) cancels the offset vector, G43 staying, and the next Z
+        move restores it (Fanuc 0i-MB B-63844EN/02 14.1.2; :func:`interpolators.iso_offsets.length_cancelled`): a
+        ``G49`` after ``G91 G28 Z0`` moves nothing. Haas (its G43
+        "Tool Length Compensation + (Add)" takes the Fanuc words) and Fadal (its Format 2 is Fanuc's) follow
+        Fanuc's default here: no Haas or Fadal text we found says otherwise. A machine file's ``[program]
+        length_offset_motion`` sets it for its machine (false: Fanuc TOS = 1).
     """
 
     name: str = "linuxcnc"
@@ -510,14 +515,18 @@ class MachineContext:
     def with_dialect(self, name: str) -> MachineContext:
         """This context read as the control ``name`` of :data:`DIALECTS` reads (``--dialect``): that dialect's
         rules, keeping this context's own settings (default units, path mode and tolerance, subroutine and
-        user M paths, initial feed: a machine file's ``[program]``)."""
+        user M paths, initial feed: a machine file's ``[program]``; the tool length rule ``length_offset_motion``
+        where it differs from its dialect's default, as a machine file sets it)."""
         if name not in DIALECTS:
             raise InputError(f"unknown dialect {name!r}: expected one of {', '.join(DIALECTS)}")
         old = self.dialect
+        motion = DIALECTS[name].length_offset_motion
+        if old.name in DIALECTS and old.length_offset_motion != DIALECTS[old.name].length_offset_motion:
+            motion = old.length_offset_motion
         return dataclasses.replace(self, dialect=dataclasses.replace(
             DIALECTS[name], default_units=old.default_units, continuous_path=old.continuous_path,
             tolerance=old.tolerance, subroutine_path=old.subroutine_path, user_m_path=old.user_m_path,
-            initial_feed=old.initial_feed))
+            initial_feed=old.initial_feed, length_offset_motion=motion))
 
 
 #: The context of a machine that states none: it changes nothing (a three-axis machine: X, Y, Z).

@@ -174,7 +174,9 @@ from interpolators.iso_offsets import (
     P_SELECT_CODES,
     g10,
     g54_takes_p,
+    length_cancelled,
     length_compensation,
+    length_moves_now,
     length_travel,
     local_offset,
     reference_p,
@@ -724,19 +726,22 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         w = gcodes["motion"][1]
         where.fail(f"{G_CODES[st.motion][1]}: all axis words omitted", column=w.column, text=w.text,
                    expected="at least one of X, Y, Z")
-    if not axis_words and not rot_words and _no_move(seen, gcodes, arc_words, st, where):
+    now = length_moves_now(gcodes, st.motion, st)  # Fanuc TOS = 0: "G43 H1" alone moves Z (iso_offsets)
+    if not axis_words and not rot_words and _no_move(seen, gcodes, arc_words, st, where) and not now:
         return ended  # a motion code alone sets the mode (LinuxCNC: "G0 G17 G40 G49 G80 G90")
     if st.motion is None:
         w = seen[(axis_words or rot_words)[0]]
         where.fail("axis words before any motion code", column=w.column, text=w.text,
                    expected="G00, G01, G02 or G03 before the first axis word")
     try:
-        target = length_travel(block_target(seen, axis_words, st, machine=False), axis_words, st)
+        target = length_travel(block_target(seen, axis_words, st, machine=False), axis_words, st, now=now)
     except PolarError as exc:
         w = seen["@"] if "@" in seen else seen["^"]
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     if "position offset" in gcodes:
         target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
+    if now:
+        used.add(2)
     motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
     return ended
 
@@ -1317,12 +1322,16 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                            "with G53\")", column=w.column, text=w.text,
                            expected="G53 G0 X.. (a move in machine coordinates), or --dialect fanuc/grbl, where a "
                                     "bare G53 does nothing")
+            if "length compensation" in gcodes:
+                length_cancelled(st)
             return True  # no axis word: nothing moves (a Fanuc post's "G53 G49 M05")
         machine = not _incremental_g53(st, notes)
-        # a Z in machine coordinates takes up a tool length change not yet travelled; Fanuc's G53 under G91 moves
-        # by its words, and travels it as any incremental Z (iso_offsets.length_travel)
-        target = length_travel(block_target(seen, axis_words, st, machine=machine), axis_words, st)
+        # a Z in machine coordinates moves by its words alone; it and a G43/G49 of the block cancel the tool length
+        # vector without moving Z (Fanuc 0i-MB 14.1.2, "G49 G53": restored by the next Z move, iso_offsets)
+        target = block_target(seen, axis_words, st, machine=machine)
         motion_block(seen, gcodes, axis_words, [], target, st, blocks, used, where, number, machine=machine)
+        if "Z" in axis_words or "length compensation" in gcodes:
+            length_cancelled(st)
         return True
     if "P" in seen and key in (280, 281, 300, 301, 520, 530, 920, 921, 922, 923) and "path" not in gcodes \
             and "motion" not in gcodes:  # not G64's P, nor a cycle's or an arc's

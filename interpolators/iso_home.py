@@ -11,7 +11,7 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target, wrapped_reference, wrapped_target
 from interpolators.iso_motion import block_target, rapid_move
-from interpolators.iso_offsets import length_travel
+from interpolators.iso_offsets import length_cancelled, length_travel
 from interpolators.iso_polar import POLAR_LETTERS
 from interpolators.iso_reference import FANUC_CODES, MILL_CODES, off_reference, stored_intermediate
 
@@ -25,7 +25,8 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
     """G28/G30: through the programmed intermediate point to the reference, only the axes named
     (A-W words too); without axis words every axis, A-W to their reference positions. A tool length change not yet
     travelled (Fanuc, Haas, Fadal: :func:`interpolators.iso_offsets.length_travel`) is taken up by the intermediate
-    point's incremental Z, and is gone once Z is at its reference."""
+    point's incremental Z; at its reference the offset vector is cancelled, to be restored by the next Z move
+    (:func:`interpolators.iso_offsets.length_cancelled`)."""
     ref = st.home if key == 280 else st.reference2
     ref_rot = st.home_extra if key == 280 else st.reference2_extra
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
@@ -51,8 +52,10 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
                 end_rot[EXTRA_LETTERS.index(a)] = ref_rot[EXTRA_LETTERS.index(a)]
             end_rot = wrapped_reference(end_rot, st, tuple(a.lower() for a in rot_words))
         rapid_move(end, st, blocks, used, where, number, axis_words, rot=end_rot)
+        if "Z" in axis_words:
+            length_cancelled(st)
     else:
-        st.length_pending = 0.0  # Z goes to its reference
+        length_cancelled(st)  # Z goes to its reference
         st.intermediate = st.to_program(st.pos)
         ref_rot = wrapped_reference(ref_rot.copy(), st)
         back = st.extra_used and bool(np.any(st.extra != ref_rot))
@@ -61,7 +64,8 @@ def reference_return(key: int, seen, axis_words, st: State, blocks, used, where:
 
 def mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where: Where, number,
                       notes: Notes) -> None:
-    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes."""
+    """Fanuc/Haas G27, G29 and G60 (:mod:`interpolators.iso_reference`): rapids of the named axes; an incremental Z
+    travels a tool length change not yet travelled (:func:`interpolators.iso_offsets.length_travel`)."""
     name = {**MILL_CODES, **FANUC_CODES}[key][1]
     code = name.split()[0]
     bad = next((a for a in (*EXTRA_LETTERS, *POLAR_LETTERS, "I", "J", "K", "R") if a in seen), None)
@@ -80,7 +84,10 @@ def mill_positioning(key: int, seen, axis_words, st: State, blocks, used, where:
             where.fail(f"{name}: no G28/G30 intermediate point for axis {word.letter} (no G28/G30 named it before)",
                        column=word.column, text=word.text, expected=f"G28 {word.letter}.. before {code}")
         rapid_move(st.to_machine(mid), st, blocks, used, where, number, axis_words)
-    rapid_move(block_target(seen, axis_words, st, machine=False), st, blocks, used, where, number, axis_words)
+        if "Z" in axis_words:  # a program point: the length vector a G28 Z cancelled is back in it (length_cancelled)
+            st.length_pending = 0.0
+    target = length_travel(block_target(seen, axis_words, st, machine=False), axis_words, st)
+    rapid_move(target, st, blocks, used, where, number, axis_words)
     if key == 270:
         missed = off_reference(st.pos, st.home, axis_words)
         notes.add(f"{name}" + (f": {', '.join(missed)} not at the reference position (the control alarms: PS0092)"

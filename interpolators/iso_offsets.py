@@ -88,7 +88,7 @@ if TYPE_CHECKING:
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
            "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "length_travel",
-           "reference_p", "local_offset", "g10"]
+           "length_moves_now", "length_cancelled", "reference_p", "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -400,18 +400,52 @@ def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> N
         st.length_pending += st.tool_length - before
 
 
-def length_travel(target: np.ndarray, axis_words: list[str], st: State) -> np.ndarray:
+def length_travel(target: np.ndarray, axis_words: list[str], st: State, *, now: bool = False) -> np.ndarray:
     """The end point [mm, machine] ``target`` of a G00-G03 block with the tool length change not yet travelled
     added to an incremental Z word (Fanuc, tool length compensation by an axis movement, parameter TOS = 0: the
     change of the offset is added to the block's travel, B-63943EN-1/02 12.5.2; LinuxCNC and grbl never set it).
-    An absolute Z word ends at the programmed Z plus the offset, as ``target`` has it; either takes the change up."""
-    if not st.length_pending or "Z" not in axis_words:
+    An absolute Z word ends at the programmed Z plus the offset, as ``target`` has it; either takes the change up.
+    ``now`` (:func:`length_moves_now`): the block made the change itself and has no Z word: Z moves by it in this
+    block."""
+    if not st.length_pending or "Z" not in axis_words and not now:
         return target
-    if st.incremental:
+    if st.incremental or "Z" not in axis_words:
         target = target.copy()
         target[2] += st.length_pending
     st.length_pending = 0.0
     return target
+
+
+def length_cancelled(st: State) -> None:
+    """Z has reached its reference (G28, G30) or a machine coordinate (G53): under compensation by an axis movement
+    the tool length offset vector is cancelled there and restored by the next Z move, the modal G43/G44 and H
+    staying (FANUC Series 0i-MB operator's manual B-63844EN/02, 14.1.2 "G53, G28, and G30 Commands in Tool Length
+    Offset Mode": the vector of the tool length offset axis is "canceled upon movement to a reference position being
+    performed", G53's and ``G49 G53``'s "upon movement being performed according to a specified value", a G49 in a
+    G53 block without a Z word moving no Z; "the previously specified modal
+    G code remains displayed"): the whole offset is left to travel (:func:`length_travel`), so a ``G49`` after
+    ``G91 G28 Z0`` (Fusion 360's Fanuc post) moves nothing, and an incremental Z after it travels the offset again.
+    Under a coordinate shift nothing is left to travel."""
+    st.length_pending = st.tool_length if st.context.dialect.length_offset_motion else 0.0
+
+
+def length_moves_now(gcodes, motion: int | None, st: State) -> bool:
+    """Whether the block's G43/G44/G49 (Fadal: its H word) moves Z by the tool length change at once: under
+    compensation by an axis movement (:attr:`interpolators.context.Dialect.length_offset_motion`, Fanuc TOS = 0) in a
+    G00 or G01 block, the block's own motion or the modal one, without a Z word.
+
+    FANUC B-63943EN-1/02 12.5.2 names as the mark of the other type, TOS = 1, that "if no move command is specified
+    together with the G43, G44, or G49 command, the tool will not move along the axis": under TOS = 0 that block
+    moves it, by the change of the offset vector, at the block's own rate (rapid under G00, the feed under G01). A
+    Fanuc-compatible control words the same rule from the other side: "Whenever a new tool length offset is
+    initiated or cancelled, the block that changes the offset must be a linear block (G00 or G01)" (Allen-Bradley
+    8520 9/Series mill operation and programming manual, chapter 20 "Tool Control Functions", p. 20-7, Example
+    20.2, whose "N2 G43 H01;" and "N8 G49;" have no axis word). Our reading
+    for other blocks: an arc or a canned cycle keeps the change for the next Z word (a cycle's R-point positioning
+    takes it, Fanuc 15i-MA B-63784EN "Tool length compensation" in a canned cycle), and so does a block before any
+    motion code; under tool centre point control (G43.4, G234) the tip is programmed, and a G53 block cancels the
+    vector instead (:func:`length_cancelled`)."""
+    return bool(st.length_pending) and "length compensation" in gcodes and motion in (0, 10) and not st.tcp
 
 
 def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:

@@ -10,7 +10,9 @@ moves, drilling cycles ``G73 G81 G82 G83 G84 G85 G86 G89`` with ``R``, ``Q``, ``
 ``L``) and ``G98``/``G99`` in ``G90`` and ``G91``, ``G04``, ``M98``/``M99`` subprograms after ``M30``, Macro B
 (``#`` variables, ``IF [..] GOTO``, ``WHILE [..] DO``), ``G65`` macro calls, ``G68`` rotation (also inside a
 ``G52`` local system), ``G51`` scaling and mirror (Fanuc ``G51.1``, Haas ``G101``), a drilling series whose hole
-positions are in a subprogram, ``G10 L2 P0`` (the external offset, also of the rotary B).
+positions are in a subprogram, ``G10 L2 P0`` (the external offset, also of the rotary B), a tool length offset
+changed under ``G91`` and travelled by the next incremental Z, ``G28``/``G30`` or ``G53``, ``G84`` fed per revolution
+(Fanuc after ``M29 S..``), Haas ``G73 .. Q K`` and Haas ``M99 P<n>`` inside an ``M98``/``M97`` subprogram.
 
 Sources for what each dialect defines: Haas mill operator's manual, G-code chapter ("G02/G03", "G10", "G12",
 "G28", "G41/G42", "G52", "G54.1/G154/G110-G129", "G65", "G68", "G73"-"G89", "G98/G99", "G101"), M-code chapter
@@ -44,7 +46,7 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
-            "cycle_sub", "g52_rotated", "external", "tcp")
+            "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -567,7 +569,8 @@ class _Gen:
         self.emit(f"G0 {self.xyz(z=10)}")
 
     def haas_peck_section(self) -> None:
-        """Haas G83 with I (first peck) J (less each time) K (at least): Haas "G83 Normal Peck Drilling"."""
+        """Haas G83 with I (first peck) J (less each time) K (at least): Haas "G83 Normal Peck Drilling"; Fadal
+        the same (Fusion's fadal.cps)."""
         if self.fanuc:
             return self.cycles_section()
         self.start(20)
@@ -777,6 +780,116 @@ class _Gen:
         self.emit(f"G43 H{t} {self.xyz(z=50)}")
         self.comp_section(t)
 
+    def length_motion_section(self) -> None:
+        """A tool length offset changed under G91 as posts write it, the change travelled by the next incremental
+        Z, ``G28`` or ``G53`` (FANUC B-63943EN-1/02 12.5.2, TOS = 0: compensation by an axis movement; Haas, as
+        Fanuc): FreeCAD's ``G91 G0 G43 Z-.. H..``, ``G49`` then ``G91 G28 Z0.`` (Fusion's fanuc.cps tool end),
+        ``G49`` then ``G53 G0 Z0.``, a ``G91 G43 H..`` block without Z before an X move and a Z one, ``G91 G49 Z0.``;
+        the tool's offset set again by an absolute ``G43 H.. Z..`` after."""
+        self.start(30)
+        t = self.r.randint(1, 6)
+        kind = self.r.choice(("freecad", "g49_g28", "g49_g53", "h_alone", "g49_z0"))
+        if kind == "freecad":
+            self.emit(f"G91 G0 G43 {self.xyz(z=self.pos[2] - self.r.choice((5, 10, 20)), inc=True)} H{t}")
+            self.emit("G90")
+            self.tool = t
+            self.emit(f"G0 {self.xyz(z=40)}")
+            return
+        if kind == "h_alone":
+            self.emit(f"G91 G43 H{t}")
+            self.emit(f"G0 {self.xyz(self.pos[0] + self.r.randint(-4, 4) * 2.5, inc=True)}")
+            self.emit(f"G0 {self.xyz(z=self.pos[2] - self.r.choice((5, 10)), inc=True)}")
+            self.emit("G90")
+            self.tool = t
+            self.emit(f"G0 {self.xyz(z=40)}")
+            return
+        if kind == "g49_g28":
+            self.emit("G49")
+            up = self.r.choice((0, 0, 5))  # an intermediate point above: it travels the change too
+            self.emit(f"G91 {self.r.choice(('G28', 'G28', 'G30'))} Z{self.v(up)}")
+        elif kind == "g49_g53":
+            self.emit("G49")
+            self.emit(f"G53 G0 Z{_num(-self.r.choice((0, 10)) * self.unit)}")
+        else:
+            self.emit("G91 G49 Z0.")
+        self.emit("G90")
+        self.tool = self.tool or t
+        self.emit(f"G43 H{self.tool} {self.xyz(z=50)}")
+
+    def rigid_tap_section(self) -> None:
+        """Tapping fed per revolution, the feed the thread's pitch: Fanuc ``M29 S..`` then ``G84 .. F<pitch>``
+        under G95 (0i-B connection manual B-63833EN "Rigid tapping": "G99 ; M29 S1000 ; G84 Z-100. R-20. F1. ;",
+        as Fusion's fanuc.cps writes it, ``P0``), Haas ``G84`` under G95 (haas.cps); ``G80``, ``G94`` after."""
+        self.start(20)
+        pitch = self.r.choice((0.8, 1.0, 1.25, 1.5)) * (0.04 if self.unit < 1 else 1)
+        self.emit("G95")
+        if self.fanuc:
+            self.emit(f"M29 S{self.r.choice((300, 500, 800))}")
+        ret = self.r.choice(("G98", "G99"))
+        dwell = " P0" if self.fanuc and self.r.random() < 0.5 else ""
+        if self.r.random() < 0.3:  # a row of holes in G91, repeated (Fanuc K, Haas L)
+            count = self.r.randint(2, 3)
+            self.emit(f"G91 {ret} G84 X{self.v(5)} Y0. Z{self.v(-13)} R{self.v(-17)}{dwell} "
+                      f"{'K' if self.fanuc else 'L'}{count} F{_num(pitch)}")
+            self.emit("G90")
+            self.pos[0] += 5 * count
+        else:
+            self.emit(f"{ret} G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)}{dwell} "
+                      f"F{_num(pitch)}")
+            for _ in range(self.r.randint(0, 2)):
+                self.emit(self.xyz(self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + 5))
+        self.emit("G80")
+        self.emit("G94")
+        self.pos[2] = 20 if ret == "G98" else 3
+        self.emit(f"G0 {self.xyz(z=25)} {self.feed()}")
+
+    def haas_g73k_section(self) -> None:
+        """Haas ``G73`` with ``Q`` (each peck) and ``K`` (back to R when the pecks since the last return total K),
+        as haas.cps writes chip breaking with an accumulated depth (Haas mill operator's manual 96-8000 "G73");
+        on Fanuc the plain cycles."""
+        if self.fanuc:
+            return self.cycles_section()
+        self.start(20)
+        q = self.r.choice((1.5, 2, 3))
+        k = q * self.r.choice((2, 3)) + self.r.choice((0, 0.5))
+        ret = self.r.choice(("G98", "G99"))
+        if self.r.random() < 0.3:  # in G91 from the initial level, repeated by L
+            count = self.r.randint(1, 3)
+            self.emit(f"G91 {ret} G73 X{self.v(5)} Y{self.v(5)} Z{self.v(-self.r.choice((10, 14)))} R{self.v(-18)} "
+                      f"Q{self.v(q)} K{self.v(k)}" + (f" L{count}" if count > 1 else "") + f" {self.feed()}")
+            self.emit("G80 G90")
+            self.pos[0] += 5 * count
+            self.pos[1] += 5 * count
+        else:
+            self.emit(f"G90 {ret} G73 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-self.r.choice((8, 12, 15)))} "
+                      f"R{self.v(2)} Q{self.v(q)} K{self.v(k)} {self.feed()}")
+            if self.r.random() < 0.5:
+                self.emit(self.xyz(self.pos[0] + 5, self.pos[1]))
+            self.emit("G80")
+        self.pos[2] = 20 if ret == "G98" else 2
+        self.emit(f"G0 {self.xyz(z=25)}")
+
+    def m99_branch_section(self) -> None:
+        """Haas ``M99 P<n>`` inside a subprogram branches to its block ``N<n>`` (Haas mill operator's manual
+        96-8000, "Macros", "Conditional Expressions": "M99 ... branch unconditionally to any line in the current
+        subroutine ... It does not return"): a forward branch past a block, then the subprogram's own ``M99``.
+        Fanuc's ``M99 P`` returns to the caller's ``N<n>`` instead: there the plain subprogram."""
+        if self.fanuc:
+            return self.subprogram_section()
+        prog = 3500 + len(self.subs) * 10
+        label = 7000 + len(self.subs) * 10
+        body = [f"G91 G1 X{self.v(5)} {self.feed()}", f"M99 P{label}", f"G1 Y{self.v(40)}",
+                f"N{label} G1 Y{self.v(5)}", "G90", "M99"]
+        self.start()
+        count = self.r.randint(1, 2)
+        repeat = f" L{count}" if count > 1 else ""
+        if self.r.random() < 0.5:  # haas.cps's local subprogram after M30, called by M97
+            self.subs.insert(0, [f"N{prog + 5000} (BRANCH)", *body])
+            self.emit(f"M97 P{prog + 5000}{repeat}")
+        else:
+            self.subs.append([f"O{prog} (BRANCH)", *body])
+            self.emit(f"M98 P{prog}{repeat}")
+
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)
         self.emit("G91 G28 Z0.")
@@ -788,7 +901,8 @@ class _Gen:
 
 
 def generate(seed: int, dialect: str = "fanuc") -> str:
-    """A valid ``fanuc`` or ``haas`` mill program, the same for the same seed."""
+    """A valid ``fanuc``, ``haas`` or ``fadal`` (:data:`FADAL_FEATURES`) mill program, the same for the same
+    seed."""
     r = random.Random(f"{dialect}:{seed}")
     inch = r.random() < 0.25
     chosen = features(seed, dialect)
@@ -815,7 +929,9 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "depth_passes": g.depth_passes_section, "scaling_ijk": g.scaling_ijk_section,
              "block_delete": g.block_delete_section, "corner_arc": g.corner_arc_section,
              "g10_tools": g.g10_tools_section, "cycle_sub": g.cycle_sub_section,
-             "g52_rotated": g.g52_rotated_section, "external": g.external_section, "tcp": g.tcp_section}
+             "g52_rotated": g.g52_rotated_section, "external": g.external_section, "tcp": g.tcp_section,
+             "length_motion": g.length_motion_section, "rigid_tap": g.rigid_tap_section,
+             "haas_g73k": g.haas_g73k_section, "m99_branch": g.m99_branch_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
@@ -827,7 +943,14 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
     return "\n".join(g.lines) + "\n"
 
 
+#: The sections of a ``fadal`` program: Fadal reads Haas's cycle words (Fusion's fadal.cps writes ``G83 .. I J K``
+#: and ``G73 .. Q K`` as its Haas post), not Haas's extended offsets, patterns, pockets, macros or M97.
+FADAL_FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", "subprogram", "rotation",
+                  "g52", "g92", "g28_g53", "dwell", "g91_arcs", "tool_length", "haas_peck", "haas_g73k",
+                  "length_motion", "depth_passes")
+
+
 def features(seed: int, dialect: str = "fanuc") -> list[str]:
     """The sections :func:`generate` chose for ``seed`` (for counting programs per feature)."""
     r = random.Random(f"{dialect}:{seed}:features")
-    return [r.choice(FEATURES) for _ in range(r.randint(3, 7))]
+    return [r.choice(FADAL_FEATURES if dialect == "fadal" else FEATURES) for _ in range(r.randint(3, 7))]

@@ -14,7 +14,11 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   system, distance mode, retract mode, G28/G30/G10/G92, motion (as modified by G53), stops.
 - Machine position = rotation(G10 R) of (program + G92 offset) + work offset + tool offsets (length
   along Z, the table's X Y offsets: g-code.adoc "G43") (``coordinates.adoc``; LinuxCNC applies the
-  XY rotation of ``G10 L2 R`` about the coordinate system origin).
+  XY rotation of ``G10 L2 R`` about the coordinate system origin). G44 subtracts what G43 adds (Fanuc
+  B-63943EN-1/02 12.5.2 "Offset direction"). Where the context's dialect moves the axis by a length change
+  (``Dialect.length_offset_motion``, Fanuc parameter TOS = 0, its default; the machine file's
+  ``length_offset_motion``) the change is added to the next incremental Z, and a G43/G44/G49 block of G00/G01 without
+  a Z word moves Z by it at once (12.5.2 says of TOS = 1 that such a block does not move the tool).
 - Fanuc G43.4 / G43.5 / Haas G234 (``--dialect fanuc`` / ``haas``) on the context's tilting table: the tool
   length as G43, X Y Z the tool tip in the work system the table carries (G43.5: I J K the tool direction
   there) (FANUC 30i "Tool center point control for 5-axis machining" A-79348E 1.1; Haas "G234 TCPC"): a G0/G1
@@ -737,7 +741,7 @@ class _Machine:
         # the next incremental Z travel (B-63943EN-1/02 12.5.2 "Tool Length Compensation Shift Types" tells the
         # other way, TOS = 1: "If no move command is specified together with the G43, G44, or G49 command, the
         # tool will not move along the axis"); LinuxCNC and grbl shift the coordinates (g-code.adoc "G43")
-        self.length_moves = self.ctx.dialect.name in ("fanuc", "haas", "fadal")
+        self.length_moves = self.ctx.dialect.length_offset_motion  # a machine setting (TOS), default per dialect
         self.length_change = 0.0  # [mm] not yet travelled
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.tcp = False  # Fanuc G43.4 / Haas G234 tool centre point control on the machine's tilting table
@@ -1025,14 +1029,16 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         if (code, m.ctx.dialect.name) in ((434, "fanuc"), (435, "fanuc"), (2340, "haas")):
             m.tcp, m.tcp_vector = True, code == 435  # the tool length as G43, X Y Z the tip on the part (_tcp_move)
             code = 430
-        if code == 430 or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis, Z
+        if code in (430, 440) or code == 431 and m.ctx.dialect.name == "fanuc":  # Fanuc G43.1: along the tool axis
             number = int(words["h"][-1]) if "h" in words else m.offsets_of.get(m.loaded, m.loaded)
             if number == 0 and m.ctx.dialect.name == "linuxcnc":  # LinuxCNC find_tool_index: H0 is the spindle's
                 number = m.loaded
             tool = m.tool(number)
-            length = tool.length if tool is not None else 0.0
-            m.tool_length = length
-            m.tool_xy = np.array([tool.offset_x, tool.offset_y]) if tool is not None else np.zeros(2)
+            # G44 subtracts the offset, G43 adds it (Fanuc B-63943EN-1/02 12.5.2 "Offset direction": "if G44, to
+            # the - side"); the tool's X Y offsets with it (our reading)
+            sign = -1.0 if code == 440 else 1.0
+            m.tool_length = sign * tool.length if tool is not None else 0.0
+            m.tool_xy = sign * np.array([tool.offset_x, tool.offset_y]) if tool is not None else np.zeros(2)
         elif code == 490:
             m.tool_length = 0.0
             m.tool_xy = np.zeros(2)
@@ -1050,7 +1056,7 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
                     add[i] = words.pop(a)[-1] * m.scale
             m.tool_xy = m.tool_xy + np.array(add[:2])
             m.tool_length += add[2]
-        elif code in (431, 432, 440):
+        elif code in (431, 432):
             raise ReferenceError(f"G{code / 10:g} tool length mode")
     if m.length_moves:
         m.length_change += m.tool_length - before
@@ -1204,10 +1210,12 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
             axes = [i for i, a in enumerate("xyz") if a in words]
             extra = m.extra_words(words)
             mid = m.target(words)
-            if "z" in words:  # Fanuc: an incremental Z travels the tool length change too; at the reference it is gone
+            if "z" in words:  # Fanuc: an incremental Z travels the tool length change too
                 mid[2] += m.length_change if m.incremental else 0.0
             if "z" in words or not axes and not extra:
-                m.length_change = 0.0
+                # Fanuc 0i-MB B-63844EN/02 14.1.2: the length vector is cancelled at the reference, G43 staying;
+                # the next Z move restores it
+                m.length_change = m.tool_length if m.length_moves else 0.0
             m.intermediate[axes] = mid[axes]  # Fanuc/Haas G29 returns through it
             if not axes and not extra:
                 m.intermediate = m.to_program(m.pos)
@@ -1272,7 +1280,13 @@ def _from_reference(m: _Machine, line: int, code: int, words: dict) -> None:
             if a in words:
                 mid[i] = m.intermediate[i]
         m.move(line, "rapid", mid, optional=True)
-    m.move(line, "rapid", m.target(words), optional=True)
+        if "z" in words:  # a program point: the length vector a G28 Z cancelled is back in it
+            m.length_change = 0.0
+    end = m.target(words)
+    if "z" in words:  # an incremental Z travels a tool length change not yet travelled
+        end[2] += m.length_change if m.incremental else 0.0
+        m.length_change = 0.0
+    m.move(line, "rapid", end, optional=True)
 
 
 def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
@@ -1440,6 +1454,12 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if m.motion in (52, 53):
         _nurbs(m, line, words, axes)
         return
+    # TOS = 0 (B-63943EN-1/02 12.5.2): a G43/G44/G49 block (Fadal: its H) of G00/G01 without Z moves Z by the change
+    length_code = any(c in (430, 431, 440, 490) for c in g)
+    now = bool(m.length_change) and m.motion in (0, 10) and not m.tcp and "z" not in words and length_code \
+        and 530 not in g
+    if 530 in g and length_code and not axes:  # "G53 G49 M05": the vector cancelled, no move (0i-MB 14.1.2)
+        m.length_change = m.tool_length if m.length_moves else 0.0
     if 530 in g and axes:
         if m.motion not in (0, 10):
             raise ReferenceError("G53 without G0/G1 motion")
@@ -1449,9 +1469,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         for i, a in enumerate("xyz"):
             if a in words:
                 end[i] = end[i] * steps + words[a][-1] * m.scale
-        if "z" in words:  # machine Z takes up a tool length change not yet travelled; G53 under G91 travels it
-            end[2] += m.length_change if steps else 0.0
-            m.length_change = 0.0
+        if "z" in words or length_code:  # 14.1.2: a G53 Z or G49 G53 cancels the length vector, no Z travel; the
+            # next Z move restores it (G43 staying)
+            m.length_change = m.tool_length if m.length_moves else 0.0
         m.extra = m.extra_end(words, machine=not steps)
         m.emit(line, "rapid" if m.motion == 0 else "feed", end)
         return
@@ -1460,7 +1480,7 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     # G02/G03 too (a block of I J alone); LinuxCNC too (rs274ngc enhance_block: a block of "i1" in arc mode)
     arc_alone = arc_alone or (m.ctx.dialect.name in ("fanuc", "linuxcnc") and m.motion in (20, 30) and "r" not in words
                               and any(k in words for k in "ijk"))
-    if not (axes or arc_alone) or m.motion is None:
+    if not (axes or arc_alone or now) or m.motion is None:
         return
     if m.motion // 10 in cycles:
         _cycle(m, line, words)
@@ -1469,8 +1489,8 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
         _tcp_move(m, line, words)
         return
     end = m.to_machine(m.target(words))
-    if "z" in words and m.length_change:  # Fanuc: an incremental Z travels the offset's change too
-        end[2] += m.length_change if m.incremental else 0.0
+    if ("z" in words or now) and m.length_change:  # Fanuc: an incremental Z travels the offset's change too
+        end[2] += m.length_change if m.incremental or now else 0.0
         m.length_change = 0.0
     shift = [c for c in g if c in _POSITION_OFFSET]
     if shift and m.ctx.dialect.name == "fanuc":
@@ -2201,7 +2221,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                    linuxcnc=context.dialect.name == "linuxcnc")
     if fadal:
         lines = _fadal_lines(lines)
-    own = {ln.oname for ln in lines if ln.oname is not None and ln.okey is None}
+    own = {str(int(ln.oname)) if ln.oname.isdigit() else ln.oname for ln in lines
+           if ln.oname is not None and ln.okey is None}
     for target in sorted({str(int(float(v))) for ln in lines for v in re.findall(r"(?:m0*98|g0*65)p(\d+)", ln.text)}
                          - own):
         other = resolve(target) if resolve is not None else None

@@ -39,8 +39,9 @@ def test_generated_programs_are_read_as_the_reference_reads_them_or_refused_clea
     # G10 L10-L13, G28 through a point, G53, G43 H, T M06, G0/G1 in G90/G91, G2/G3 by I J K and R in G17-G19, full
     # circles, helices, G41/G42 rectangles and slots (also under G68, G51, G51.1/G101, G52), drilling, boring and
     # Haas pattern / pocket cycles in G90 and G91 with K/L repeats (also under G68 and a mirror), M98/M97/M99,
-    # Macro B loops and functions, G65, G68, G51 (P, I J K), G16, ,R / ,C, G04, block delete, and for a third of
-    # the Fanuc seeds DPI = 0 with distances as integers of least input increments
+    # Macro B loops and functions, G65, G68, G51 (P, I J K), G16, ,R / ,C, G04, block delete, tool length changes
+    # under G91, G84 under G95 (Fanuc after M29), Haas G73 Q K and M99 P in a subprogram, and for a third of the
+    # Fanuc seeds DPI = 0 with distances as integers of least input increments
     accepted = 0
     for seed in range(120):
         text, ctx = generate(seed, dialect), context(seed, dialect)

@@ -67,12 +67,12 @@ def test_g49_and_a_new_h_under_g91(dialect):
 
 
 @pytest.mark.parametrize("dialect", ["fanuc", "haas"])
-def test_a_g43_block_without_z_leaves_the_change_to_the_next_z_word(dialect):
-    """G43 H1 alone, then an X move (Z stays), then G91 Z-50.: the machine ends where it started in Z, as the
-    control does after its G43 block moved Z by +50 and the G91 Z-50. took it back."""
+def test_a_g43_block_without_z_moves_z_in_that_block(dialect):
+    """G43 H1 alone moves Z by +50 in its own block (TOS = 0; tos37, test_iso_tos37.py), an X move keeps that Z,
+    then G91 Z-50. takes it back: the machine ends where it started in Z."""
     text = "G21 G90 G0 X0 Y0 Z0\nG91 G43 H1\nG0 X10.\nG0 Z-50.\nG90 X0\nM30\n"
     prog = checked_iso(text, context(dialect))
-    assert [round(float(b.target[2]), 9) for b in prog.blocks] == [0.0, 0.0, 0.0, 0.0]
+    assert [round(float(b.target[2]), 9) for b in prog.blocks] == [0.0, 50.0, 50.0, 0.0, 0.0]
     assert np.allclose(prog.blocks[-1].target, [0.0, 0.0, 0.0])
 
 

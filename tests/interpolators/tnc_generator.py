@@ -6,9 +6,10 @@ compensated contours entered and left by ``L`` or ``APPR``/``DEP``, ``F``/``FMAX
 incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/IPA), ``RND``/``CHF``, Q parameters
 (``FN 0``-``FN 4``, formulas) in coordinates and feeds, ``LBL``/``CALL LBL REP`` (nested, and a subprogram after
 ``M30``), cycles 7 (absolute and incremental), 9, 32, drilling 1/200/203/205 called by ``CYCL CALL``, ``M99``,
-``CYCL CALL POS`` and ``CYCL CALL PAT``, pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``;
-on a B/C table (:func:`context`, a quarter of the seeds) ``PLANE SPATIAL``/``PLANE RESET`` and ``M128`` with B C
-(:meth:`_Gen.tilted`).
+``CYCL CALL POS`` and ``CYCL CALL PAT`` (``PATTERN DEF`` items continued by ``~`` or on lines of their own),
+pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``; on a B/C table (:func:`context`, a quarter
+of the seeds) ``PLANE SPATIAL`` (also followed by ``PLANE RELATIV``)/``PLANE RESET`` and ``M128`` with B C or
+``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`).
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
 Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
@@ -268,9 +269,29 @@ class _Gen:
             elif call < 0.75:
                 self.emit(f"CYCL CALL POS X{x} Y{y} Z{_n(r.choice([0, 2]))} FMAX")
             else:
-                self.emit("PATTERN DEF ~", f"POS1 (X{x} Y{y} Z+0) ~", f"POS2 (IX+{r.choice([5, 12])} Y{y} Z+0)")
+                self.emit(*self.pattern_def(x, y))
                 self.emit("CYCL CALL PAT FMAX")
         self.known = False
+
+    def pattern_def(self, x: str, y: str) -> list[str]:
+        """``PATTERN DEF`` and its items: two POSn points, or a ROW1 / CIRC1 / PITCHCIRC1 / PAT1 / FRAME1 form (TNC
+        640 cycle programming manual, "PATTERN DEF"), continued by ``~`` or, as older TNCs save them, the items on
+        lines of their own without it."""
+        r = self.r
+        items = [f"POS1 (X{x} Y{y} Z+0)", f"POS2 (IX+{r.choice([5, 12])} Y{y} Z+0)"]
+        form = r.choice(["POS", "POS", "ROW", "CIRC", "PITCHCIRC", "PAT", "FRAME"])
+        if form == "ROW":
+            items = [f"ROW1 (X{x} Y{y} D+{r.choice([5, 8])} NUM{r.randint(2, 4)} ROT{_n(r.choice([0, 30, -90]))} Z+0)"]
+        elif form in ("CIRC", "PITCHCIRC"):
+            step = f" STEP+{r.choice([30, 45])}" if form == "PITCHCIRC" else ""
+            items = [f"{form}1 (X{x} Y{y} D{r.choice([20, 40])} START{_n(r.choice([0, 45, -30]))}{step} "
+                     f"NUM{r.randint(2, 5)} Z+0)"]
+        elif form in ("PAT", "FRAME"):
+            items = [f"{form}1 (X{x} Y{y} DX+{r.choice([5, 8])} DY+{r.choice([4, 10])} NUMX{r.randint(2, 3)} "
+                     f"NUMY{r.randint(1, 3)} ROT{_n(r.choice([0, 15]))} ROTX+0 ROTY+0 Z+0)"]
+        if r.random() < 0.5:
+            return ["PATTERN DEF", *items]
+        return ["PATTERN DEF ~", *[item + " ~" for item in items[:-1]], items[-1]]
 
     def pattern_cycle(self) -> None:
         """Cycle 220 (a pitch circle, Q365 = 0 straight or 1 on the circle, full or partial, either sense,
@@ -322,6 +343,10 @@ class _Gen:
         if r.random() < 0.5:
             self.emit(f"PLANE SPATIAL SPA+0 SPB{_n(r.choice([-30, 15, 45, 90]))} SPC{_n(r.choice([0, 30, -90]))} "
                       "TURN MB MAX FMAX")
+            if r.random() < 0.4:  # NX TNC posts chain an incremental turn about the active plane's own axis
+                axis, angle = r.choice([("SPB", r.choice([-20, 10, 15])), ("SPC", r.choice([-45, 30, 90])),
+                                        ("SPA", 10)])
+                self.emit(f"PLANE RELATIV {axis}{_n(angle)} TURN MB MAX FMAX")
             self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z+20 R0 FMAX")
             for _ in range(r.randint(1, 3)):
                 self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z{_n(r.choice([0, 5]))}{self.feed()}")
@@ -329,11 +354,21 @@ class _Gen:
             self.emit("PLANE RESET TURN MB MAX FMAX")
         else:
             self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z+50 B+0 C+0 R0 FMAX")
-            self.emit("L Z+20 R0 FMAX M128")
+            tcpm = r.random() < 0.4  # FUNCTION TCPM and LN X Y Z TX TY TZ, as Fusion's heidenhain.cps writes them
+            self.emit("FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS" if tcpm else "L Z+20 R0 FMAX M128")
             for _ in range(r.randint(1, 4)):
-                self.emit(f"L X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z{_n(r.choice([0, 5, 20]))} "
-                          f"B{_n(r.choice([-30, 0, 20, 45]))} C{_n(r.choice([0, 45, -90, 180]))}{self.feed()}")
-            self.emit("L Z+50 R0 FMAX M129")
+                xyz = f"X{_n(r.uniform(0, 60))} Y{_n(r.uniform(0, 60))} Z{_n(r.choice([0, 5, 20]))}"
+                if tcpm:
+                    b, c = math.radians(r.choice([0, 15, 30, 45])), math.radians(r.choice([0, 45, -90, 180]))
+                    t = (math.sin(b) * math.cos(c), math.sin(b) * math.sin(c), math.cos(b))
+                    self.emit(f"LN {xyz} TX{_n(round(t[0], 7))} TY{_n(round(t[1], 7))} TZ{_n(round(t[2], 7))} R0"
+                              f"{self.feed() or ' F' + str(r.choice([300, 1000]))}")
+                else:
+                    self.emit(f"L {xyz} B{_n(r.choice([-30, 0, 20, 45]))} C{_n(r.choice([0, 45, -90, 180]))}"
+                              f"{self.feed()}")
+            self.emit("L Z+50 R0 FMAX" if tcpm else "L Z+50 R0 FMAX M129")
+            if tcpm:
+                self.emit("FUNCTION RESET TCPM")
             self.emit("L B+0 C+0 R0 FMAX")
         self.known = False
         self.polar_ok = False

@@ -23,6 +23,11 @@ PROGRAM_TABLE_DOC = """
 # tool_offset_memory = "C"       # fanuc tool compensation memory: C geometry and wear apart for H and D (G10 L10-L13,
 #                                # #11001.. #10001.. #13001.. #12001..); B one geometry and wear per offset number;
 #                                # A one value per offset number
+#   length_offset_motion = true  # optional, the dialect's rule by default (true: fanuc, haas, fadal; false:
+#                                # linuxcnc, grbl): a tool length change (G43/G44 H, G49) is an axis movement, added
+#                                # to the next incremental Z and moving Z in a G00/G01 G43 block without Z (Fanuc
+#                                # TOS = 0, No. 5006#6); false: a shift of the coordinates, the tool moving at the
+#                                # next Z word only (TOS = 1, LinuxCNC)
 # tool_table = "tools.tbl"       # a LinuxCNC tool table: T1 P1 D6.0 Z+12.5 ;comment (D diameter, Z length,
 #                                # X Y offsets), or a Heidenhain TOOL.T (BEGIN TOOL .T MM; T NAME L R DL DR columns)
 # subroutine_path = []           # folders searched for o<name> subroutine files, e.g. ["subs"] (SUBROUTINE_PATH)

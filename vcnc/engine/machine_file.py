@@ -94,7 +94,7 @@ _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "pro
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
                  "datum_table", "work_offsets", "tools", "linear_units", "decimal_point_input", "tool_offset_memory",
                  "kinematics", "subroutine_path", "user_m_path", "initial_feed", "touch_probe",
-                 "wrap_direction")
+                 "wrap_direction", "length_offset_motion")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", "wrap",
               *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
@@ -383,6 +383,12 @@ def _build_dialect(tab: dict, path: tuple, where: _Where, file: str) -> Dialect:
     for key in ("subroutine_path", "user_m_path"):
         if key in tab:
             changes[key] = _search_path(tab[key], path + (key,), where, file)
+    if "length_offset_motion" in tab:
+        if not isinstance(tab["length_offset_motion"], bool):
+            raise where.error("'program.length_offset_motion' must be true (a tool length change is an axis movement: "
+                              "Fanuc TOS = 0, No. 5006#6) or false (a shift of the coordinate system: TOS = 1, "
+                              f"LinuxCNC), got {tab['length_offset_motion']!r}", path + ("length_offset_motion",))
+        changes["length_offset_motion"] = tab["length_offset_motion"]
     return dataclasses.replace(DIALECTS[name], **changes)
 
 

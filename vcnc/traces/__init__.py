@@ -9,11 +9,12 @@
 - LinuxCNC halscope logs, Beckhoff TwinCAT Scope CSV exports and other delimited text (LinuxCNC
   halsampler output among it), with a column mapping (:mod:`vcnc.traces.delimited`);
 - the EMPS benchmark's MATLAB files (:mod:`vcnc.traces.emps`);
+- Rexroth IndraWorks oscilloscope XML, read as a table of its signals (:mod:`vcnc.traces.indraworks`);
 - DIAdem DAT headers, read with the binary files beside them (KUKA.Trace of a KR C4 among their writers,
   :mod:`vcnc.traces.diadem`), as delimited text under the channels' names.
 
 MTConnect data (an agent's streams XML, an adapter's SHDR lines) is recognised and refused, naming the positions it
-holds (:mod:`vcnc.traces.mtconnect`).
+holds (:mod:`vcnc.traces.mtconnect`); so is a sender's log of Grbl's status reports (:mod:`vcnc.traces.grbl`).
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, mtconnect, sinumerik, tncscope, twincat
+from vcnc.traces import emps, grbl, indraworks, mtconnect, sinumerik, tncscope, twincat
 from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -45,8 +46,10 @@ __all__ = ["read_trace", "trace_format", "read_tncscope", "read_sinumerik", "rea
 
 def trace_format(path: str | os.PathLike[str]) -> str:
     """The format of a trace file, from its first bytes: ``"emps-mat"``, ``"tncscope"``,
-    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"capture-csv"``, ``"delimited"``, or
-    ``"xml"`` for other XML and ``"shdr"`` for an MTConnect adapter's stream (which no reader takes)."""
+    ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"indraworks"``, ``"capture-csv"``,
+    ``"delimited"``, or
+    ``"xml"`` for other XML, ``"shdr"`` for an MTConnect adapter's stream and ``"grbl"`` for a log of Grbl's status
+    reports (which no reader takes)."""
     src = str(path)
     try:
         with Path(path).open("rb") as f:
@@ -60,6 +63,10 @@ def trace_format(path: str | os.PathLike[str]) -> str:
         return "tncscope"
     if any(m in text[:4096] for m in sinumerik.MAGICS):
         return "sinumerik"
+    if grbl.looks_like_status_log(text):
+        return "grbl"
+    if indraworks.looks_like_oscilloscope(text[:4000]):
+        return "indraworks"
     if text.startswith("<"):
         return "xml"
     if looks_like_halscope(text):
@@ -159,6 +166,8 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
                            file=str(p))
     if fmt == "shdr":
         raise CaptureError(mtconnect.shdr_reason(read_text(p, str(p))), file=str(p))
+    if fmt == "grbl":
+        raise CaptureError(grbl.status_reason(read_text(p, str(p))), file=str(p))
     if fmt == "xml":
         head = _xml_head(p)
         root = _xml_root(head)

@@ -58,12 +58,14 @@ _LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "nm": "nm", "m": "m", "in"
 #: increments and counts, pulses (Mitsubishi's droop pulses, Panasonic's command pulses), Delta's PUU ("pulse of
 #: user unit", ASDA-A2 manual section 6.2) and the LU of SINAMICS EPOS ("length unit", the neutral unit its
 #: position setpoints and actual values are traced in), Yaskawa's "reference unit" (the unit of position
-#: references after the electronic gear), a "user unit" and maxon's ``qc`` (quadcounts: four per encoder line, the
-#: position unit of EPOS Studio's data recorder, our reading of its exports' units row). Their size is given with
-#: ``--unit`` (``0.1um``).
+#: references after the electronic gear), a "user unit", B&R ACOPOS' ``Units`` (the axis' user units, its encoder
+#: scaling setting how many make a motor revolution: B&R's ``acp10par.h`` gives ``PCTRL_S_SET`` "Set position
+#: [Units]", ``PCTRL_S_ACT`` "Actual position [Units]", ``PCTRL_LAG_ERROR`` "Lag error [Units]") and maxon's ``qc``
+#: (quadcounts: four per encoder line, the position unit of EPOS Studio's data recorder, our reading of its exports'
+#: units row). Their size is given with ``--unit`` (``0.1um``).
 COUNT_UNITS = frozenset({"inc", "incr", "increment", "increments", "count", "counts", "cnt", "cnts", "pulse",
                          "pulses", "pls", "puu", "lu", "reference unit", "reference units", "user unit", "user units",
-                         "qc"})
+                         "units", "qc"})
 #: A position unit given as the size of one count (``0.1um``, ``0.0001in``, ``0.001deg``): drives and
 #: controls that log positions in increments of their measuring system (Mitsubishi's sampling output in
 #: units A-E = 10 um ... 0.001 um, encoder counts of a drive's scope).

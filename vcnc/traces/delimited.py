@@ -114,6 +114,7 @@ from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.diadem import looks_like_diadem, read_diadem_channels
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
+from vcnc.traces.indraworks import looks_like_oscilloscope, read_oscilloscope_signals
 from vcnc.traces.names import (
     columns_from_names,
     counted,
@@ -189,6 +190,8 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if gcs is not None:
         return _gcs_array(text.lstrip("\ufeff"), src, gcs, columns=columns, time_unit=time_unit, unit=unit,
                           resample=resample, sample_time=sample_time)
+    if looks_like_oscilloscope(text[:4000]):
+        return _indraworks(text, src, columns=columns, time_unit=time_unit, unit=unit, resample=resample)
     if looks_like_diadem(text[:40000]):
         return _diadem(text, Path(path), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
                        sample_time=sample_time)
@@ -213,6 +216,26 @@ def _diadem(text: str, path: Path, src: str, *, columns: Mapping[str, str] | Non
     except CaptureError as exc:  # the table's lines are not the file's: name the channel headers' line instead
         raise CaptureError(exc.message, file=src, line=channels.header_line, expected=exc.expected) from None
     capture.meta["format"] = f"DIAdem DAT header with {', '.join(channels.files) or 'implicit channels'}"
+    return capture
+
+
+def _indraworks(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None, unit: str | None,
+                resample: bool) -> Capture:
+    """An IndraWorks oscilloscope XML export (:mod:`vcnc.traces.indraworks`): its signals as a table under their
+    names, mapped as any table's."""
+    signals = read_oscilloscope_signals(text, src)
+    if time_unit is None and unit_in_name(signals.names[0], "time") is None:  # never assumed: ms or s (our reading)
+        raise CaptureError(f"the IndraWorks oscilloscope export (signals {signals.names[1:]}) states no unit of its "
+                           "time stamps (XValue)", file=src, expected="--time-unit s, ms or us (the oscilloscope's "
+                           "time axis)")
+    table = ["\t".join(signals.names)]
+    table += ["\t".join(repr(float(v)) for v in row) for row in signals.values.tolist()]
+    try:
+        capture = _generic("\n".join(table), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
+                           sample_time=None)
+    except CaptureError as exc:  # the table's lines are not the file's
+        raise CaptureError(exc.message, file=src, expected=exc.expected) from None
+    capture.meta["format"] = "Rexroth IndraWorks oscilloscope XML"
     return capture
 
 
@@ -356,10 +379,15 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
     of rows ended there (seed 35100 case 105730: 'only one row of numbers' among 400 rows). Where every full row of
     numbers ends (or starts) each cell at the same places, a shorter row's cells are put in the columns they end (start)
     at, and its blank cells read as missing values, as a ``NaN`` cell (:func:`_nan_cells`). Lines with a tab, ``;`` or
-    ``|`` and rows whose cells do not fall on the columns are left alone (tracewild10)."""
+    ``|`` and rows whose cells do not fall on the columns are left alone (tracewild10). Each column is aligned at an
+    edge of its own: ``%-6d`` sample numbers start at one place, ``%9.3f`` positions end at one (tracewild37, seeds
+    41000762 and 41000969)."""
     words = [line.split() if not any(c in line for c in "\t;|") else [] for line in lines]
-    counts = [len(w) if len(w) >= 2 and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
+    counts = [len(w) if w and w[0][0] in "+-.0123456789" else 0 for w in words]  # rows, roughly
     width = max(counts, default=0)
+    # one number is a row only beside a full row: a row of two columns, one blank (trace_fuzz seed 43000558)
+    counts = [c if c != 1 or any(0 <= j < len(counts) and counts[j] == width for j in (i - 1, i + 1)) else 0
+              for i, c in enumerate(counts)]
     if width < 2 or all(c in (0, width) for c in counts):
         return lines  # every row as wide as the widest: nothing blank (the common case, one split a line)
 
@@ -367,22 +395,22 @@ def _aligned_blanks(lines: list[str]) -> list[str]:
         spans = [m.span() for m in re.finditer(r"\S+", lines[i])]
         return spans if _numbers([lines[i][a:b] for a, b in spans], True) is not None else None
 
-    rows = [(i, sp) for i, c in enumerate(counts) if c >= 2 and (sp := cells_at(i)) is not None]
+    rows = [(i, sp) for i, c in enumerate(counts) if c and (sp := cells_at(i)) is not None]
     width = max((len(sp) for _, sp in rows), default=0)
     full = [sp for _, sp in rows if len(sp) == width]
     if len(full) < 2 or len(full) == len(rows):
         return lines
-    for edge in (1, 0):  # right-aligned columns, else left-aligned
-        places = [p[edge] for p in full[0]]
-        if all([p[edge] for p in sp] == places for sp in full):
-            break
-    else:
+    edges = [next((e for e in (1, 0) if len({sp[k][e] for sp in full}) == 1), None) for k in range(width)]
+    if None in edges:
         return lines
+    places = [full[0][k][e] for k, e in enumerate(edges)]
     out = list(lines)
     for i, sp in rows:
-        cells = {p[edge]: lines[i][p[0]:p[1]] for p in sp}
-        if len(sp) < width and set(cells) <= set(places):
-            out[i] = " ".join(cells.get(p, "nan") for p in places)
+        at = [[k for k, e in enumerate(edges) if p[e] == places[k]] for p in sp]
+        ks = [k[0] for k in at if len(k) == 1]
+        if len(sp) < width and len(ks) == len(sp) and ks == sorted(set(ks)):
+            cells = dict(zip(ks, (lines[i][a:b] for a, b in sp)))
+            out[i] = " ".join(cells.get(k, "nan") for k in range(width))
     return out
 
 
@@ -436,6 +464,9 @@ def _table(text: str, src: str) -> _Table:
 
     header = units_row = None
     j = above(first)
+    for k in (j, above(j)):  # a row whose cells are grouped by thousands ends the rows: no names (tracewild37)
+        if k is not None and (hint := _grouped_hint([lines[k]])):
+            raise CaptureError("the line above the rows of numbers is no header" + hint, file=src, line=k + 1)
     if j is not None:
         header = names_at(j)
         if header is not None and is_unit_row(header):  # names above a row of units
@@ -515,8 +546,10 @@ def _hex_dump(lines: list[str]) -> str:
             "a row per sample")
 
 
-#: A number with both marks, digits grouped by thousands before the decimal mark: ``4,263.66``, ``-1.234.567,5``.
-_GROUPED_DECIMAL = re.compile(r"[+-]?[1-9]\d{0,2}(?:,\d{3})+\.\d+|[+-]?[1-9]\d{0,2}(?:\.\d{3})+,\d+")
+#: A number with both marks, digits grouped by thousands before the decimal mark: ``4,263.66``, ``-1.234.567,5``;
+#: or a whole number with two marks or more of one kind, which no decimal mark reads (``20,296,998``, tracewild37).
+_GROUPED_DECIMAL = re.compile(r"[+-]?[1-9]\d{0,2}(?:,\d{3})+\.\d+|[+-]?[1-9]\d{0,2}(?:\.\d{3})+,\d+"
+                              r"|[+-]?[1-9]\d{0,2}(?:,\d{3}){2,}|[+-]?[1-9]\d{0,2}(?:\.\d{3}){2,}")
 
 
 def _grouped_hint(lines: list[str]) -> str:
@@ -676,14 +709,56 @@ def _check_rows(data: np.ndarray, lines: list[str], row_lines: list[int], src: s
     lines of text it is a program's printout or log with one line of numbers in it (tracewild8)."""
     if data.shape[0] >= 2:
         return
+    _check_ragged_rows(lines, row_lines[0], src)
+    grouped = _grouped_hint(lines)  # rows whose cells are grouped by thousands are no rows (trace_fuzz 42000917)
     text_lines = sum(1 for ln in lines if ln.strip()) - 1
-    if text_lines > 20:
+    if text_lines > 20 and not grouped:
         raise CaptureError(f"only one row of numbers ({data.shape[1]} values) among {text_lines} lines of text: no "
                            "table of samples (a program's printed output or a log?); a trace has a row per sample and "
                            "a column per channel", file=src, line=row_lines[0])
-    raise CaptureError(f"only one row of numbers ({data.shape[1]} values): a trace has a row per sample and a column "
-                       "per channel" + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""),
-                       file=src, line=row_lines[0])
+    raise CaptureError(f"only one row of numbers ({data.shape[1]} values)" + (grouped or (
+        ": a trace has a row per sample and a column per channel"
+        + (" (a saved row vector? transpose it)" if data.shape[1] > 3 else ""))), file=src, line=row_lines[0])
+
+
+def _check_ragged_rows(lines: list[str], line: int, src: str, *, fewest: int = 2) -> None:
+    """An error for a row of numbers (of ``fewest`` cells or more) above the rows from ``line`` that holds another
+    number of cells: a table separated by spaces whose blank cells are not aligned on its columns
+    (:func:`_aligned_blanks` places only those that are), read as one row (trace_fuzz seeds 41000762 and 41000969 were
+    named a printout with one row among text), or whose rows from ``line`` were read without the names above the
+    short one (seed 43000558: 'no header line')."""
+    above = next((k for k in range(line - 2, -1, -1) if lines[k].strip()), None)
+    if above is None:
+        return
+    cells = lines[above].split()
+    width = len(lines[line - 1].split())
+    if len(cells) >= fewest and len(cells) != width and _numbers(cells, True) is not None:
+        raise CaptureError(f"rows of numbers with {len(cells)} and {width} cells (lines {above + 1} and {line}): a "
+                           "cell left blank in columns separated by spaces that are not aligned cannot be placed; "
+                           "expected the same number of cells in every row (write the missing value as nan, or "
+                           "separate the columns with ';' or tab)", file=src, line=above + 1)
+
+
+def _named_columns(table: _Table, hline: int | None, known: bool, src: str) -> dict[str, str]:
+    """The mapping read from a table's names (:func:`vcnc.traces.names.columns_from_names`; ``known``: the sampling
+    period is stated or given), else the error saying why: no position among the names, rows of another width above
+    the rows (a blank cell that cannot be placed), or the question asking for ``--columns``."""
+    header, data = table.header, table.data
+    columns, why = (columns_from_names(header, period_known=known) if header is not None
+                    else (None, "the file has no header line"))
+    if columns is not None:
+        return columns
+    if header is not None and no_positions(header):
+        raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
+                           "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
+                           "identifies a drive from a trace of its commanded and its measured position",
+                           file=src, line=hline)
+    if header is None:
+        _check_ragged_rows(table.lines, table.row_lines[0], src, fewest=1)
+    raise CaptureError("which columns are time, commanded and measured position? give --columns "
+                       f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
+                       f"(not read from the names: {why})" + _sample_step_hint(header, data)
+                       + (servo_period_hint(src) if header is None and not known else ""), file=src, line=hline)
 
 
 def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_unit: str | None,
@@ -698,20 +773,7 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     period = stated_period(above) if sample_time is None and time_unit is None else None
     guessed = not columns
     if not columns:
-        known = period is not None or sample_time is not None
-        columns, why = (columns_from_names(header, period_known=known) if header is not None
-                        else (None, "the file has no header line"))
-        if columns is None and header is not None and no_positions(header):
-            raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
-                               "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
-                               "identifies a drive from a trace of its commanded and its measured position",
-                               file=src, line=hline)
-        if columns is None:
-            raise CaptureError("which columns are time, commanded and measured position? give --columns "
-                               f"t=NAME,x_ref=NAME,x=NAME; columns found: {header or f'{data.shape[1]} unnamed'} "
-                               f"(not read from the names: {why})" + _sample_step_hint(header, data)
-                               + (servo_period_hint(src) if header is None and not known else ""), file=src,
-                               line=hline)
+        columns = _named_columns(table, hline, period is not None or sample_time is not None, src)
     axes = mapped_axes(columns, src)
     idx = {k: _column(v, header, data.shape[1], src, hline) for k, v in columns.items()}
     for k, c in idx.items():
@@ -802,9 +864,9 @@ def _check_digit_grouping(d: np.ndarray, idx: Mapping[str, int], columns: Mappin
     spreadsheet's digit grouping writes such a column of counts (``"1,234"`` with the delimiter ``,``, ``1.234`` in
     a German export); read as decimals it is a thousand times too small, and a column of decimals with three places
     always has the mark (tracefuzz; our reading). The cells are only read when the numbers are whole in
-    thousandths."""
+    thousandths (also when all are whole: ``"100,000"`` nm beside ``"0"``, tracewild37)."""
     with np.errstate(over="ignore", invalid="ignore"):  # a number beyond reach is the reach check's error
-        suspect = [k for k in idx if k != "t" and _whole(d[:, idx[k]] * 1000) and (d[:, idx[k]] % 1 != 0).any()]
+        suspect = [k for k in idx if k != "t" and _whole(d[:, idx[k]] * 1000) and (d[:, idx[k]] != 0).any()]
     if not suspect:
         return
     rows = cells()

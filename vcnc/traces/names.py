@@ -202,8 +202,9 @@ def _is_time(name: str) -> bool:
 
 
 def _is_ipoc(name: str) -> bool:
-    """KUKA RSI's ``IPOC`` (module docstring), with or without a unit in brackets."""
-    return _words(name) == [IPOC]
+    """KUKA RSI's ``IPOC`` (module docstring), with or without its unit, ms, in brackets or after a slash
+    (``IPOC/ms``: tracewild37, trace_fuzz seed 42000516)."""
+    return _words(name) in ([IPOC], [IPOC, "ms"])
 
 
 def _time_leaf(name: str) -> bool:
