@@ -238,6 +238,7 @@ from interpolators.heidenhain_transforms import (
 from interpolators.heidenhain_words import SourceBlock, read_value, source_blocks
 from interpolators.iso_axes import EXTRA_LETTERS, fill_extra
 from interpolators.program import Block, Program, end_at_rest, program_axes
+from interpolators.rotary_wrap import default_direction, within_turn, wrapped_end
 from interpolators.tcp import part_point
 from interpolators.tilted import Solution, TiltError, spatial, tilted_frame
 from toolpaths.geometry import Line
@@ -372,6 +373,12 @@ class Machine:
         # M94: machine angle minus shown angle of A B C [deg]; absolute angles are shown ones
         self.rotary_shift = np.zeros(len(EXTRA_LETTERS))
         self.shortest_path = False  # M126 (until M127) on a machine whose rotary axes wrap (interpolators.rotary_wrap)
+
+    @property
+    def wrap_rule(self) -> str:
+        """The direction of an absolute move of the machine's wrapping rotary axes (:mod:`interpolators.rotary_wrap`):
+        the shorter way under ``M126``, else the machine's ``wrap_direction``, else the TNC's own."""
+        return "shortest" if self.shortest_path else self.context.wrap_direction or default_direction("heidenhain")
 
     # --- coordinates -------------------------------------------------------------------------
     @property
@@ -1495,8 +1502,14 @@ def _feed_dwell(blk: SourceBlock, pos: int, m: Machine, where: Where) -> None:
 
 
 def _rotary_now(m: Machine) -> Solution:
-    """Positions of the kinematics' rotary axes (outer, inner; inner 0 without one) [deg]."""
-    return m.context.kinematics.solution_at(m.extra)
+    """Positions of the kinematics' rotary axes (outer, inner; inner 0 without one) [deg]; of an axis the machine
+    wraps at 360 deg the one it shows, in [0, 360) (:mod:`interpolators.rotary_wrap`): PLANE's angles are nominal
+    positions from there, which :func:`_position_rotary` reaches by the machine's rule."""
+    shown = m.extra.copy()
+    for a in m.context.wrapped_axes:
+        i = EXTRA_LETTERS.index(a.upper())
+        shown[i] = within_turn(shown[i] - m.rotary_shift[i])
+    return m.context.kinematics.solution_at(shown)
 
 
 def _plane(text: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> None:
@@ -1599,8 +1612,12 @@ def _position_rotary(pb: PlaneBlock, old: Solution, new: Solution, m: Machine, w
     kin = m.context.kinematics
     extra = m.extra.copy()
     for name, value in kin.positions(new).items():
-        extra[EXTRA_LETTERS.index(name.upper())] = value
-        m.used.add(3 + EXTRA_LETTERS.index(name.upper()))
+        i = EXTRA_LETTERS.index(name.upper())
+        # an axis that wraps at 360 deg reaches the angle as an absolute word of it (C shown at 10, PLANE needs
+        # C+90: +80 deg; our reading: the manuals name no other rule for PLANE's positioning)
+        wraps = name in m.context.wrapped_axes
+        extra[i] = wrapped_end(value, float(m.extra[i]), float(m.rotary_shift[i]), m.wrap_rule) if wraps else value
+        m.used.add(3 + i)
     m.extra_used = True
     target = m.pos.copy()
     if pb.positioning == "MOVE":

@@ -48,7 +48,7 @@ from interpolators.heidenhain_tcpm import (
 from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
-from interpolators.rotary_wrap import default_direction, wrap_words
+from interpolators.rotary_wrap import wrap_words
 from interpolators.tcp import machine_point, part_point
 from toolpaths.geometry import PLANE_AXES, Arc, Line
 
@@ -622,9 +622,8 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
         return None
     m.extra_used = True
     if m.context.wrapped_axes:
-        direction = "shortest" if m.shortest_path else m.context.wrap_direction or default_direction("heidenhain")
         target = wrap_words(target, {k: seen[k] for k in letters if k in ROTARY_LETTERS}, m.extra, m.rotary_shift,
-                            wrapped=m.context.wrapped_axes, direction=direction, where=where)
+                            wrapped=m.context.wrapped_axes, direction=m.wrap_rule, where=where)
     return target
 
 

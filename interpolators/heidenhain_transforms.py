@@ -487,9 +487,12 @@ def axial_angles(block: PlaneBlock, *, kinematics: Kinematics, current: Solution
     Raises
     ------
     TiltError
-        An axis the kinematics lacks, or an angle outside its axis' limits.
+        No angle, an axis the kinematics lacks, or an angle outside its axis' limits.
     """
     names, v = kinematics.names, block.values
+    if not v:
+        raise TiltError("PLANE AXIAL without an axis angle (it defines the plane by one to three of them)",
+                        "PLANE AXIAL " + " ".join(f"{n.upper()}.." for n in names))
     for key in v:
         if key[-1].lower() not in names:
             raise TiltError(f"PLANE AXIAL {key}: no rotary axis {key[-1]} in the machine's kinematics",

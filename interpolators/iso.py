@@ -495,8 +495,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     unfinished_g062(st, Where(source, st.g062.line if st.g062 is not None else 0, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)
     axes = program_axes(used, blocks)
-    if st.extra_used:
-        blocks = fill_extra(blocks)
+    blocks = fill_extra(blocks) if st.extra_used else blocks
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages), rapid_feed_stop=dialect.rapid_feed_stop)
 
@@ -1350,33 +1349,13 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         else:
             st.reference2, st.reference2_extra = st.pos.copy(), st.extra.copy()
         return not linuxcnc_modal_axis_words(seen, st)
-    if key in (520, 920):
-        refuse_wrapped_offset(seen, st, where, f"G{key // 10}")
     if key == 520:
+        refuse_wrapped_offset(seen, st, where, "G52")
         local_offset(seen, axis_words, st, where, w)
         notes.add("G52 local offset")
         return True
-    rot_words = [a for a in EXTRA_LETTERS if a in seen]
     if key == 920:
-        if not axis_words and not rot_words:
-            lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
-            where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,
-                       expected="G92 X.. Y.. Z..")
-        # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame; under
-        # tool centre point control the current point is the tip on the part (iso_tcp.tip_point), our reading
-        current = st.to_program(tip_point(st))
-        for a in axis_words:
-            i = "XYZ".index(a)
-            st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
-            st.local[i] = 0.0  # Fanuc: G92 cancels the local system (G52) of the axes it names
-        # A-W as X-Z (LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 offset of all nine axes):
-        # the offset that makes the axis' current position the programmed value
-        v = word_values({a: seen[a].value for a in rot_words}, scale=st.scale)
-        given = ~np.isnan(v)
-        work = st.extra_offset() - st.g92_extra
-        st.g92_extra[given] = (st.extra - work - v)[given]
-        st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
-        st.g92_applied = True
+        _g92(seen, axis_words, st, where, w)
         notes.add("G92 offset")
         return True
     if key in (921, 922):
@@ -1404,3 +1383,27 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
     return False
 
 
+def _g92(seen, axis_words: list[str], st: State, where: Where, w) -> None:
+    """G92: the offset that makes the current position the block's axis words (LinuxCNC refuses a word of 360 deg or
+    more on a wrapped rotary axis: :func:`interpolators.iso_axes.refuse_wrapped_offset`)."""
+    refuse_wrapped_offset(seen, st, where, "G92")
+    rot_words = [a for a in EXTRA_LETTERS if a in seen]
+    if not axis_words and not rot_words:
+        lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
+        where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,
+                   expected="G92 X.. Y.. Z..")
+    # LinuxCNC convert_axis_offsets: offset = current + offset - value, in the (rotated) program frame; under
+    # tool centre point control the current point is the tip on the part (iso_tcp.tip_point), our reading
+    current = st.to_program(tip_point(st))
+    for a in axis_words:
+        i = "XYZ".index(a)
+        st.g92[i] = current[i] + st.g92[i] - seen[a].value * st.scale
+        st.local[i] = 0.0  # Fanuc: G92 cancels the local system (G52) of the axes it names
+    # A-W as X-Z (LinuxCNC emccanon.cc rotate_and_offset_pos adds the G92 offset of all nine axes):
+    # the offset that makes the axis' current position the programmed value
+    v = word_values({a: seen[a].value for a in rot_words}, scale=st.scale)
+    given = ~np.isnan(v)
+    work = st.extra_offset() - st.g92_extra
+    st.g92_extra[given] = (st.extra - work - v)[given]
+    st.g92_saved, st.g92_extra_saved = st.g92.copy(), st.g92_extra.copy()
+    st.g92_applied = True

@@ -41,9 +41,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.iso_nurbs import nurbs_chords
+from interpolators.iso_nurbs import chord_blocks, nurbs_chords
 from interpolators.program import Block
-from toolpaths.geometry import Line
 
 if TYPE_CHECKING:
     from interpolators.iso import State
@@ -158,17 +157,8 @@ def _run(curve: NurbsCurve, st: State, blocks: list[Block], used: set[int], wher
            f"more than {k} equal knots (Fanuc alarm 1008)" if _longest_run(knots) > k else None)
     if why is not None:
         where.fail(f"G06.2 NURBS of line {curve.line}: {why}", column=w.column, text=w.text, expected=_EXPECTED)
-    chain = [st.pos.copy()]
-    for point in nurbs_chords(points, np.array(curve.weights), k, knots=knots):
-        if np.any(point != chain[-1]):
-            chain.append(point)
     used.update((0, 1, 2))
-    for a, b in zip(chain[:-1], chain[1:]):
-        seg = Line(a, b)
-        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
-                            target=np.array(b), feed=move_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
-                            tolerance=st.tolerance))
-    st.pos = np.array(chain[-1], dtype=float)
+    chord_blocks(nurbs_chords(points, np.array(curve.weights), k, knots=knots), st, blocks, where, number, move_feed)
 
 
 def _longest_run(knots: np.ndarray) -> int:

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.iso_axes import EXTRA_LETTERS
+from interpolators.iso_axes import EXTRA_LETTERS, wrapped_reference
 from interpolators.iso_codes import DIALECT_G, G_CODES, MILL_G
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES
 from interpolators.iso_tilt import PLANE_WORDS, TiltedRotation, TiltError, g68_2_rotation
@@ -103,6 +103,9 @@ def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], wh
         for name, angle in rot.positions.items():
             turned[EXTRA_LETTERS.index(name.upper())] = angle
             used.add(3 + EXTRA_LETTERS.index(name.upper()))
+        # an axis that wraps at 360 deg reaches the angle as a machine word, by the machine's rule (a roll-over C at
+        # 370 turned to 90: +80 deg, not -280)
+        turned = wrapped_reference(turned, st, tuple(rot.positions))
         blocks.append(Block(kind="rapid", feed=np.inf, segment=Line(st.pos, st.pos), line=where.line, number=number,
                             text=where.text, start=st.pos.copy(), target=st.pos.copy(), exact_stop=st.exact_stop,
                             tolerance=st.tolerance, extra_start=st.extra.copy(), extra_target=turned))

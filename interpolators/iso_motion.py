@@ -20,7 +20,7 @@ from interpolators.iso_codes import G_CODES, PLANE_CODES
 from interpolators.iso_corners import finish_corner, start_corner
 from interpolators.iso_decimal import decimal_literal
 from interpolators.iso_dwo import refuse_rotary_under_dwo
-from interpolators.iso_nurbs import nurbs_chords
+from interpolators.iso_nurbs import chord_blocks, nurbs_chords
 from interpolators.iso_polar import POLAR_LETTERS, polar_xy
 from interpolators.iso_splines import bezier_chords
 from interpolators.iso_words import Word, firmware_dwell_hint
@@ -466,17 +466,8 @@ def _nurbs_curve(st: State, blocks, used, where: Where, number, mcol: int, mtok:
         where.fail(f"G5.3 NURBS: you must specify a number of control points at least equal to the order "
                    f"L = {st.nurbs_order} (got {len(points)}, the start point included)", column=mcol, text=mtok,
                    expected=f"at least {st.nurbs_order} control points")
-    chain = [st.pos.copy()]
-    for point in nurbs_chords(points, weights, st.nurbs_order):
-        if np.any(point != chain[-1]):  # coincident control points make chords of no length: left out
-            chain.append(point)
     used.update(PLANE_AXES[st.plane])
-    for a, b in zip(chain[:-1], chain[1:]):
-        seg = Line(a, b)
-        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
-                            target=np.array(b), feed=move_feed(st, seg), segment=seg, exact_stop=st.exact_stop,
-                            tolerance=st.tolerance))
-    st.pos = np.array(chain[-1], dtype=float)
+    chord_blocks(nurbs_chords(points, weights, st.nurbs_order), st, blocks, where, number, move_feed)
     st.nurbs, st.motion = None, None
 
 

@@ -20,11 +20,15 @@ curve itself, as straight chords whose distance from it is at most
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
+
 import numpy as np
 
 from interpolators.iso_splines import MAX_CHORDS, SPLINE_TOLERANCE
+from interpolators.program import Block
+from toolpaths.geometry import Line
 
-__all__ = ["knot_vector", "nurbs_points", "nurbs_chords"]
+__all__ = ["knot_vector", "nurbs_points", "nurbs_chords", "chord_blocks"]
 
 
 def knot_vector(n: int, k: int) -> np.ndarray:
@@ -105,3 +109,20 @@ def _distance_to_chord(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarra
     length2 = np.einsum("ij,ij->i", d, d)
     t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
     return np.linalg.norm(p - (a + t[:, None] * d), axis=1)
+
+
+def chord_blocks(chords: Iterable[np.ndarray], st, blocks: list[Block], where, number, feed: Callable) -> None:
+    """Append a line block from the reader's position (``st.pos`` [mm, machine]) through each point of ``chords``,
+    leaving out chords of no length (coincident control points), at ``feed(st, segment)`` [mm/s]; ``st.pos`` ends
+    at the last point. LinuxCNC G5.2 (:mod:`interpolators.iso_motion`) and Fanuc G06.2
+    (:mod:`interpolators.iso_fanuc_nurbs`) run their curves so."""
+    chain = [st.pos.copy()]
+    for point in chords:
+        if np.any(point != chain[-1]):
+            chain.append(point)
+    for a, b in zip(chain[:-1], chain[1:]):
+        seg = Line(a, b)
+        blocks.append(Block(line=where.line, number=number, text=where.text, kind="line", start=np.array(a),
+                            target=np.array(b), feed=feed(st, seg), segment=seg, exact_stop=st.exact_stop,
+                            tolerance=st.tolerance))
+    st.pos = np.array(chain[-1], dtype=float)

@@ -108,6 +108,7 @@ from interpolators.iso_offsets import (
     tool_offset_variable,
     with_tool_offset,
 )
+from interpolators.rotary_wrap import within_turn
 from interpolators.tcp import part_point
 
 if TYPE_CHECKING:
@@ -210,7 +211,7 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     if st.stopped:
         st.stops_read.add(st.stop_line)  # noted by the reader: a jog at the stop is not modelled
     if base == 5021:
-        return _nine(st.pos, st.extra, st.scale)[n - 5021], ""
+        return _rolled(_nine(st.pos, st.extra, st.scale), st, fanuc)[n - 5021], ""
     if st.comp_side is not None:
         return None, "the current position cannot be read with cutter radius compensation on (LinuxCNC)"
     # under tool centre point control the program's X Y Z are the tip's on the part (iso_tcp.tip_point), so the
@@ -219,7 +220,21 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     # specified" by the program)
     point = part_point(st.context.kinematics, st.extra, st.pos, st.tool_length) if st.tcp else st.pos
     values = _nine(st.to_program(point), st.extra - st.extra_offset(), st.scale)
-    return values[n - base], ""
+    return _rolled(values, st, fanuc)[n - base], ""
+
+
+def _rolled(values: list[float], st: ReaderState, fanuc: bool) -> list[float]:
+    """``values`` (X Y Z A B C U V W) with the angles of the axes the machine wraps at 360 deg reduced to [0, 360)
+    under Fanuc and Haas, whose roll-over axis shows its coordinates within one rotation (Fanuc Series 0i-MC
+    B-63534EN/02, 20.2.1 "Rotary axis roll-over": A0, then ``G90 A-150.``: "absolute coordinate value after
+    movement end" 210; Power Mate i B-63172EN/01, 7.5: "The rotation axis roll-over function rounds the absolute
+    coordinate value and relative coordinate value ... within one rotation", 7.4: "The machine coordinate system is
+    always normalized to the range from 0deg to 360deg"). LinuxCNC's interpreter reads them unwrapped (rs274
+    2.9.0~pre1 with ``WRAPPED_ROTARY``: 350 deg then ``A10``, ``#5423`` = 370), as the blocks carry them."""
+    wrapped = st.context.wrapped_axes
+    if not fanuc or not wrapped:
+        return values
+    return [within_turn(v) if 3 <= i < 6 and "abc"[i - 3] in wrapped else v for i, v in enumerate(values)]
 
 
 def _work_offset(n: int, st: ReaderState) -> float | None:
@@ -338,7 +353,9 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
         return (st.tool_length / st.scale if n == 5083 else 0.0), ""
     if 5161 <= n <= 5169 or 5181 <= n <= 5189:
         home = st.home if n < 5180 else st.reference2
-        rot = st.home_extra if n < 5180 else st.reference2_extra
+        rot = (st.home_extra if n < 5180 else st.reference2_extra).copy()
+        for a in st.context.wrapped_axes:  # G28.1/G30.1 store a wrapped axis' angle reduced to [0, 360) (LinuxCNC
+            rot["abc".index(a)] = within_turn(rot["abc".index(a)])  # rs274 2.9.0~pre1: A370 reads 10, A-370 350)
         linear = np.zeros(3) if home is None else home
         return _nine(linear, rot, _stored(st))[n - (5161 if n < 5180 else 5181)], ""
     if n == 5210:

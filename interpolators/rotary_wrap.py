@@ -44,8 +44,8 @@ from typing import Protocol
 
 import numpy as np
 
-__all__ = ["WRAP_DIRECTIONS", "ROTARY_AXES", "default_direction", "wrapped_end", "wrap_words", "wrap_reference",
-           "linuxcnc_machine_word"]
+__all__ = ["WRAP_DIRECTIONS", "ROTARY_AXES", "default_direction", "within_turn", "wrapped_end", "wrap_words",
+           "wrap_reference", "linuxcnc_machine_word"]
 
 #: The rules of an absolute move on a wrapping rotary axis (see the module text).
 WRAP_DIRECTIONS: tuple[str, ...] = ("shortest", "sign", "difference")
@@ -75,6 +75,14 @@ def default_direction(dialect: str) -> str:
     return {"linuxcnc": "sign", "heidenhain": "difference"}.get(dialect, "shortest")
 
 
+def within_turn(angle: float) -> float:
+    """``angle`` [deg] reduced to [0, 360), as a control shows a wrapping axis; a rounding residue below a whole
+    turn (``0.3 - 3 * 0.1`` = -2.8e-17) reads 0, not 360 minus it (a shown 359.99.. would turn the next absolute
+    word a whole revolution under ``"difference"``)."""
+    r = angle % 360.0
+    return 0.0 if r > 360.0 - 1e-9 else r
+
+
 def wrapped_end(value: float, current: float, offset: float, direction: str) -> float:
     """The end [deg, machine, unwrapped] of an absolute word ``value`` [deg, program] on a wrapping axis now at
     ``current`` [deg, machine, unwrapped], whose program position is the machine's minus ``offset`` [deg]: by the
@@ -91,7 +99,7 @@ def wrapped_end(value: float, current: float, offset: float, direction: str) -> 
         turn = (value - here) % 360.0
         return current + (turn - 360.0 if turn > 180.0 else turn)
     if direction == "difference":
-        return current + (value - here % 360.0)
+        return current + (value - within_turn(here))
     raise ValueError(f"wrap direction must be one of {', '.join(WRAP_DIRECTIONS)}, got {direction!r}")
 
 

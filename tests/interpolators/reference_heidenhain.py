@@ -2840,6 +2840,17 @@ def _three_points(p1: np.ndarray, p2: np.ndarray, p3: np.ndarray) -> np.ndarray:
     return np.column_stack([x, y, np.cross(x, y)])
 
 
+def _shown(t: _Tnc) -> np.ndarray:
+    """The positions of A, B, C (and U, V, W) with a wrapping rotary axis at the angle it shows, in [0, 360)."""
+    out = t.extra.copy()
+    for a in t.ctx.wrapped_axes:
+        i = "abc".index(a)
+        v = math.fmod(t.extra[i] - t.shown[i], 360.0)
+        v = v + 360.0 if v < 0.0 else v
+        out[i] = 0.0 if v > 360.0 - 1e-9 else v
+    return out
+
+
 def _axial(t: _Tnc, w: dict) -> tuple[np.ndarray, dict[str, float]]:
     """``PLANE AXIAL A.. B.. C..`` (TNC7 basic user's manual 81762x-19, "PLANE AXIAL": "Axis angles define both the
     orientation of the working plane as well as the nominal coordinates of the rotary axes", "absolute or incremental
@@ -2850,7 +2861,8 @@ def _axial(t: _Tnc, w: dict) -> tuple[np.ndarray, dict[str, float]]:
     names = [ax.name for ax in t.ctx.kinematics.axes]
     if any(k[-1].lower() not in names for k in w) or not w or any(k in w and "I" + k in w for k in "ABC"):
         raise ReferenceError(f"PLANE AXIAL {sorted(w)} on axes {names}")
-    now = {a: t.extra["ABC".index(a.upper())] for a in names}
+    shown = _shown(t)
+    now = {a: shown["ABC".index(a.upper())] for a in names}
     angles = {a: w[a.upper()] if a.upper() in w else now[a] + w.get("I" + a.upper(), 0.0) for a in names}
     for ax in t.ctx.kinematics.axes:
         if not ax.limits[0] - 1e-6 <= angles[ax.name] <= ax.limits[1] + 1e-6:
@@ -2873,7 +2885,11 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
             t.shift = t.base.copy()
         t.tilt, new = None, dict.fromkeys(names, 0.0)
     else:
-        new = dict(angles) if angles is not None else _solve(t, plane, seq, table_rot=table_rot)
+        machine, t.extra = t.extra, _shown(t)  # solved from the angles a wrapping axis shows
+        try:
+            new = dict(angles) if angles is not None else _solve(t, plane, seq, table_rot=table_rot)
+        finally:
+            t.extra = machine
         if t.tilt is None:
             t.base = t.shift.copy()
         t.tilt, t.tilt_angles, t.shift, t.shifted = plane, new, np.zeros(3), False
@@ -2885,9 +2901,14 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
             up = np.array([0.0, 0.0, dist * t.scale])
             tip = t.pos - np.array([0.0, 0.0, t.length]) + up
             end = _carry(t, _carry(t, tip, old, back=True), new) - up + np.array([0.0, 0.0, t.length])
-        still = all(abs(t.extra["ABC".index(a.upper())] - new[a]) < 1e-12 for a in names)
+        ends = {}
+        for a in names:  # a wrapping axis reaches its nominal angle by the machine's rule, as an absolute word
+            i = "ABC".index(a.upper())
+            rule = "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
+            ends[a] = wrapped_end(rule, new[a], t.extra[i], t.shown[i]) if a in t.ctx.wrapped_axes else new[a]
+        still = all(abs(t.extra["ABC".index(a.upper())] - ends[a]) < 1e-12 for a in names)
         for a in names:
-            t.extra["ABC".index(a.upper())] = new[a]
+            t.extra["ABC".index(a.upper())] = ends[a]
         t.emit(line, feed, end, extra=t.extra.copy(), rows="optional" if still else "one")
 
 
@@ -3046,6 +3067,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
             _reduce_display(t, _m_words(up, t.q)[1])
             ms = [int(v) for v in re.findall(r"M(\d+)", _m_words(up, t.q)[0])]
             _tcpm_switch(t, ms)
+            if t.ctx.wrapped_axes and {126, 127} & set(ms):  # M126 / M127 in a block of their own (TNC 640 manual)
+                t.m126 = 126 in ms
             t.modal = (t.modal or 89 in ms) and 99 not in ms
             if 99 in ms:
                 _run_cycle(t, line)

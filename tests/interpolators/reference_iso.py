@@ -173,6 +173,8 @@ def wrapped_end(rule: str, word: float, now: float, offset: float) -> float:
         shown_now -= 360.0
     while shown_now < 0.0:
         shown_now += 360.0
+    if shown_now > 360.0 - 1e-9:  # a residue below a whole turn (-2.8e-17 + 360 = 360.0) shows 0
+        shown_now = 0.0
     return now + word - shown_now
 
 
