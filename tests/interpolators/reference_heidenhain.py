@@ -79,7 +79,7 @@ import numpy as np
 
 from tests.interpolators.reference_heidenhain_fk import FkReference
 from tests.interpolators.reference_iso import Expected, ReferenceError, wrapped_end
-from tests.interpolators.reference_match import match_blocks
+from tests.interpolators.reference_match import match_blocks, reader_rows
 
 __all__ = ["heidenhain_reference"]
 
@@ -3219,18 +3219,18 @@ def _motion(t: _Tnc, line: int, up: str) -> bool | None:
 
 def checked_program(text: str, context, *, check: bool = True, exact: bool = True):
     """The Heidenhain reader's program of ``text``, its blocks checked against this reference: every row of
-    ``--blocks`` agrees exactly (``exact=False``: radius-compensated rows within the tool radius, as
-    :func:`match_blocks` allows). ``check=False``: the reader's program alone (one the reference does not model,
-    or one the reader must refuse)."""
+    ``--blocks`` (the rotary and secondary axes' columns too: :func:`reader_rows`) agrees exactly (``exact=False``:
+    radius-compensated rows within the tool radius, as :func:`match_blocks` allows). ``check=False``: the reader's
+    program alone (one the reference does not model, or one the reader must refuse)."""
     from interpolators.heidenhain import parse_heidenhain
     from vcnc.commands.interpolate import blocks_table
 
     prog = parse_heidenhain(text, source="t.h", context=context)
     if not check:
         return prog
-    match = match_blocks(heidenhain_reference(text, context), blocks_table(prog)[1])
+    match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
     assert match.mismatch is None, match.mismatch
-    assert not exact or match.exact == len(prog.blocks)
+    assert match.exact == len(prog.blocks) if exact else match.exact + match.within == len(prog.blocks)
     return prog
 
 

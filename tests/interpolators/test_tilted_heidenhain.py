@@ -9,11 +9,8 @@ import numpy as np
 import pytest
 
 from interpolators.context import MachineContext, Tool
-from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks, reader_rows
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 R = math.sqrt(0.5)
@@ -29,13 +26,7 @@ ZERO45 = np.array([10 * R - 50 * R, 0.0, 10 * R + 50 * R - 50.0 + 20.0])
 
 def run(body: str, context: MachineContext = CTX, *, reference: bool = True):
     """The program run by the reader, after checking it against the reference block by block."""
-    text = HEAD + body + "\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=context)
-    if reference:
-        match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
-        assert match.mismatch is None, match.mismatch
-        assert match.exact + match.within == len(prog.blocks)
-    return prog
+    return checked_program(HEAD + body + "\nEND PGM T MM\n", context, check=reference, exact=False)
 
 
 def ends(prog):

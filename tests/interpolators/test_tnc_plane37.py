@@ -14,12 +14,9 @@ import numpy as np
 import pytest
 
 from interpolators.context import MachineContext, Tool
-from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis
-from tests.interpolators.reference_heidenhain import heidenhain_reference
+from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
 from tests.interpolators.reference_iso import ReferenceError
-from tests.interpolators.reference_match import match_blocks, reader_rows
-from vcnc.commands.interpolate import blocks_table
 from vcnc.errors import GCodeError
 
 R = math.sqrt(0.5)
@@ -55,13 +52,7 @@ def machine_of(part: np.ndarray, b: float, c: float) -> np.ndarray:
 
 def run(body: str, context: MachineContext = CTX, *, reference: bool = True, head: str = HEAD):
     """The program run by the reader, after checking it against the reference block by block."""
-    text = head + body + "\nEND PGM T MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=context)
-    if reference:
-        match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
-        assert match.mismatch is None, match.mismatch
-        assert match.exact + match.within == len(prog.blocks)
-    return prog
+    return checked_program(head + body + "\nEND PGM T MM\n", context, check=reference, exact=False)
 
 
 def test_plane_axial_goes_to_the_angles_written_not_the_nearer_solution():
