@@ -88,7 +88,7 @@ if TYPE_CHECKING:
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
            "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "length_travel",
-           "length_moves_now", "length_cancelled", "reference_p", "local_offset", "g10"]
+           "length_moves_now", "length_cancelled", "length_in_cycle", "reference_p", "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -427,6 +427,24 @@ def length_cancelled(st: State) -> None:
     ``G91 G28 Z0`` (Fusion 360's Fanuc post) moves nothing, and an incremental Z after it travels the offset again.
     Under a coordinate shift nothing is left to travel."""
     st.length_pending = st.tool_length if st.context.dialect.length_offset_motion else 0.0
+
+
+def length_in_cycle(st: State) -> None:
+    """A canned-cycle block in G17 takes a tool length change not yet travelled (Fanuc TOS = 0,
+    :func:`length_travel`) up at its positioning to R: "When a tool length offset (G43, G44, or G49) is specified in
+    the canned cycle, the offset is applied at the time of positioning to point R" (FANUC Series 15i/150i-MA
+    programming manual B-63784EN, canned cycles, "Tool length compensation"). Under G90 the cycle's R and bottom
+    levels hold the new offset already; the series' initial level (:class:`interpolators.iso_cycles.CycleWords`, a
+    machine Z) moves by the change with them, so a G91 R is measured from it and a G98 returns to it: "G49 / G91 G81
+    .. R-3." with a 50 mm tool and the tool at Z 60 puts R at 7, not 57. Our reading: a block of zero repeats (K0)
+    takes it up too, its stored cycle holding the new offset; in G18/G19 (drilling along Y or X) the change waits
+    for the next Z word."""
+    if not st.length_pending or st.plane != 2:
+        return
+    if st.cycle.initial is None:
+        st.cycle.initial = float(st.pos[2])
+    st.cycle.initial += st.length_pending
+    st.length_pending = 0.0
 
 
 def length_moves_now(gcodes, motion: int | None, st: State) -> bool:
