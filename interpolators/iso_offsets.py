@@ -505,6 +505,11 @@ def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:
     st.length_number = number or 0
     length = 0.0 if tool is None else tool.length
     sign = -1.0 if key == 440 else 1.0
+    if key == 440 and st.context.dialect.name == "linuxcnc":
+        # LinuxCNC's G-code set has G43, G43.1, G43.2 and G49 only (interp_array.cc gees[]: G44 is -1): rs274 stops
+        # at it with "Unknown g code used"; vcnc runs it as Fanuc's G44 (subtracting), as it runs the other codes
+        # LinuxCNC lacks, noted
+        notes.add('G44 tool length offset subtracted as Fanuc does (LinuxCNC refuses it: "Unknown g code used")')
     st.tool_length = sign * length
     st.tool_xy = sign * (np.zeros(2) if tool is None else np.array([tool.offset_x, tool.offset_y]))
     notes.add("G43/G44 tool length from the table")

@@ -8,14 +8,20 @@ twice), and under G91 the R level, measured from the initial level, moves by it.
 (hand-written). Every program is checked against the independent reference as well
 (:func:`tests.interpolators.iso_checks.checked_iso`).
 
+G44 (the offset subtracted) is no LinuxCNC code (its G-code reference has G43, G43.1, G43.2 and G49; rs274 answers
+"Unknown g code used"), nor grbl's (gnea/grbl gcode.c ``case 43: case 49:`` takes G43.1 and G49, anything else error
+20; grblHAL's ``tool_offset_mode_t`` has G49, G43, G43.1, G43.2).
 """
 
 from __future__ import annotations
 
 import pytest
 
+from interpolators import parse_program
+from interpolators.context import MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
 from tests.interpolators.test_iso_tos37 import MOVING, context
+from vcnc.errors import GCodeError
 
 START = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\n"  # machine Z 60
 
@@ -63,3 +69,18 @@ def test_g98_returns_to_the_initial_level_under_the_new_offset(dialect):
     assert z_rows(text, dialect)[-4:] == [(4, "rapid", 32.0), (4, "line", 25.0), (4, "rapid", 40.0),
                                           (6, "rapid", 39.0)]
 
+
+def test_g44_under_linuxcnc_runs_with_the_note_that_linuxcnc_refuses_it():
+    """Under linuxcnc G44 runs as Fanuc's (Z10. ends at 10 - 50, the coordinate shift) with the note that rs274
+    stops there. Before: it ran without a word of it."""
+    ctx = MachineContext(tools={1: Tool(number=1, length=50.0)}).with_dialect("linuxcnc")
+    prog = parse_program("G21 G90 G0 X0 Y0 Z0\nG44 H1 Z10.\nM2\n", context=ctx)
+    assert [float(b.target[2]) for b in prog.blocks] == [0.0, -40.0]
+    assert any("G44" in n and 'LinuxCNC refuses it: "Unknown g code used"' in n for n in prog.notes)
+
+
+def test_g44_under_grbl_is_refused_naming_the_line():
+    """grbl 1.1 answers G44 with error 20 and grblHAL has no G44: an error at line 2, column 1. Before: it ran."""
+    ctx = MachineContext(tools={1: Tool(number=1, length=50.0)}).with_dialect("grbl")
+    with pytest.raises(GCodeError, match=r":2:1: G44 tool length offset subtracted: grbl has none .*error 20"):
+        parse_program("G21 G90 G0 X0 Y0 Z0\nG44 H1 Z10.\nM2\n", context=ctx)
