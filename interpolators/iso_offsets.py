@@ -430,21 +430,26 @@ def length_cancelled(st: State) -> None:
 
 
 def length_in_cycle(st: State) -> None:
-    """A canned-cycle block in G17 takes a tool length change not yet travelled (Fanuc TOS = 0,
-    :func:`length_travel`) up at its positioning to R: "When a tool length offset (G43, G44, or G49) is specified in
-    the canned cycle, the offset is applied at the time of positioning to point R" (FANUC Series 15i/150i-MA
-    programming manual B-63784EN, canned cycles, "Tool length compensation"). Under G90 the cycle's R and bottom
-    levels hold the new offset already; the series' initial level (:class:`interpolators.iso_cycles.CycleWords`, a
-    machine Z) moves by the change with them, so a G91 R is measured from it and a G98 returns to it: "G49 / G91 G81
-    .. R-3." with a 50 mm tool and the tool at Z 60 puts R at 7, not 57. Our reading: a block of zero repeats (K0)
-    takes it up too, its stored cycle holding the new offset; in G18/G19 (drilling along Y or X) the change waits
-    for the next Z word."""
-    if not st.length_pending or st.plane != 2:
+    """A canned-cycle block in G17: the series' initial level (:class:`interpolators.iso_cycles.CycleWords`, a
+    machine Z) follows a tool length change made since its last block, and one not yet travelled (Fanuc TOS = 0,
+    :func:`length_travel`) is taken up at the positioning to R: "When a tool length offset (G43, G44, or G49) is
+    specified in the canned cycle, the offset is applied at the time of positioning to point R" (FANUC Series
+    15i/150i-MA programming manual B-63784EN, canned cycles, "Tool length compensation"). The initial level is a
+    level in program coordinates, as LinuxCNC keeps it (interp_cycles.cc ``cycle_il``; rs274 returns a G98 hole after
+    a G43 H2 within the series to the program Z it began at): under G90 the cycle's R and bottom levels hold the new
+    offset already, a G91 R is measured from the moved initial level and a G98 returns to it: "G49 / G91 G81 .. R-3."
+    with a 50 mm tool and the tool at Z 60 puts R at 7, not 57. Our reading: a block of zero repeats (K0) takes the
+    change up too, its stored cycle holding the new offset; in G18/G19 (drilling along Y or X) the change waits for
+    the next Z word."""
+    if st.plane != 2:
         return
     if st.cycle.initial is None:
         st.cycle.initial = float(st.pos[2])
+    elif st.cycle.length is not None:  # a change made between the series' blocks, travelled or a coordinate shift
+        st.cycle.initial += st.tool_length - st.length_pending - st.cycle.length
     st.cycle.initial += st.length_pending
     st.length_pending = 0.0
+    st.cycle.length = st.tool_length
 
 
 def length_moves_now(gcodes, motion: int | None, st: State) -> bool:

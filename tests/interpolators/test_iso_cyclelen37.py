@@ -70,6 +70,16 @@ def test_g98_returns_to_the_initial_level_under_the_new_offset(dialect):
                                           (6, "rapid", 39.0)]
 
 
+def test_linuxcnc_g98_after_a_g43_within_the_series_returns_to_the_program_level():
+    """LinuxCNC keeps the series' initial level in program coordinates (interp_cycles.cc ``cycle_il``): after
+    "G43 H2" between two G98 G81 blocks rs274 (installed; tools 1 and 2) retracts the second hole to program Z 10,
+    machine 10 + 30 = 40, and the G91 Z-1. after G80 to 39. Before: the reader went back to machine 60 (the
+    reference to 40)."""
+    text = START + "G98 G81 X0 Y0 Z-5. R2. F100.\nG43 H2\nX5.\nG80\nG91 G0 Z-1.\nM2\n"
+    assert z_rows(text, "linuxcnc")[-4:] == [(5, "rapid", 32.0), (5, "line", 25.0), (5, "rapid", 40.0),
+                                             (7, "rapid", 39.0)]
+
+
 def test_g44_under_linuxcnc_runs_with_the_note_that_linuxcnc_refuses_it():
     """Under linuxcnc G44 runs as Fanuc's (Z10. ends at 10 - 50, the coordinate shift) with the note that rs274
     stops there. Before: it ran without a word of it."""
