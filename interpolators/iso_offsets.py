@@ -443,9 +443,13 @@ def length_in_cycle(st: State) -> None:
     the next Z word."""
     if st.plane != 2:
         return
+    program = bool(st.rotation) and st.frame is None  # under G10 R alone the level is kept in program coordinates
     if st.cycle.initial is None:
-        st.cycle.initial = float(st.pos[2])
-    elif st.cycle.length is not None:  # a change made between the series' blocks, travelled or a coordinate shift
+        if not st.length_pending:
+            st.cycle.length = st.tool_length
+            return
+        st.cycle.initial = float((st.to_program(st.pos) if program else st.pos)[2])
+    elif st.cycle.length is not None and not program:  # a change between the series' blocks, travelled or a shift
         st.cycle.initial += st.tool_length - st.length_pending - st.cycle.length
     st.cycle.initial += st.length_pending
     st.length_pending = 0.0
