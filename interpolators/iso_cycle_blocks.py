@@ -27,6 +27,7 @@ from interpolators.iso_motion import (
     per_rev_spindle,
     rapid_move,
 )
+from interpolators.iso_offsets import length_in_cycle
 from interpolators.iso_rigid_tap import rigid_tap_speed
 from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import Block
@@ -212,6 +213,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
         where.fail(f"{name}: the G51 scaling changed within the series of cycles (the initial level of a "
                    "series is then undefined)", column=mw.column, text=mw.text, expected="G80 before G51 / G50")
     st.cycle.factors = factors
+    length_in_cycle(st)
     framed_initial(st, to_program=True)
     try:
         code = 87 if st.motion == 770 else st.motion // 10  # Haas G77 is Fanuc's G87

@@ -88,6 +88,10 @@ _ABSOLUTE_CENTRES = 901
 #: [G61.1 not supported]"; grblHAL the same without path blending (and its path-blending build's test, "mantissa != 0
 #: || mantissa != 10", refuses every G61).
 _EXACT_STOP_MODE = 611
+#: G44, the tool length offset subtracted: grbl 1.1's ``case 43: case 49:`` takes G43.1 and G49 only (G43 "[Unsupported
+#: G43.x command]", G44 the switch's "default:", error 20 both), and grblHAL's ``tool_offset_mode_t`` has G49, G43,
+#: G43.1 and G43.2, no G44: neither runs it.
+_SUBTRACTED_LENGTH = 440
 #: Codes (round(10 * G)) grbl 1.1 refuses (error 20) and grblHAL runs (grblHAL ``gcode.h``: ``MotionMode_CubicSpline
 #: = 5``, ``MotionMode_DrillChipBreak = 73``, ``MotionMode_CannedCycle81`` ... ``89``, ``ToolLengthOffset_Enable``
 #: G43, ``FeedMode_UnitsPerRev = 2 // G95``; grblHAL ``gcode.c`` ``gc_execute_block``, the ``'G'`` switch: ``case 64``
@@ -124,8 +128,8 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
     Raises
     ------
     vcnc.GCodeError
-        G41/G42 cutter radius compensation (grbl has none), G90.1 absolute arc centres and G61.1 exact stop mode
-        (neither has them), or a G4 dwell without P (grbl error 28).
+        G41/G42 cutter radius compensation (grbl has none), G90.1 absolute arc centres, G61.1 exact stop mode and
+        G44 (neither has them), or a G4 dwell without P (grbl error 28).
     """
     notes = []
     for key, w in gcodes.values():
@@ -138,6 +142,10 @@ def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str
                        "unsupported command; its I J K are always offsets from the arc's start)", column=w.column,
                        text=w.text, expected="I J K as offsets from the arc's start (G91.1 or no arc-centre code) "
                                              "under grbl")
+        if key == _SUBTRACTED_LENGTH:
+            where.fail("G44 tool length offset subtracted: grbl has none (gcode.c takes G43.1 and G49, grblHAL G43, "
+                       "G43.1, G43.2 and G49; error 20 unsupported command)", column=w.column, text=w.text,
+                       expected="G43.1 Z<offset> (grbl) or G43 H<n> (grblHAL) with the offset's sign, or G49")
         if key == _EXACT_STOP_MODE:
             where.fail("G61.1 exact stop mode: grbl has none (gcode.c: '[G61.1 not supported]', error 20 unsupported "
                        "command; G61 is its only path mode)", column=w.column, text=w.text,

@@ -88,7 +88,7 @@ if TYPE_CHECKING:
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
            "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "length_travel",
-           "length_moves_now", "length_cancelled", "reference_p", "local_offset", "g10"]
+           "length_moves_now", "length_cancelled", "length_in_cycle", "reference_p", "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -429,6 +429,33 @@ def length_cancelled(st: State) -> None:
     st.length_pending = st.tool_length if st.context.dialect.length_offset_motion else 0.0
 
 
+def length_in_cycle(st: State) -> None:
+    """A canned-cycle block in G17: the series' initial level (:class:`interpolators.iso_cycles.CycleWords`, a
+    machine Z) follows a tool length change made since its last block, and one not yet travelled (Fanuc TOS = 0,
+    :func:`length_travel`) is taken up at the positioning to R: "When a tool length offset (G43, G44, or G49) is
+    specified in the canned cycle, the offset is applied at the time of positioning to point R" (FANUC Series
+    15i/150i-MA programming manual B-63784EN, canned cycles, "Tool length compensation"). The initial level is a
+    level in program coordinates, as LinuxCNC keeps it (interp_cycles.cc ``cycle_il``; rs274 returns a G98 hole after
+    a G43 H2 within the series to the program Z it began at): under G90 the cycle's R and bottom levels hold the new
+    offset already, a G91 R is measured from the moved initial level and a G98 returns to it: "G49 / G91 G81 .. R-3."
+    with a 50 mm tool and the tool at Z 60 puts R at 7, not 57. Our reading: a block of zero repeats (K0) takes the
+    change up too, its stored cycle holding the new offset; in G18/G19 (drilling along Y or X) the change waits for
+    the next Z word."""
+    if st.plane != 2:
+        return
+    program = bool(st.rotation) and st.frame is None  # under G10 R alone the level is kept in program coordinates
+    if st.cycle.initial is None:
+        if not st.length_pending:
+            st.cycle.length = st.tool_length
+            return
+        st.cycle.initial = float((st.to_program(st.pos) if program else st.pos)[2])
+    elif st.cycle.length is not None and not program:  # a change between the series' blocks, travelled or a shift
+        st.cycle.initial += st.tool_length - st.length_pending - st.cycle.length
+    st.cycle.initial += st.length_pending
+    st.length_pending = 0.0
+    st.cycle.length = st.tool_length
+
+
 def length_moves_now(gcodes, motion: int | None, st: State) -> bool:
     """Whether the block's G43/G44/G49 (Fadal: its H word) moves Z by the tool length change at once: under
     compensation by an axis movement (:attr:`interpolators.context.Dialect.length_offset_motion`, Fanuc TOS = 0) in a
@@ -487,6 +514,11 @@ def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:
     st.length_number = number or 0
     length = 0.0 if tool is None else tool.length
     sign = -1.0 if key == 440 else 1.0
+    if key == 440 and st.context.dialect.name == "linuxcnc":
+        # LinuxCNC's G-code set has G43, G43.1, G43.2 and G49 only (interp_array.cc gees[]: G44 is -1): rs274 stops
+        # at it with "Unknown g code used"; vcnc runs it as Fanuc's G44 (subtracting), as it runs the other codes
+        # LinuxCNC lacks, noted
+        notes.add('G44 tool length offset subtracted as Fanuc does (LinuxCNC refuses it: "Unknown g code used")')
     st.tool_length = sign * length
     st.tool_xy = sign * (np.zeros(2) if tool is None else np.array([tool.offset_x, tool.offset_y]))
     notes.add("G43/G44 tool length from the table")

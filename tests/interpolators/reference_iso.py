@@ -18,7 +18,11 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   B-63943EN-1/02 12.5.2 "Offset direction"). Where the context's dialect moves the axis by a length change
   (``Dialect.length_offset_motion``, Fanuc parameter TOS = 0, its default; the machine file's
   ``length_offset_motion``) the change is added to the next incremental Z, and a G43/G44/G49 block of G00/G01 without
-  a Z word moves Z by it at once (12.5.2 says of TOS = 1 that such a block does not move the tool).
+  a Z word moves Z by it at once (12.5.2 says of TOS = 1 that such a block does not move the tool). A canned cycle
+  in G17 that drills a hole takes the change up at its R positioning (Fanuc 15i-MA B-63784EN, "Tool length
+  compensation" in a canned cycle: "the offset is applied at the time of positioning to point R"): under G90 its
+  levels hold the new offset, and the series' initial level (a program level here) is where the tool stood under the
+  offset it had travelled, so a G91 R is measured from it and a G98 returns to it.
 - Fanuc G43.4 / G43.5 / Haas G234 (``--dialect fanuc`` / ``haas``) on the context's tilting table: the tool
   length as G43, X Y Z the tool tip in the work system the table carries (G43.5: I J K the tool direction
   there) (FANUC 30i "Tool center point control for 5-axis machining" A-79348E 1.1; Haas "G234 TCPC"): a G0/G1
@@ -1637,6 +1641,8 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     cur = m.to_program(m.pos)[list(axes)]
     if m.cycle_clear is None:
         m.cycle_clear = cur[2]
+        if m.plane == 17:  # the tool's level under the offset it travelled, as the new offset counts it
+            m.cycle_clear += m.length_change
     s = m.scale
     if "r" not in m.sticky and m.ctx.dialect.name in ("fanuc", "haas"):
         # no R in the first block: the R plane is the initial level (Haas NGC mill manual 2017, G81: "*R ...
@@ -1651,6 +1657,8 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     # (Fadal's G73/G83 read K as Haas's minimum peck: Fusion's fadal.cps writes "G83 .. I.. J.. K..")
     fanuc_k = m.ctx.dialect.name == "fanuc" and "k" in words and "l" not in words and not (m.fadal and code in (73, 83))
     repeats = int(words["k"][-1]) if fanuc_k else int(words["l"][-1]) if "l" in words else 1
+    if m.plane == 17:  # the R positioning travels a pending tool length change (TOS = 0), K0 stores it
+        m.length_change = 0.0
     if code == 87:
         _back_bore(m, line, words, cur, r, bottom, prog)
         return
