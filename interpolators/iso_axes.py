@@ -101,9 +101,15 @@ def wrapped_target(target: np.ndarray, words: dict, st, where, *, machine: bool 
     if not ctx.wrapped_axes or (st.incremental and not machine):
         return target
     offset = np.zeros(len(EXTRA_LETTERS)) if machine else st.extra_offset()
-    direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
+    direction = _direction(ctx)
     return wrap_words(target, words, st.extra, offset, wrapped=ctx.wrapped_axes, direction=direction, where=where,
                       linuxcnc_offset=_linuxcnc_offset(st, direction) if machine else None)
+
+
+def _direction(ctx) -> str:
+    """The machine's rule for its wrapping axes: its ``wrap_direction``, else its control's own
+    (:func:`interpolators.rotary_wrap.default_direction`)."""
+    return ctx.wrap_direction or default_direction(ctx.dialect.name)
 
 
 def _linuxcnc_offset(st, direction: str) -> np.ndarray | None:
@@ -118,7 +124,7 @@ def wrapped_reference(target: np.ndarray, st, moving: tuple[str, ...] = ROTARY_A
     ctx = st.context
     if not ctx.wrapped_axes:
         return target
-    direction = ctx.wrap_direction or default_direction(ctx.dialect.name)
+    direction = _direction(ctx)
     return wrap_reference(target, st.extra, wrapped=ctx.wrapped_axes, moving=moving, direction=direction,
                           linuxcnc_offset=_linuxcnc_offset(st, direction))
 

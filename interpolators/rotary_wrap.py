@@ -140,12 +140,19 @@ def wrap_words(target: np.ndarray, words: Mapping[str, _Word], current: np.ndarr
                        text=w.text, expected=f"-360 < {k} < 360 (the sign turns the axis that way, LinuxCNC "
                                              "WRAPPED_ROTARY / Fanuc RAB = 1), or G91")
         i = _COLUMN[k]
-        if linuxcnc_offset is None:
-            out[i] = wrapped_end(w.value, float(current[i]), float(offset[i]), direction)
-        else:
-            off = float(linuxcnc_offset[i])
-            out[i] = wrapped_end(linuxcnc_machine_word(w.value, off), float(current[i]), off, direction)
+        out[i] = _word_end(w.value, i, current, offset, direction, linuxcnc_offset)
     return out
+
+
+def _word_end(value: float, i: int, current: np.ndarray, offset: np.ndarray | None, direction: str,
+              linuxcnc_offset: np.ndarray | None) -> float:
+    """:func:`wrapped_end` of the word ``value`` of column ``i``: its offset ``offset[i]`` (None: a machine word,
+    offset 0), or for a machine word under LinuxCNC the program offset ``linuxcnc_offset[i]`` its interpreter
+    subtracts first (:func:`linuxcnc_machine_word`)."""
+    if linuxcnc_offset is None:
+        return wrapped_end(value, float(current[i]), 0.0 if offset is None else float(offset[i]), direction)
+    off = float(linuxcnc_offset[i])
+    return wrapped_end(linuxcnc_machine_word(value, off), float(current[i]), off, direction)
 
 
 def linuxcnc_machine_word(value: float, offset: float) -> float:
@@ -176,9 +183,5 @@ def wrap_reference(target: np.ndarray, current: np.ndarray, *, wrapped: tuple[st
         value = float(target[i])
         if direction == "sign":
             value = value % 360.0
-        if linuxcnc_offset is None:
-            out[i] = wrapped_end(value, float(current[i]), 0.0, direction)
-        else:
-            off = float(linuxcnc_offset[i])
-            out[i] = wrapped_end(linuxcnc_machine_word(value, off), float(current[i]), off, direction)
+        out[i] = _word_end(value, i, current, None, direction, linuxcnc_offset)
     return out
