@@ -129,7 +129,9 @@ class CycleWords:
     k: float | None = None  # Haas G73/G83 minimum peck
     factors: tuple[float, float, float] = (1.0, 1.0, 1.0)  # the G51 scaling the series began under
     fagor: bool = False  # a Fagor G81 Z I series: Z is the reference plane, I the depth (interpolators.iso)
-    length: float | None = None  # the tool length offset [mm] in force at the series' last G17 block (iso_offsets)
+    # machine minus program coordinate [mm] along the drilling axis at the series' last block: work, G92 and tool
+    # offsets (iso_offsets.length_in_cycle)
+    zero: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)

@@ -80,6 +80,7 @@ import numpy as np
 from interpolators._words import Where
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool, extended_offset
 from interpolators.iso_axes import EXTRA_LETTERS, refuse_wrapped_offset, word_values
+from interpolators.iso_cycles import CYCLE_AXES
 from interpolators.iso_words import Word, WordError, fail_words
 
 if TYPE_CHECKING:
@@ -430,30 +431,39 @@ def length_cancelled(st: State) -> None:
 
 
 def length_in_cycle(st: State) -> None:
-    """A canned-cycle block in G17: the series' initial level (:class:`interpolators.iso_cycles.CycleWords`, a
-    machine Z) follows a tool length change made since its last block, and one not yet travelled (Fanuc TOS = 0,
-    :func:`length_travel`) is taken up at the positioning to R: "When a tool length offset (G43, G44, or G49) is
-    specified in the canned cycle, the offset is applied at the time of positioning to point R" (FANUC Series
-    15i/150i-MA programming manual B-63784EN, canned cycles, "Tool length compensation"). The initial level is a
-    level in program coordinates, as LinuxCNC keeps it (interp_cycles.cc ``cycle_il``; rs274 returns a G98 hole after
-    a G43 H2 within the series to the program Z it began at): under G90 the cycle's R and bottom levels hold the new
-    offset already, a G91 R is measured from the moved initial level and a G98 returns to it: "G49 / G91 G81 .. R-3."
-    with a 50 mm tool and the tool at Z 60 puts R at 7, not 57. Our reading: a block of zero repeats (K0) takes the
-    change up too, its stored cycle holding the new offset; in G18/G19 (drilling along Y or X) the change waits for
-    the next Z word."""
-    if st.plane != 2:
-        return
+    """A canned-cycle block: the series' initial level (:class:`interpolators.iso_cycles.CycleWords`, a machine
+    position along the drilling axis) follows a shift of the program zero along that axis made since the series' last
+    block -- a work offset (G54-G59, G54.1 P, G154 P), G92 / G52, a G10 that rewrote the offset in force, a tool length
+    change -- and in G17 a length change not yet travelled (Fanuc TOS = 0, :func:`length_travel`) is taken up at the
+    positioning to R: "When a tool length offset (G43, G44, or G49) is specified in the canned cycle, the offset is
+    applied at the time of positioning to point R" (FANUC Series 15i/150i-MA programming manual B-63784EN, canned
+    cycles, "Tool length compensation").
+
+    The initial level is a level in program coordinates, as LinuxCNC keeps it (interp_cycles.cc ``cycle_il``): rs274
+    returns a G98 hole after a G43 H2 within the series to the program Z it began at, and after a ``G55`` within
+    the series to that program Z in G55 (``G0 Z10. / G98 G81 .. R2. / G55 X5.`` with G55's Z offset -100: the return
+    at machine -90, not 10); under G90 the cycle's R and bottom levels hold the new offsets already, a G91 R is
+    measured from the moved initial level and a G98 returns to it: "G49 / G91 G81 .. R-3." with a 50 mm tool and the
+    tool at Z 60 puts R at 7, not 57. Fanuc and Haas: our reading, no manual text on an offset change within a
+    series being at hand (the Haas mill manual's "the Z-axis will be returned to the same position as at the start of
+    the canned cycle" leaves the system open). Our reading too: a block of zero repeats (K0) takes the change up, its
+    stored cycle holding the new offset; in G18/G19 (drilling along Y or X) a length change waits for the next Z
+    word. Under G10 R alone (LinuxCNC) the level is kept in program coordinates already
+    (:func:`interpolators.iso_frames.framed_initial`)."""
+    axis = CYCLE_AXES[st.plane][2]
+    travels = axis == 2  # a pending length change is travelled at R in G17 only
     program = bool(st.rotation) and st.frame is None  # under G10 R alone the level is kept in program coordinates
+    zero = float(st.offset()[axis]) - (st.length_pending if travels else 0.0)
     if st.cycle.initial is None:
-        if not st.length_pending:
-            st.cycle.length = st.tool_length
-            return
-        st.cycle.initial = float((st.to_program(st.pos) if program else st.pos)[2])
-    elif st.cycle.length is not None and not program:  # a change between the series' blocks, travelled or a shift
-        st.cycle.initial += st.tool_length - st.length_pending - st.cycle.length
-    st.cycle.initial += st.length_pending
-    st.length_pending = 0.0
-    st.cycle.length = st.tool_length
+        if travels and st.length_pending:
+            st.cycle.initial = float((st.to_program(st.pos) if program else st.pos)[2])
+    elif st.cycle.zero is not None and not program:  # a shift between the series' blocks, travelled or not
+        st.cycle.initial += zero - st.cycle.zero
+    if travels and st.length_pending:
+        st.cycle.initial += st.length_pending
+        zero += st.length_pending
+        st.length_pending = 0.0
+    st.cycle.zero = zero
 
 
 def length_moves_now(gcodes, motion: int | None, st: State) -> bool:
