@@ -174,6 +174,7 @@ from interpolators.iso_offsets import (
     P_SELECT_CODES,
     g10,
     g54_takes_p,
+    h_alone,
     length_cancelled,
     length_compensation,
     length_moves_now,
@@ -1089,6 +1090,9 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     scale = st.scale
     if "cutter compensation" in gcodes:
         cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
+    alone = h_alone(gcodes, seen, st)  # Fanuc/Haas: "H2" alone in G43 mode is G43 H2 (interpolators.iso_offsets)
+    if alone is not None:
+        gcodes["length compensation"] = alone
     if "length compensation" in gcodes:
         key, w = gcodes["length compensation"]
         tcp_switch((key, w), st, where, notes)  # G43.4 / G43.5 / G234: the length as G43 (interpolators.iso_tcp)

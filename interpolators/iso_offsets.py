@@ -88,7 +88,7 @@ if TYPE_CHECKING:
 
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
-           "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "length_travel",
+           "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "h_alone", "length_travel",
            "length_moves_now", "length_cancelled", "length_in_cycle", "reference_p", "local_offset", "g10"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
@@ -399,6 +399,25 @@ def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> N
     _set_length(entry, seen, st, where, notes)
     if st.context.dialect.length_offset_motion:
         st.length_pending += st.tool_length - before
+
+
+def h_alone(gcodes, seen, st: State) -> tuple[int, Word] | None:
+    """The G43/G44 entry an H word alone stands for under ``fanuc`` and ``haas``: in G43 or G44 mode (not tool centre
+    point control) a block with an H word and no group 08 code changes the offset to H's, as ``G43 H..`` / ``G44
+    H..`` would, the direction staying; H0 makes it 0. None for any other block (a G45-G48 block reads its H itself).
+
+    No Fanuc text is at hand; Fanuc-compatible controls word it: "When the tool length offset value is changed due
+    to a change of offset number, the offset value changes to the new tool length offset value, the new tool length
+    offset value is not added to the old tool length offset value. To cancel tool length offset, specify G49 or H0"
+    (SZGH-CNC1000MDb manual, "G43, G44"); "G43 H10; 1st offset / H14; 2nd offset ... The H offsets can be changed
+    throughout the program without canceling the previous offset with a G49 or H00. The new H offset will
+    automatically take effect in either the G43 or G44 mode, whichever is active at the time" (Milltronics
+    PL-551 system information, "Tool length offset (G43, G44, G49)"). Fanuc and Haas read so is our reading; the
+    change then moves as a G43's does (:func:`length_moves_now`, :func:`length_travel`, :func:`length_in_cycle`)."""
+    if st.context.dialect.name not in ("fanuc", "haas") or "H" not in seen or st.tcp \
+            or "length compensation" in gcodes or "position offset" in gcodes or st.length_code not in (43.0, 44.0):
+        return None
+    return (430 if st.length_code == 43.0 else 440), seen["H"]
 
 
 def length_travel(target: np.ndarray, axis_words: list[str], st: State, *, now: bool = False) -> np.ndarray:

@@ -747,6 +747,7 @@ class _Machine:
         # tool will not move along the axis"); LinuxCNC and grbl shift the coordinates (g-code.adoc "G43")
         self.length_moves = self.ctx.dialect.length_offset_motion  # a machine setting (TOS), default per dialect
         self.length_change = 0.0  # [mm] not yet travelled
+        self.length_mode = 490  # the group 08 code in force (x10)
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.tcp = False  # Fanuc G43.4 / Haas G234 tool centre point control on the machine's tilting table
         self.tcp_vector = False  # Fanuc G43.5: the tool direction I J K instead of rotary words
@@ -1027,9 +1028,16 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     before = m.tool_length
+    if m.ctx.dialect.name in ("fanuc", "haas") and "h" in words and m.length_mode in (430, 440) and not m.tcp and not \
+            any(c in (430, 431, 432, 434, 435, 440, 490, 2340, *_POSITION_OFFSET) for c in g):
+        # an H word alone in G43/G44 mode changes the offset to H's, the direction staying (SZGH-CNC1000MDb "G43,
+        # G44": "the offset value changes to the new tool length offset value"; Milltronics PL-551: "The new H offset
+        # will automatically take effect in either the G43 or G44 mode"): as G43 H / G44 H
+        g.append(m.length_mode)
     for code in g:
         if code in (430, 431, 432, 440, 490):
             m.tcp = False
+            m.length_mode = code
         if (code, m.ctx.dialect.name) in ((434, "fanuc"), (435, "fanuc"), (2340, "haas")):
             m.tcp, m.tcp_vector = True, code == 435  # the tool length as G43, X Y Z the tip on the part (_tcp_move)
             code = 430

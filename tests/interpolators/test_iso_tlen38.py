@@ -59,3 +59,38 @@ def test_g10_g52_and_g49_within_a_g91_series_move_its_initial_level(dialect):
     assert z_rows(text, dialect)[-9:] == [(5, "rapid", 60.0), (5, "rapid", 37.0), (5, "line", 32.0),
                                           (5, "rapid", 40.0), (7, "rapid", 40.0), (7, "rapid", -8.0),
                                           (7, "line", -13.0), (7, "rapid", -5.0), (9, "rapid", -6.0)]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_an_h_word_alone_in_g43_mode_changes_the_offset(dialect):
+    """G43 H1 (machine Z 60 at program 10), then "H2" alone under the modal G01: the offset becomes H2's, 30, and
+    the block feeds Z by the -20 change (as "G43 H2" would, TOS = 0); "H0 X12." cancels it, Z by -30 with the X
+    move. Before: the H words were ignored ("H word without G43"), Z stayed at 60."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG1 X5. F100.\nH2\nX10.\nH0 X12.\nG0 Z5.\nM30\n"
+    assert z_rows(text, dialect)[2:] == [(3, "line", 60.0), (4, "line", 40.0), (5, "line", 40.0), (6, "line", 10.0),
+                                         (7, "rapid", 5.0)]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_an_h_word_alone_keeps_the_g44_direction_and_is_ignored_after_g49(dialect):
+    """G44 H1 Z10. puts Z at 10 - 50 = -40; "G91 H2" makes the offset -30 (Z +20 in its G00 block: -20); after G49
+    (Z +30) an H2 alone changes nothing. Before: Z stayed at -40 until the G49, which then moved +50."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG44 H1 Z10.\nG91 H2\nG0 Z-1.\nG49\nH2\nG0 X3.\nG90 G0 Z5.\nM30\n"
+    assert z_rows(text, dialect)[1:] == [(2, "rapid", -40.0), (3, "rapid", -20.0), (4, "rapid", -21.0),
+                                         (5, "rapid", 9.0), (7, "rapid", 9.0), (8, "rapid", 5.0)]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_an_h_word_alone_in_a_hole_block_is_taken_up_at_r(dialect):
+    """"H2 X5." in a G98 G81 series (H1 before): the hole's R positioning takes the -20 change, R 2 + 30 = 32, bottom
+    25, back to the initial level 60 - 20 = 40. Before: drilled with H1, R 52, back to 60."""
+    text = "G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG98 G81 X0 Y0 Z-5. R2. F100.\nH2 X5.\nG80\nG91 G0 Z-1.\nM30\n"
+    assert z_rows(text, dialect)[-5:] == [(4, "rapid", 60.0), (4, "rapid", 32.0), (4, "line", 25.0),
+                                          (4, "rapid", 40.0), (6, "rapid", 39.0)]
+
+
+def test_an_h_word_alone_under_linuxcnc_stays_ignored():
+    """LinuxCNC reads H with G43 only: "H2" alone is noted and moves nothing (the offset stays H1's)."""
+    prog = checked_iso("G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nH2\nG0 X5.\nM2\n", context("linuxcnc"))
+    assert [round(float(b.target[2]), 9) for b in prog.blocks] == [0.0, 60.0, 60.0]
+    assert any("H word without G43" in n for n in prog.notes)
