@@ -187,7 +187,7 @@ from interpolators.iso_params import Parameters
 from interpolators.iso_polar import POLAR_LETTERS, PolarError
 from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_travel
 from interpolators.iso_reference import FANUC_CODES
-from interpolators.iso_rigid_tap import end_rigid_tap, rigid_tap_moved
+from interpolators.iso_rigid_tap import end_rigid_tap, m29_in_tapping_cycle, rigid_tap_moved
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
 from interpolators.iso_system import set_system_parameter, system_parameter
 from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
@@ -631,6 +631,9 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
         for note in unsupported_codes(gcodes, seen, where, mcodes):
             notes.add(note)
     before, arc3d = len(blocks), st.arc3d_mid is not None
+    m29 = next((w for m, w in mcodes if m == 29), None) if st.context.dialect.name == "fanuc" else None
+    if m29 is not None:  # an M29 after its tapping command (interpolators.iso_rigid_tap)
+        m29_in_tapping_cycle(st, m29, "motion" in gcodes, where)
     if "exact stop check" not in gcodes:
         ended = _execute_block(words, seen, gcodes, mcodes, st, blocks, used, where, notes)
     else:
@@ -642,7 +645,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     if arc3d and st.arc3d_mid is not None and not ended and any(w.letter != "N" for w in words):  # G02.4 pair
         arc3d_interrupted(st, where)
     if st.rigid_tap_at is not None:  # Fanuc M29 waiting for its G84/G74 (interpolators.iso_rigid_tap)
-        rigid_tap_moved(st, any(b.kind != "dwell" for b in blocks[before:]), where)
+        rigid_tap_moved(st, any(b.kind != "dwell" for b in blocks[before:]), where, words)
     return ended
 
 

@@ -12,6 +12,17 @@ axis for the G84 (G74: left-handed) that follows. What vcnc reads of it:
 - An axis movement after the M29 block and before its G84/G74 is refused: the alarm lists' PS0204 "ILLEGAL AXIS
   OPERATION" (an axis movement between the rigid M code (M29) block and the G84 (G74) block). A movement in the
   M29 block itself is taken (``G00 Z15. M29 S500``).
+- An S word in a block after the M29 block and before its G84/G74 (``M29 S500 ; S600 ; G84 ..``), and an M29 in a
+  block that names no motion code while a tapping cycle is in force (``G84 .. ; M29 S500 ; X5.``: the M29 after
+  its tapping command), are refused: the alarm lists' 0203 "PROGRAM MISS AT RIGID TAPPING" ("In the rigid tap,
+  position for a rigid M code (M29) or an S command is incorrect"; the FANUC Series 0i alarm list as copied in
+  public alarm tables). Which positions the control calls incorrect is our reading: an S in the tapping block
+  itself (``M29 ; G84 .. S500``) and an M29 in a block that specifies the tapping cycle (``G84 .. M29 S500``) are
+  taken. G74 is armed as G84 is (left-handed); under G95 the tap's F is the lead, the feed F x S.
+- Not modelled: Fanuc's rigid tapping by G84 alone (parameter G84, No. 5200#0 = 1), which makes a G84 without M29
+  rigid: vcnc runs that G84 on the same path (in to Z, out to R at the feed), the only difference being that a
+  floating tap under G95 needs the spindle turned on (M03), which vcnc then asks for. The Series 15 format
+  ``G84.2``/``G84.3`` is refused by name (:mod:`interpolators.iso_codes`).
 - The rigid mode ends with the tapping cycle: at G80, at a group 01 code (G00-G03; B-64304EN "Canned cycle for
   drilling": a cycle is canceled by G80 or a group 01 G code), at a canned cycle other than G84/G74 (``M29 S.. ;
   G84 .. ; G81 .. ; G84 ..``: the second G84 is a floating-holder tap again) and at the program end (a reset);
@@ -34,7 +45,8 @@ if TYPE_CHECKING:
     from interpolators.iso import Notes, State
     from interpolators.iso_words import Word
 
-__all__ = ["RIGID_TAP_NOTE", "arm_rigid_tap", "end_rigid_tap", "rigid_tap_moved", "rigid_tap_speed"]
+__all__ = ["RIGID_TAP_NOTE", "arm_rigid_tap", "end_rigid_tap", "m29_in_tapping_cycle", "rigid_tap_moved",
+           "rigid_tap_speed"]
 
 #: The note of a program that arms Fanuc's rigid tapping.
 RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
@@ -50,18 +62,34 @@ def arm_rigid_tap(st: State, where: Where, notes: Notes) -> None:
     notes.add(RIGID_TAP_NOTE)
 
 
-def rigid_tap_moved(st: State, moved: bool, where: Where) -> None:
+def m29_in_tapping_cycle(st: State, m29: Word, has_motion_code: bool, where: Where) -> None:
+    """Before a block with M29 (``m29``): a tapping cycle in force (``st.motion``, the block naming no motion code) is
+    refused, the M29 coming after its tapping command (alarm 0203, the module text)."""
+    if st.motion in _TAPPING and not has_motion_code:
+        where.fail(f"M29 while the {'G74' if st.motion == 740 else 'G84'} tapping cycle is in force: Fanuc refuses it "
+                   "(alarm 0203 program miss at rigid tapping: the position of M29 is incorrect)", column=m29.column,
+                   text=m29.text, expected="G80, then M29 S.. before the G84/G74 block (or in it)")
+
+
+def rigid_tap_moved(st: State, moved: bool, where: Where, words: tuple[Word, ...] | list[Word] = ()) -> None:
     """After each block while an M29 waits for its tap: a tapping cycle in force takes it; an axis movement
     (``moved``: the block made motion) in any later block before it is refused (PS0204, the module text), also when
-    the block's own code ended the rigid mode (``M29 S.. ; G00 X..``)."""
+    the block's own code ended the rigid mode (``M29 S.. ; G00 X..``); so is an S word among the block's ``words``
+    while the rigid mode waits on (alarm 0203, the module text)."""
     armed = st.rigid_tap_at
+    later = (armed.file, armed.line) != (where.file, where.line)
+    s_word = next((w for w in words if w.letter == "S"), None)
     if st.rigid_tap and st.motion in _TAPPING:
         st.rigid_tap_at = None
         st.rigid_tap_s = st.spindle_speed
-    elif moved and (armed.file, armed.line) != (where.file, where.line):
+    elif moved and later:
         where.fail(f"axis movement after M29 (line {armed.line}) before its G84/G74: Fanuc refuses it (alarm PS0204 "
                    "illegal axis operation)", column=1, text=where.text,
                    expected="M29 S.. right before the G84/G74 block, or in it; position the tool before the M29")
+    elif st.rigid_tap and later and s_word is not None:
+        where.fail(f"S word after M29 (line {armed.line}) before its G84/G74: Fanuc refuses it (alarm 0203 program "
+                   "miss at rigid tapping: the position of the S command is incorrect)", column=s_word.column,
+                   text=s_word.text, expected="the tap's speed in the M29 block (M29 S..) or in the G84/G74 block")
     elif not st.rigid_tap:
         st.rigid_tap_at = None
 

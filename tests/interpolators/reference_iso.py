@@ -1852,7 +1852,14 @@ def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict)
     kept);
     M29 arms it for the next G84/G74, which needs S > 0 (alarm PS0200); the program end ends it."""
     tapping = (740, 840)
+    motion_code = any(c in (0, 10, 20, 30, 800) or c // 10 in _CYCLES + _MILL_CYCLES for c in g)
+    if 290 in mc and m.motion in tapping and not motion_code:  # alarm 0203: M29 after its tapping command
+        raise ReferenceError(f"line {line}: M29 while a tapping cycle is in force (Fanuc alarm 0203)")
     ends = [c for c in g if c in (0, 10, 20, 30, 800) or c // 10 in _CYCLES + _MILL_CYCLES and c not in tapping]
+    block_cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
+    if "s" in words and m.rigid and m.rigid_at not in (None, line) and 290 not in mc and block_cycle not in tapping \
+            and not ends and 20 not in mc and 300 not in mc:  # alarm 0203: an S between M29 and its tap
+        raise ReferenceError(f"line {line}: S word between M29 and G84/G74 (Fanuc alarm 0203)")
     if m.rigid and (ends or 20 in mc or 300 in mc) and 290 not in mc:
         if m.rigid_at is None and m.spindle == m.rigid_s:  # no S word since the tap
             m.spindle = 0.0

@@ -13,8 +13,10 @@ from __future__ import annotations
 
 import pytest
 
+from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
 
 TOOLS = {1: Tool(number=1, length=50.0), 2: Tool(number=2, length=30.0)}
 
@@ -94,3 +96,37 @@ def test_an_h_word_alone_under_linuxcnc_stays_ignored():
     prog = checked_iso("G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nH2\nG0 X5.\nM2\n", context("linuxcnc"))
     assert [round(float(b.target[2]), 9) for b in prog.blocks] == [0.0, 60.0, 60.0]
     assert any("H word without G43" in n for n in prog.notes)
+
+
+def _fanuc(text: str):
+    return checked_iso(text, MachineContext(dialect=DIALECTS["fanuc"]))
+
+
+def test_fanuc_an_s_word_between_m29_and_its_tap_is_refused():
+    """Fanuc alarm 0203 "PROGRAM MISS AT RIGID TAPPING" ("position for a rigid M code (M29) or an S command is
+    incorrect"): "M29 S500 / S600 / G84 .." names line 3 and the S word. Before: the tap ran at S600."""
+    text = "G21 G90 G0 X0 Y0 Z10.\nM29 S500\nS600\nG84 Z-5. R2. F1.\nG80\nM30\n"
+    with pytest.raises(GCodeError, match=r":3:1: S word after M29 \(line 2\).*alarm 0203") as err:
+        parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"]))
+    assert "expected the tap's speed in the M29 block" in str(err.value)
+
+
+def test_fanuc_m29_while_a_tapping_cycle_is_in_force_is_refused():
+    """Alarm 0203 (the M29 after its tapping command): a floating G84 series, then "M29 S500" with no motion code,
+    is refused at the M29 (line 4, column 1); so is "X5. M29" in a rigid series (line 4, column 5). Before: both
+    ran, the M29 arming the taps that followed."""
+    floating = "G21 G90 G0 X0 Y0 Z10.\nS500 M03\nG84 Z-5. R2. F500.\nM29 S500\nX5.\nG80\nM30\n"
+    rigid = "G21 G90 G0 X0 Y0 Z10.\nM29 S500\nG84 Z-5. R2. F500.\nX5. M29\nG80\nM30\n"
+    for text, at in ((floating, ":4:1:"), (rigid, ":4:5:")):
+        with pytest.raises(GCodeError, match=at + r" M29 while the G84 tapping cycle is in force.*alarm 0203"):
+            parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"]))
+
+
+def test_fanuc_m29_taps_an_s_in_the_tap_block_and_m29_in_a_block_that_names_the_cycle():
+    """Our reading of 0203's positions: "M29 / G84 .. S700" taps at S700, and "G80 M29 S500" after a floating series
+    arms the next G84 (G80 ends the series first); G74 is armed as G84 is. Each runs as the reference does."""
+    for text in ("G21 G90 G0 X0 Y0 Z10.\nM29\nG84 Z-5. R2. F500. S700\nX5.\nG80\nM30\n",
+                 "G21 G90 G0 X0 Y0 Z10.\nS500 M03\nG84 Z-5. R2. F500.\nG80 M29 S500\nG84 Z-5. R2. F500.\nG80\nM30\n",
+                 "G21 G90 G0 X0 Y0 Z10.\nM29 S500\nG74 Z-5. R2. F500.\nX5.\nG80\nM30\n"):
+        prog = _fanuc(text)
+        assert [round(float(b.target[2]), 9) for b in prog.blocks if b.kind == "line"][:2] == [-5.0, 2.0]
