@@ -53,11 +53,11 @@ def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
             prog[0], prog[1] = polar_xy(prog[0], prog[1], incremental=st.incremental,
                                         distance=seen["@"].value * st.scale if "@" in seen else None,
                                         angle_deg=seen["^"].value if "^" in seen else None)
-        target = st.pos.copy()  # axes without words stay exactly where they are
-        if any(a in seen for a in ("X", "Y", *POLAR_LETTERS)):
-            target[:2] = st.to_machine(prog)[:2]
-        if "Z" in axis_words:
-            target[2] = st.to_machine(prog)[2]
+        target = st.pos.copy()  # axes that no word moves stay exactly where they are
+        full = st.to_machine(prog)
+        for i in _rotated_axes(st, {"XYZ".index(a) for a in axis_words if a not in POLAR_LETTERS}
+                               | ({0, 1} if "@" in seen or "^" in seen else set())):
+            target[i] = full[i]
         return target
     target = st.pos.copy()
     off = st.offset()
@@ -78,6 +78,20 @@ def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
                         angle_deg=seen["^"].value if "^" in seen else None)
         target[0], target[1] = x + off[0], y + off[1]
     return target
+
+
+def _rotated_axes(st: State, named: set[int]) -> list[int]:
+    """The machine axes a block's words ``named`` (axis indices) move in a rotated system: each named one, and the
+    other axis of a plane of rotation one of them lies in (LinuxCNC G10 R turns X Y about Z; G68 turns the two axes
+    of its plane, Z X under G18, Y Z under G19: a "G91 X2." there moves Z too)."""
+    planes = [{0, 1}] if st.rotation else []
+    if st.frame is not None and st.frame.rotation is not None:
+        planes.append(set(PLANE_AXES[st.frame.rotation.plane]))
+    moved = set(named)
+    for plane in planes * 2:  # twice: G10 R and a G68 in G18/G19 chain X to Y and Z
+        if moved & plane:
+            moved |= plane
+    return sorted(moved)
 
 
 def fanuc_polar(seen: dict, gcodes, st: State, where: Where, notes: Notes) -> dict:

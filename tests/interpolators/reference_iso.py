@@ -1648,9 +1648,10 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         m.sticky["z"] = words[depth][-1]
     cur = m.to_program(m.pos)[list(axes)]
     if m.cycle_clear is None:
-        m.cycle_clear = cur[2]
-        if m.plane == 17:  # the tool's level under the offset it travelled, as the new offset counts it
-            m.cycle_clear += m.length_change
+        # the tool's level under the offset it travelled, as the new offset counts it: the change is a machine Z
+        # distance, taken before the program's scaling or mirror counts it
+        here = m.pos + np.array([0.0, 0.0, m.length_change if m.plane == 17 else 0.0])
+        m.cycle_clear = m.to_program(here)[list(axes)][2]
     s = m.scale
     if "r" not in m.sticky and m.ctx.dialect.name in ("fanuc", "haas"):
         # no R in the first block: the R plane is the initial level (Haas NGC mill manual 2017, G81: "*R ...

@@ -130,3 +130,23 @@ def test_fanuc_m29_taps_an_s_in_the_tap_block_and_m29_in_a_block_that_names_the_
                  "G21 G90 G0 X0 Y0 Z10.\nM29 S500\nG74 Z-5. R2. F500.\nX5.\nG80\nM30\n"):
         prog = _fanuc(text)
         assert [round(float(b.target[2]), 9) for b in prog.blocks if b.kind == "line"][:2] == [-5.0, 2.0]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_an_incremental_x_under_a_g18_rotation_moves_z_too(dialect):
+    """G18 G68 X0 Z0 R30.: a "G91 G0 X2." is the vector 2 along the rotated X, (2 cos 30, -2 sin 30) in X Z: Z goes
+    from 10 to 9. Before: Z stayed at 10 (the reader moved Z only for a Z word, as under LinuxCNC's G10 R about Z)."""
+    text = "G21 G90 G0 X0 Y0 Z10.\nG18\nG68 X0 Z0 R30.\nG91 G0 X2.\nG90 X5.\nG69\nG17\nM30\n"
+    prog = checked_iso(text, context(dialect))
+    assert [round(float(v), 6) for v in prog.blocks[1].target] == [1.732051, 0.0, 9.0]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_pending_length_change_under_a_g18_rotation_travels_along_machine_z(dialect):
+    """H1 (machine Z 60), G49 left to travel (an arc block before it), then G18 G68 R30. and "G91 G0 Z-1.": the
+    rotated Z-1 is (-0.5, -0.866) in X Z, and the -50 of the length change goes along the machine Z, the tool's
+    axis, unrotated: X -0.5, Z 60 - 0.866 - 50 = 9.134. Before: X 0 (the rotated step's X part dropped)."""
+    text = ("G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG2 X0 Y0 I1. F100.\nG91 G49\nG90 G18\nG68 X0 Z0 R30.\n"
+            "G91 G0 Z-1.\nG90 X5.\nG69\nG17\nM30\n")
+    prog = checked_iso(text, context(dialect))
+    assert [round(float(v), 6) for v in prog.blocks[3].target] == [-0.5, 0.0, 9.133975]
