@@ -150,3 +150,17 @@ def test_a_pending_length_change_under_a_g18_rotation_travels_along_machine_z(di
             "G91 G0 Z-1.\nG90 X5.\nG69\nG17\nM30\n")
     prog = checked_iso(text, context(dialect))
     assert [round(float(v), 6) for v in prog.blocks[3].target] == [-0.5, 0.0, 9.133975]
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_pending_length_change_in_a_cycle_under_g51_scaling_is_not_scaled(dialect):
+    """G51 X0 Y0 Z0 P2. with H1 (machine Z 60, program 30 scaled), G49 left to travel, then a G98 G81 R2. Z-5.: the
+    R positioning takes up the -50 unscaled (tool compensation applies after the program's transformations: FANUC
+    15i-MA B-63324EN/03, coordinate system rotation, "Tool compensation"), R at 2 x 2 = 4, bottom -10, and the G98
+    return to the tool's level under the new offset, machine 10. The reference added the -50 to the scaled program
+    level (a return to R at 4)."""
+    text = ("G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG51 X0 Y0 Z0 P2.\nG2 X0 Y0 I1. F100.\nG49\n"
+            "G98 G81 X5. Y0 Z-5. R2. F100.\nX8.\nG80\nG50\nM30\n")
+    assert z_rows(text, dialect)[-8:] == [(6, "rapid", 60.0), (6, "rapid", 4.0), (6, "line", -10.0),
+                                          (6, "rapid", 10.0), (7, "rapid", 10.0), (7, "rapid", 4.0),
+                                          (7, "line", -10.0), (7, "rapid", 10.0)]
