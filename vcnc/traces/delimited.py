@@ -124,6 +124,10 @@ from vcnc.traces.names import (
     rsi_orientation_note,
 )
 from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
+from vcnc.traces.rostopic import TIME_UNIT as ROSTOPIC_TIME_UNIT
+from vcnc.traces.rostopic import is_rostopic_table
+from vcnc.traces.rostopic import unit_options as rostopic_unit_options
+from vcnc.traces.rostopic import unit_question as rostopic_unit_question
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "looks_like_camonitor",
@@ -793,6 +797,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
+    if is_rostopic_table(header):
+        _rostopic_units(units, columns, src, hline)
     _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
                           src, in_counts=_in_counts(header, units_row, idx, above, unit, units))
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
@@ -815,7 +821,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         if "t" in idx:
             _check_sample_numbers(d[:, idx["t"]], columns["t"], src, hline)
         t = np.round((d[:, idx["t"]] if "t" in idx else np.flatnonzero(keep)) * sample_time, 12)
-    if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
+    if stamped or (units["t"] == "ns" and np.abs(d[:, idx["t"]]).max() > 2.0 ** 53):
+        # seconds since 1970 hold 0.24 us, and nanoseconds since 1970 (ROS) were read to 256 ns: to the microsecond
+        # from the first stamp
         with np.errstate(over="ignore", invalid="ignore"):
             t = np.round(t - t[0], 6)
     within_reach(t, f"time {columns.get('t', 'row number')!r}", "s", src, lines_kept)
@@ -958,13 +966,28 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
     if size is None:
         k, c = next(iter(counts.items()))
         raise CaptureError(f"{k}={columns[k]!r} is logged in increments ({c!r}) and the file does not state their "
-                           "size",
+                           "size" + _unlike_counts(counts),
                            file=src, line=line, expected="--unit with the size of one count (e.g. --unit 0.1um, "
                                                          "0.0001in, 0.001deg)")
     for k in counts:
         units[k] = str(size.value)
     return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
                           f"({size.text!r})"}
+
+
+def _unlike_counts(counts: Mapping[str, str]) -> str:
+    """The note for an axis whose commanded and measured positions count in increments of different names
+    (Yaskawa's "Input Reference Pulse Counter" in reference units beside its "Feedback Pulse Counter" in encoder
+    pulses: an electronic gear lies between them), else ``""``: one ``--unit`` sizes both."""
+    def name(c: str) -> str:
+        return c.lower().rstrip("s")
+
+    for k, c in counts.items():
+        other = next((k2 for k2 in (k[:-4], k[:-4] + LAG_SUFFIX) if k.endswith("_ref") and k2 in counts), None)
+        if other is not None and name(counts[other]) != name(c):
+            return (f"; {k} counts {c!r} and {other} {counts[other]!r}: --unit gives one size to both, right only "
+                    "where one of each is as long (an electronic gear between them makes them differ)")
+    return ""
 
 
 def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
@@ -1048,6 +1071,16 @@ def _header_units(header: list[str] | None, units_row: list[str] | None, idx: Ma
         if k != "t":
             out[k] = unit or named(k, "length")
     return out
+
+
+def _rostopic_units(units: dict[str, str | None], columns: Mapping[str, str], src: str, line: int | None) -> None:
+    """A ``rostopic echo -p`` table's units (:mod:`vcnc.traces.rostopic`): its time columns count nanoseconds, and
+    positions without a unit given are an error asking for m or rad (never assumed mm)."""
+    if "t" in units and units["t"] is None:
+        units["t"] = ROSTOPIC_TIME_UNIT
+    if any(units[k] is None for k in units if k != "t"):
+        raise CaptureError(rostopic_unit_question(columns), file=src, line=line,
+                           expected=rostopic_unit_options(columns))
 
 
 def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], time_known: bool) -> str:
