@@ -103,3 +103,42 @@ def test_rostopic_controller_state_of_several_joints_is_a_question(tmp_path):
     f = _rostopic(tmp_path / "arm.csv", joints=3)
     with pytest.raises(CaptureError, match=r"axes \[0, 1, 2\] each have a commanded and a measured position"):
         read_capture(f, unit="rad")
+
+
+def test_numbers_split_at_their_decimal_commas_are_no_text_column(tmp_path):
+    """Rows separated by ``|`` with decimal commas and digits grouped by points: split at the commas each row read
+    as a number, a text cell (``5000000|23.024.915|...|0``) and a number, a table of three unnamed columns, and the
+    file was refused as having no header (trace_fuzz seed 44000455; 44000332 the same with spaces). A cell of numbers
+    set apart by another delimiter is no text: the digit grouping is named."""
+    rows = ["Time|X Soll [nm]|X Ist [nm]|X Velocity [mm/s]"]
+    rows += [f"12,{k:03d}|{23 + k}.024.915|{23 + k}.000.{100 + k}|17,5" for k in range(20)]
+    f = tmp_path / "grouped.csv"
+    f.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    with pytest.raises(CaptureError, match=r"'2\d\.024\.915' .*grouped by thousands") as err:
+        read_capture(f)
+    assert str(f) in str(err.value)
+
+
+def test_klipper_log_is_named(tmp_path):
+    """Klipper's klippy.log holds statistics lines (``Stats 100.0: ... print_time=...``), no positions: named, with
+    its figures (it was 'no rows of numbers')."""
+    f = tmp_path / "klippy.log"
+    f.write_text("Starting Klippy...\n" + "".join(
+        f"Stats {100 + k}.0: gcodein=0  mcu: mcu_awake=0.003 bytes_write=1234 print_time={k}.125 buffer_time=0.000 "
+        f"print_stall=0 extruder: target=0 temp=25.0 pwm=0.000\n" for k in range(5)), encoding="utf-8")
+    with pytest.raises(CaptureError, match=r"Klipper's klippy.log \(5 statistics lines.*mcu_awake.*open loop") as err:
+        read_capture(f)
+    assert str(f) in str(err.value)
+
+
+def test_a_log_without_time_and_without_a_pair_names_the_positions_first(tmp_path):
+    """A VESC Tool log (``ms_today;...;encoder_position;...``) has neither a time column by name nor a commanded
+    position: the question names the missing pair before the missing time (it named the time alone, as if
+    ``--sample-time`` would read it)."""
+    rows = ["ms_today;input_voltage;current_motor;erpm;encoder_position;fault_code"]
+    rows += [f"{36000000 + 10 * k};24.1;1.5;1000;{3.6 * k:.2f};0" for k in range(10)]
+    f = tmp_path / "vesc.csv"
+    f.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    with pytest.raises(CaptureError, match=r"no pair of a commanded and a measured position is named \(positions "
+                                           r"found: \['encoder_position'\].*; and no column is named as time"):
+        read_capture(f)

@@ -310,15 +310,24 @@ def _numbers(cells: list[str], comma: bool) -> list[float] | None:
 _NAN_WORDS = frozenset({"nan", "-nan", "+nan"})
 
 
+#: A cell of numbers set apart by another delimiter (``0  13.322  13.322  0`` between the decimal commas of a row
+#: separated by spaces, split at its commas): no text, a sign of the wrong delimiter.
+_JOINED_NUMBERS = re.compile(r"[+-]?[\d.,]*\d(?:\s*[\s|;\t]\s*[+-]?[\d.,]*\d)+")
+
+
 def _row(cells: list[str], comma: bool) -> tuple[list[float], list[int], list[int]] | None:
     """A row of the table: its cells as numbers (NaN for empty, ``NaN`` and text cells), the places of its text
-    cells and of its ``NaN`` cells; None for a line that is no row (no number, or text cells as many as the numbers:
-    a header). A ``NaN`` cell is a missing value, not text (:func:`_nan_cells`)."""
+    cells and of its ``NaN`` cells; None for a line that is no row (no number, text cells as many as the numbers: a
+    header, or a text cell that is numbers set apart by another delimiter, :data:`_JOINED_NUMBERS`: trace_fuzz seeds
+    44000332 and 44000455 were read split at their decimal commas). A ``NaN`` cell is a missing value, not text
+    (:func:`_nan_cells`)."""
     vals, text, missing = [], [], []
     for i, c in enumerate(cells):
         try:
             vals.append(_value(c, comma))
         except ValueError:
+            if _JOINED_NUMBERS.fullmatch(c.strip()):
+                return None
             vals.append(float("nan"))
             (missing if c.strip().lower() in _NAN_WORDS else text).append(i)
     n = sum(v == v for v in vals)
@@ -752,6 +761,10 @@ def _named_columns(table: _Table, hline: int | None, known: bool, src: str) -> d
                     else (None, "the file has no header line"))
     if columns is not None:
         return columns
+    if header is not None and not known and why.startswith("no column is named as time"):
+        paired, no_pair = columns_from_names(header, period_known=True)
+        if paired is None:  # the positions are missing too: say so first (a VESC log names its encoder alone)
+            why = f"{no_pair}; and {why}"
     if header is not None and no_positions(header):
         raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
                            "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
