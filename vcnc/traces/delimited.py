@@ -67,6 +67,14 @@ is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
 (:func:`_check_parameter_list`), as is an EPICS IOC's log with ecmc's axis diagnostics
 (:func:`_check_ecmc_diagnostics`). A column taken as sample numbers must step by 1 (:func:`_check_sample_numbers`):
 CoDeSys V2.3's trace names its first column ``Cycle`` whether it counts task cycles or, with a frequency scan, holds ms.
+
+**traces38** (session 38). A ``rostopic echo -p`` table (:mod:`vcnc.traces.rostopic`) has its time in nanoseconds
+(kept to the microsecond from the first row: nanoseconds since 1970 read as a float hold 256 ns) and its positions in
+SI units, m or rad, asked for and never assumed; a commanded and a measured position counted in increments of
+different names (Yaskawa's reference units beside encoder pulses) are named in the question for their size
+(:func:`_unlike_counts`); a text cell of numbers set apart by another delimiter makes its line no row (a row split at
+its decimal commas, :data:`_JOINED_NUMBERS`); a header with neither a time column nor a pair names the missing pair
+first.
 """
 
 from __future__ import annotations

@@ -66,6 +66,12 @@ vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``,
 (:func:`counted`), and two of them beside one ``Commanded Pos`` are a question (which encoder closes the loop, the
 collocated or the far one, the file does not say).
 
+vcnc addition (traces38): a counter is another quantity unless it counts pulses: Yaskawa's "Reference pulse counter" /
+"Feedback pulse counter" and Panasonic MINAS' "command pulse counter" / "feedback pulse counter" are the commanded and
+measured position in counts (:func:`_other_quantity`); the plurals of other quantities (``velocities``, ``efforts``,
+as ``rostopic echo -p`` names a JointTrajectoryPoint's arrays) are no positions; and an array's element numbers the
+joint in a ``rostopic echo -p`` table (``field.desired.positions2``, :mod:`vcnc.traces.rostopic`).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
