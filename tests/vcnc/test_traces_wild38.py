@@ -40,14 +40,18 @@ def test_pulse_counters_are_positions_in_counts(tmp_path):
 
 def test_pulse_counters_without_a_unit_in_brackets(tmp_path):
     """Panasonic MINAS' "command pulse counter" and "feedback pulse counter" (read out by its RS232 command 2) name
-    their counts by the word pulse alone; one count unit for both needs no note."""
+    their counts by the word pulse alone: the command's pulses (before the electronic gear) and the encoder's, so the
+    question and a given unit's note name the gear."""
     f = _table(tmp_path / "minas.csv", ["Time [ms]", "Command pulse counter", "Feedback pulse counter",
                                         "Torque command [%]"])
     with pytest.raises(CaptureError, match=r"increments \('pulse'\) and the file does not state their size; "
-                                           r"expected --unit"):
+                                           r"x_ref counts 'pulse' and x 'pulse'.*electronic gear"):
         read_capture(f)
     cap = read_capture(f, unit="1um")
     np.testing.assert_allclose(cap.measured[:, 0], np.array(_ACT) * 1e-3)
+    assert "electronic gear" in cap.meta["count_units"]
+    same = _table(tmp_path / "puu.csv", ["Time [ms]", "Position Command (PUU)", "Feedback Position (PUU)", "Speed"])
+    assert "count_units" not in read_capture(same, unit="1um").meta  # Delta's user units: one size on both sides
 
 
 def test_a_counter_of_samples_stays_no_position(tmp_path):

@@ -823,6 +823,8 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
                           src, in_counts=_in_counts(header, units_row, idx, above, unit, units))
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
+    if unit is not None and (gear := _unlike_counts(_counted_columns(header, units_row, idx))):
+        stated["count_units"] = f"unit {unit} given for both{gear}"
     stated.update(_turn_travel(units, above))
     if unit is None:
         stated.update(unit_stated({k: u for k, u in units.items() if k in idx}, "stated in the file"))
@@ -997,18 +999,25 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
 
 
 def _unlike_counts(counts: Mapping[str, str]) -> str:
-    """The note for an axis whose commanded and measured positions count in increments of different names
-    (Yaskawa's "Input Reference Pulse Counter" in reference units beside its "Feedback Pulse Counter" in encoder
-    pulses: an electronic gear lies between them), else ``""``: one ``--unit`` sizes both."""
+    """The note for an axis whose commanded and measured positions may count increments of different sizes, else
+    ``""``: counts of different names (Yaskawa's "Input Reference Pulse Counter" in reference units beside its
+    "Feedback Pulse Counter" in encoder pulses), or pulses on both sides (Panasonic MINAS' command pulse counter and
+    Mitsubishi's cumulative command pulses count the controller's pulses before the drive's electronic gear, their
+    feedback pulses the encoder's): one ``--unit`` sizes both, right only with a gear of 1:1."""
     def name(c: str) -> str:
         return c.lower().rstrip("s")
 
     for k, c in counts.items():
         other = next((k2 for k2 in (k[:-4], k[:-4] + LAG_SUFFIX) if k.endswith("_ref") and k2 in counts), None)
-        if other is not None and name(counts[other]) != name(c):
+        if other is not None and (name(counts[other]) != name(c) or name(c) in _PULSES):
             return (f"; {k} counts {c!r} and {other} {counts[other]!r}: --unit gives one size to both, right only "
-                    "where one of each is as long (an electronic gear between them makes them differ)")
+                    "where one of each is as long (an electronic gear between the command's and the encoder's "
+                    "pulses makes them differ)")
     return ""
+
+
+#: Count units of a drive's pulse counters (:func:`_unlike_counts`).
+_PULSES = frozenset({"pulse", "pl"})
 
 
 def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
