@@ -146,3 +146,18 @@ def test_a_log_without_time_and_without_a_pair_names_the_positions_first(tmp_pat
     with pytest.raises(CaptureError, match=r"no pair of a commanded and a measured position is named \(positions "
                                            r"found: \['encoder_position'\].*; and no column is named as time"):
         read_capture(f)
+
+
+def test_rostopic_joint_states_name_the_missing_command(tmp_path):
+    """``rostopic echo -p`` of sensor_msgs/JointState holds measured positions only: the question names the message
+    and the topic that holds both (it listed ``field.position0`` as a position naming no role)."""
+    rows = ["%time,field.header.seq,field.header.stamp,field.header.frame_id,field.name0,field.name1,field.position0,"
+            "field.position1,field.velocity0,field.velocity1,field.effort0,field.effort1"]
+    rows += [f"{1_700_000_000_000_000_000 + k * 1_000_000},{k},{1_700_000_000_000_000_000 + k * 1_000_000},,j0,j1,"
+             f"{0.001 * k},{0.002 * k},0.1,0.2,0.0,0.0" for k in range(6)]
+    f = tmp_path / "joint_states.csv"
+    f.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    with pytest.raises(CaptureError, match=r"sensor_msgs/JointState.*\(N = \[0, 1\]\).*"
+                                           r"JointTrajectoryControllerState") as err:
+        read_capture(f)
+    assert str(f) in str(err.value)

@@ -85,6 +85,7 @@ from collections.abc import Mapping, Sequence
 
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, IPOC, LAG_SUFFIX, unit_in_name
+from vcnc.traces.rostopic import joint_states_question
 
 __all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions",
            "rtde_joints", "rsi_orientation", "rsi_orientation_note", "rsi_joints"]
@@ -352,7 +353,7 @@ def rsi_joints(header: Sequence[str]) -> str | None:
 
 def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
     """:func:`columns_from_names` of the names as they are."""
-    rtde = rtde_joints(header) or rsi_joints(header)
+    rtde = rtde_joints(header) or rsi_joints(header) or joint_states_question(header)
     if rtde is not None:
         return None, rtde
     if len(set(header)) != len(header):

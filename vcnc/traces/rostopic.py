@@ -14,9 +14,10 @@ joint's in rad, which the table does not say; vcnc never assumes one (:func:`uni
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 
-__all__ = ["TIME_UNIT", "is_rostopic_table", "unit_question", "unit_options"]
+__all__ = ["TIME_UNIT", "is_rostopic_table", "unit_question", "unit_options", "joint_states_question"]
 
 #: The unit of ``%time`` and of header stamps: nanoseconds.
 TIME_UNIT = "ns"
@@ -45,3 +46,21 @@ def unit_options(columns: Mapping[str, str]) -> str:
     time = f"t={columns['t']}," if "t" in columns else ""
     return (f"--unit m (a prismatic joint), or --columns {time}a_ref={columns[ref]},a{act[1:]}={columns[act]} "
             "--unit rad (a revolute joint, as a rotary axis)")
+
+
+#: A JointState's measured positions, ``field.position0`` ...
+_JOINT_STATE = re.compile(r"field\.position(\d+)")
+
+
+def joint_states_question(header: Sequence[str]) -> str | None:
+    """The question for a ``rostopic echo -p`` table of ``sensor_msgs/JointState`` (``field.positionN`` only: the
+    joints' measured positions, no command beside them), else None (module docstring)."""
+    if not is_rostopic_table(header):
+        return None
+    joints = [int(m.group(1)) for h in header if (m := _JOINT_STATE.fullmatch(h))]
+    if not joints or any(".positions" in h for h in header):
+        return None
+    return (f"a rostopic echo -p table of sensor_msgs/JointState: the joints' measured positions field.positionN "
+            f"(N = {joints}) with no commanded position beside them; identification needs both: record the joint "
+            "controller's state topic (control_msgs/JointTrajectoryControllerState, field.desired.positionsN and "
+            "field.actual.positionsN)")
