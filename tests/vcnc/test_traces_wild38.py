@@ -157,7 +157,7 @@ def test_rostopic_joint_states_name_the_missing_command(tmp_path):
              f"{0.001 * k},{0.002 * k},0.1,0.2,0.0,0.0" for k in range(6)]
     f = tmp_path / "joint_states.csv"
     f.write_text("\n".join(rows) + "\n", encoding="utf-8")
-    with pytest.raises(CaptureError, match=r"JointState: the joints' measured positions field\.positionN \(N = "
+    with pytest.raises(CaptureError, match=r"the joints' measured positions field\.positionN \(N = "
                                            r"\[0, 1\]\).*JointTrajectoryControllerState") as err:
         read_capture(f)
     assert str(f) in str(err.value)
