@@ -162,7 +162,7 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         Capture column -> source column (``{"t": "Time", "x_ref": "PosCmd", "x": "PosAct"}``);
         required except for halscope logs with joint position pins and TwinCAT exports with
         ``SetPos`` / ``ActPos`` channels.
-    time_unit : {"s", "ms", "us"}, optional
+    time_unit : {"s", "ms", "us", "ns"}, optional
         Unit of the time column (default s; TwinCAT: ms).
     unit : {"mm", "um", "nm", "m", "in", "deg"} or a count size ("0.1um"), optional
         Unit of the positions, or the size of one count of positions logged in increments
