@@ -16,8 +16,8 @@ def add_trace_arguments(parser: argparse.ArgumentParser, *, axes: bool = True) -
                        help="delimited text: which column is time, commanded and measured position per axis "
                             "(header names, or 1-based column numbers); x_lag=NAME instead of x=NAME takes a "
                             "following error (commanded - actual), the measured position being x_ref - x_lag")
-    group.add_argument("--time-unit", choices=("s", "ms", "us"), default=None,
-                       help="delimited text: unit of the time column (default s; TwinCAT ms)")
+    group.add_argument("--time-unit", choices=("s", "ms", "us", "ns"), default=None,
+                       help="delimited text: unit of the time column (default s; TwinCAT ms; rostopic echo -p ns)")
     group.add_argument("--unit", default=None, metavar="UNIT",
                        help="delimited text: unit of the positions, mm, um, nm, m, in or deg (default mm; deg for "
                             "rotary axes a b c), or the size of one count of positions logged in increments "

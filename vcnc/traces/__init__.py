@@ -27,7 +27,7 @@ from pathlib import Path
 from vcnc.core.axes import ROTARY_AXES
 from vcnc.core.capture import UNIT_GIVEN, Capture, read_capture_csv
 from vcnc.core.errors import CaptureError
-from vcnc.traces import emps, grbl, indraworks, mtconnect, sinumerik, tncscope, twincat
+from vcnc.traces import emps, grbl, indraworks, klipper, mtconnect, sinumerik, tncscope, twincat
 from vcnc.traces.columns import read_text, within_reach
 from vcnc.traces.delimited import (
     looks_like_camonitor,
@@ -49,7 +49,7 @@ def trace_format(path: str | os.PathLike[str]) -> str:
     ``"sinumerik"``, ``"halscope"``, ``"twincat"``, ``"camonitor"``, ``"indraworks"``, ``"capture-csv"``,
     ``"delimited"``, or
     ``"xml"`` for other XML, ``"shdr"`` for an MTConnect adapter's stream and ``"grbl"`` for a log of Grbl's status
-    reports (which no reader takes)."""
+    reports and ``"klipper"`` for Klipper's klippy.log (which no reader takes)."""
     src = str(path)
     try:
         with Path(path).open("rb") as f:
@@ -65,6 +65,8 @@ def trace_format(path: str | os.PathLike[str]) -> str:
         return "sinumerik"
     if grbl.looks_like_status_log(text):
         return "grbl"
+    if klipper.looks_like_klippy_log(text):
+        return "klipper"
     if indraworks.looks_like_oscilloscope(text[:4000]):
         return "indraworks"
     if text.startswith("<"):
@@ -168,6 +170,8 @@ def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | Non
         raise CaptureError(mtconnect.shdr_reason(read_text(p, str(p))), file=str(p))
     if fmt == "grbl":
         raise CaptureError(grbl.status_reason(read_text(p, str(p))), file=str(p))
+    if fmt == "klipper":
+        raise CaptureError(klipper.klippy_reason(read_text(p, str(p))), file=str(p))
     if fmt == "xml":
         head = _xml_head(p)
         root = _xml_root(head)

@@ -36,7 +36,7 @@ __all__ = ["TIME_UNITS", "LENGTH_UNITS", "read_text", "parse_number", "parse_col
            "IPOC", "with_following_errors", "COUNT_UNITS", "ANGLE_UNITS", "REACH", "within_reach"]
 
 #: Seconds per time unit.
-TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
+TIME_UNITS: dict[str, float] = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
 #: Millimetres (or degrees, for the units of :data:`ANGLE_UNITS`) per position unit.
 LENGTH_UNITS: dict[str, float] = {"mm": 1.0, "um": 1e-3, "nm": 1e-6, "m": 1000.0, "in": 25.4, "deg": 1.0,
                                   "rad": math.degrees(1.0), "rev": 360.0}
@@ -50,7 +50,7 @@ ANGLE_UNITS = frozenset({"deg", "rad", "rev"})
 MAX_SAMPLES = 100_000_000
 
 #: Unit names as headers and channel rows write them, to vcnc's unit names.
-_TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us"}
+_TIME_NAMES = {"s": "s", "sec": "s", "ms": "ms", "msec": "ms", "us": "us", "µs": "us", "ns": "ns"}
 _LENGTH_NAMES = {"mm": "mm", "um": "um", "µm": "um", "nm": "nm", "m": "m", "in": "in", "inch": "in", "deg": "deg",
                  "°": "deg", "rad": "rad", "rev": "rev", "revs": "rev", "turn": "rev", "turns": "rev",
                  "revolution": "rev", "revolutions": "rev"}

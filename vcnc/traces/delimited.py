@@ -67,6 +67,14 @@ is read under its tables' names, a row every ``SAMPLE_TIME``, in the unit given.
 (:func:`_check_parameter_list`), as is an EPICS IOC's log with ecmc's axis diagnostics
 (:func:`_check_ecmc_diagnostics`). A column taken as sample numbers must step by 1 (:func:`_check_sample_numbers`):
 CoDeSys V2.3's trace names its first column ``Cycle`` whether it counts task cycles or, with a frequency scan, holds ms.
+
+**traces38** (session 38). A ``rostopic echo -p`` table (:mod:`vcnc.traces.rostopic`) has its time in nanoseconds
+(kept to the microsecond from the first row: nanoseconds since 1970 read as a float hold 256 ns) and its positions in
+SI units, m or rad, asked for and never assumed; a commanded and a measured position counted in increments of
+different names (Yaskawa's reference units beside encoder pulses) are named in the question for their size
+(:func:`_unlike_counts`); a text cell of numbers set apart by another delimiter makes its line no row (a row split at
+its decimal commas, :data:`_JOINED_NUMBERS`); a header with neither a time column nor a pair names the missing pair
+first.
 """
 
 from __future__ import annotations
@@ -124,6 +132,10 @@ from vcnc.traces.names import (
     rsi_orientation_note,
 )
 from vcnc.traces.preamble import stated_count_size, stated_period, stated_turn_travel
+from vcnc.traces.rostopic import TIME_UNIT as ROSTOPIC_TIME_UNIT
+from vcnc.traces.rostopic import is_rostopic_table
+from vcnc.traces.rostopic import unit_options as rostopic_unit_options
+from vcnc.traces.rostopic import unit_question as rostopic_unit_question
 from vcnc.traces.twincat import looks_like_twincat, read_twincat
 
 __all__ = ["read_delimited", "parse_columns", "looks_like_halscope", "looks_like_twincat", "looks_like_camonitor",
@@ -150,7 +162,7 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
         Capture column -> source column (``{"t": "Time", "x_ref": "PosCmd", "x": "PosAct"}``);
         required except for halscope logs with joint position pins and TwinCAT exports with
         ``SetPos`` / ``ActPos`` channels.
-    time_unit : {"s", "ms", "us"}, optional
+    time_unit : {"s", "ms", "us", "ns"}, optional
         Unit of the time column (default s; TwinCAT: ms).
     unit : {"mm", "um", "nm", "m", "in", "deg"} or a count size ("0.1um"), optional
         Unit of the positions, or the size of one count of positions logged in increments
@@ -306,15 +318,24 @@ def _numbers(cells: list[str], comma: bool) -> list[float] | None:
 _NAN_WORDS = frozenset({"nan", "-nan", "+nan"})
 
 
+#: A cell of numbers set apart by another delimiter (``0  13.322  13.322  0`` between the decimal commas of a row
+#: separated by spaces, split at its commas): no text, a sign of the wrong delimiter.
+_JOINED_NUMBERS = re.compile(r"[+-]?[\d.,]*\d(?:\s*[\s|;\t]\s*[+-]?[\d.,]*\d)+")
+
+
 def _row(cells: list[str], comma: bool) -> tuple[list[float], list[int], list[int]] | None:
     """A row of the table: its cells as numbers (NaN for empty, ``NaN`` and text cells), the places of its text
-    cells and of its ``NaN`` cells; None for a line that is no row (no number, or text cells as many as the numbers:
-    a header). A ``NaN`` cell is a missing value, not text (:func:`_nan_cells`)."""
+    cells and of its ``NaN`` cells; None for a line that is no row (no number, text cells as many as the numbers: a
+    header, or a text cell that is numbers set apart by another delimiter, :data:`_JOINED_NUMBERS`: trace_fuzz seeds
+    44000332 and 44000455 were read split at their decimal commas). A ``NaN`` cell is a missing value, not text
+    (:func:`_nan_cells`)."""
     vals, text, missing = [], [], []
     for i, c in enumerate(cells):
         try:
             vals.append(_value(c, comma))
         except ValueError:
+            if _JOINED_NUMBERS.fullmatch(c.strip()):
+                return None
             vals.append(float("nan"))
             (missing if c.strip().lower() in _NAN_WORDS else text).append(i)
     n = sum(v == v for v in vals)
@@ -748,6 +769,10 @@ def _named_columns(table: _Table, hline: int | None, known: bool, src: str) -> d
                     else (None, "the file has no header line"))
     if columns is not None:
         return columns
+    if header is not None and not known and why.startswith("no column is named as time"):
+        paired, no_pair = columns_from_names(header, period_known=True)
+        if paired is None:  # the positions are missing too: say so first (a VESC log names its encoder alone)
+            why = f"{no_pair}; and {why}"
     if header is not None and no_positions(header):
         raise CaptureError(f"no position in the file: its columns {header} are time, sample numbers or other "
                            "quantities (speeds, currents, voltages, torques... by their names or units); vcnc "
@@ -793,9 +818,13 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
     d = data[keep]
     lines_kept = [n for n, k in zip(row_lines, keep) if k]
     units = _header_units(header, units_row, idx, time_unit, unit)
+    if is_rostopic_table(header):
+        _rostopic_units(units, columns, src, hline)
     _check_digit_grouping(d, idx, columns, lambda: [_split(lines[n - 1], delimiter) for n in lines_kept], lines_kept,
                           src, in_counts=_in_counts(header, units_row, idx, above, unit, units))
     stated.update(_count_sizes(units, header, units_row, idx, above, columns, src, hline))
+    if unit is not None and (gear := _unlike_counts(_counted_columns(header, units_row, idx))):
+        stated["count_units"] = f"unit {unit} given for both{gear}"
     stated.update(_turn_travel(units, above))
     if unit is None:
         stated.update(unit_stated({k: u for k, u in units.items() if k in idx}, "stated in the file"))
@@ -815,7 +844,9 @@ def _generic(text: str, src: str, *, columns: Mapping[str, str] | None, time_uni
         if "t" in idx:
             _check_sample_numbers(d[:, idx["t"]], columns["t"], src, hline)
         t = np.round((d[:, idx["t"]] if "t" in idx else np.flatnonzero(keep)) * sample_time, 12)
-    if stamped:  # seconds since 1970 hold 0.24 us: to the microsecond from the first stamp
+    if stamped or (units["t"] == "ns" and np.abs(d[:, idx["t"]]).max() > 2.0 ** 53):
+        # seconds since 1970 hold 0.24 us, and nanoseconds since 1970 (ROS) were read to 256 ns: to the microsecond
+        # from the first stamp
         with np.errstate(over="ignore", invalid="ignore"):
             t = np.round(t - t[0], 6)
     within_reach(t, f"time {columns.get('t', 'row number')!r}", "s", src, lines_kept)
@@ -958,13 +989,35 @@ def _count_sizes(units: dict[str, str | None], header: list[str] | None, units_r
     if size is None:
         k, c = next(iter(counts.items()))
         raise CaptureError(f"{k}={columns[k]!r} is logged in increments ({c!r}) and the file does not state their "
-                           "size",
+                           "size" + _unlike_counts(counts),
                            file=src, line=line, expected="--unit with the size of one count (e.g. --unit 0.1um, "
                                                          "0.0001in, 0.001deg)")
     for k in counts:
         units[k] = str(size.value)
     return {"count_size": f"{size.value} per count for {', '.join(counts)}, stated in line {size.line} "
                           f"({size.text!r})"}
+
+
+def _unlike_counts(counts: Mapping[str, str]) -> str:
+    """The note for an axis whose commanded and measured positions may count increments of different sizes, else
+    ``""``: counts of different names (Yaskawa's "Input Reference Pulse Counter" in reference units beside its
+    "Feedback Pulse Counter" in encoder pulses), or pulses on both sides (Panasonic MINAS' command pulse counter and
+    Mitsubishi's cumulative command pulses count the controller's pulses before the drive's electronic gear, their
+    feedback pulses the encoder's): one ``--unit`` sizes both, right only with a gear of 1:1."""
+    def name(c: str) -> str:
+        return c.lower().rstrip("s")
+
+    for k, c in counts.items():
+        other = next((k2 for k2 in (k[:-4], k[:-4] + LAG_SUFFIX) if k.endswith("_ref") and k2 in counts), None)
+        if other is not None and (name(counts[other]) != name(c) or name(c) in _PULSES):
+            return (f"; {k} counts {c!r} and {other} {counts[other]!r}: --unit gives one size to both, right only "
+                    "where one of each is as long (an electronic gear between the command's and the encoder's "
+                    "pulses makes them differ)")
+    return ""
+
+
+#: Count units of a drive's pulse counters (:func:`_unlike_counts`).
+_PULSES = frozenset({"pulse", "pl"})
 
 
 def _in_counts(header: list[str] | None, units_row: list[str] | None, idx: Mapping[str, int],
@@ -1048,6 +1101,16 @@ def _header_units(header: list[str] | None, units_row: list[str] | None, idx: Ma
         if k != "t":
             out[k] = unit or named(k, "length")
     return out
+
+
+def _rostopic_units(units: dict[str, str | None], columns: Mapping[str, str], src: str, line: int | None) -> None:
+    """A ``rostopic echo -p`` table's units (:mod:`vcnc.traces.rostopic`): its time columns count nanoseconds, and
+    positions without a unit given are an error asking for m or rad (never assumed mm)."""
+    if "t" in units and units["t"] is None:
+        units["t"] = ROSTOPIC_TIME_UNIT
+    if any(units[k] is None for k in units if k != "t"):
+        raise CaptureError(rostopic_unit_question(columns), file=src, line=line,
+                           expected=rostopic_unit_options(columns))
 
 
 def _guessed_note(columns: Mapping[str, str], units: Mapping[str, str | None], time_known: bool) -> str:

@@ -66,6 +66,12 @@ vcnc addition (tracewild6): ECP Executive's encoder channels (``Encoder 1 Pos``,
 (:func:`counted`), and two of them beside one ``Commanded Pos`` are a question (which encoder closes the loop, the
 collocated or the far one, the file does not say).
 
+vcnc addition (traces38): a counter is another quantity unless it counts pulses: Yaskawa's "Reference pulse counter" /
+"Feedback pulse counter" and Panasonic MINAS' "command pulse counter" / "feedback pulse counter" are the commanded and
+measured position in counts (:func:`_other_quantity`); the plurals of other quantities (``velocities``, ``efforts``,
+as ``rostopic echo -p`` names a JointTrajectoryPoint's arrays) are no positions; and an array's element numbers the
+joint in a ``rostopic echo -p`` table (``field.desired.positions2``, :mod:`vcnc.traces.rostopic`).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
@@ -79,6 +85,7 @@ from collections.abc import Mapping, Sequence
 
 from vcnc.core.axes import AXIS_NAMES
 from vcnc.traces.columns import COUNT_UNITS, IPOC, LAG_SUFFIX, unit_in_name
+from vcnc.traces.rostopic import joint_states_question
 
 __all__ = ["columns_from_names", "channels_from_names", "mapping_note", "counted", "is_sample_number", "no_positions",
            "rtde_joints", "rsi_orientation", "rsi_orientation_note", "rsi_joints"]
@@ -106,7 +113,11 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "spindle", "spindel", "index", "sample", "samples", "count", "counter", "nr", "no", "status",
                     "state", "enable", "mode", "output", "out", "effort", "duty", "pwm", "dac", "off", "offset", "time",
                     "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain", "amp", "amps",
-                    "amplitude", "db", "dbm"})
+                    "amplitude", "db", "dbm", "velocities", "speeds", "currents", "torques", "forces", "accelerations",
+                    "efforts", "voltages"})
+#: Words of a counter, another quantity unless a word of counts says it counts a position's increments (Yaskawa
+#: SigmaWin+'s and Panasonic PANATERM's "Feedback pulse counter", "Command pulse counter"; :func:`_other_quantity`).
+_COUNTERS = frozenset({"counter", "count"})
 #: Words of a column of sample numbers (``Sample #``, ``Sample No.``, ``Nr.``, ``Index``, ``Point``; CoDeSys V2.3's
 #: ``Cycle``, module docstring).
 _SAMPLE = frozenset({"sample", "samples", "no", "nr", "n", "index", "idx", "point", "points", "number", "num", "cycle",
@@ -156,6 +167,9 @@ _BRACKETS = re.compile(r"[\[(][^\[\]()]*[\])]")
 _TRAILING_UNIT = re.compile(r"[\[(](?!\s*\d+\s*[\])])\s*[^\[\]()]+?\s*[\])]\s*$")
 #: An array index at the end of a name: the axis' number in a control's variable (``SActMachinePos[2]``).
 _INDEX = re.compile(r"\[\s*(\d+)\s*\]\s*$")
+#: An array's element as ``rostopic echo -p`` numbers it (:mod:`vcnc.traces.rostopic`): the joint of
+#: ``field.desired.positions2`` and ``field.position2`` is 2.
+_ROS_ELEMENT = re.compile(r"^field\.(?:.*\.)?positions?(\d+)$")
 #: A first word shared by every name of a header (``EXP_`` of ``EXP_Time``, ``EXP_PosRef``), before its separator.
 _PREFIX = re.compile(r"\s*([A-Za-z]+)[\s_.:/-]+(?=\S)")
 
@@ -165,9 +179,18 @@ def _words(name: str) -> list[str]:
     return [w.lower() for w in _WORD.findall(_BRACKETS.sub(" ", name))]
 
 
+def _other_quantity(words: list[str]) -> bool:
+    """True when the words of a name name a quantity that is no position (a velocity, a current, a sample counter...):
+    a counter of pulses is a position in counts (``Feedback pulse counter``: Yaskawa's monitor Un00D "Feedback Pulse
+    Counter" counts encoder pulses, Un00C "Input Reference Pulse Counter" reference units; Panasonic MINAS' "command
+    pulse counter" and "feedback pulse counter", read out as positions by its RS232 command 2, modes 1 and 2)."""
+    other = {w for w in words if w in _OTHER or any(p in w for p in _OTHER_PARTS)}
+    return bool(other) and not (other <= _COUNTERS and _COUNT_WORDS.intersection(words))
+
+
 def _role(words: list[str]) -> str | None:
     """``ref``, ``act``, ``lag`` or None for the words of a name (module docstring)."""
-    if any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in words):
+    if _other_quantity(words):
         return None
     roles = set()
     for w in words:
@@ -330,7 +353,7 @@ def rsi_joints(header: Sequence[str]) -> str | None:
 
 def _columns(header: Sequence[str], period_known: bool) -> tuple[dict[str, str] | None, str]:
     """:func:`columns_from_names` of the names as they are."""
-    rtde = rtde_joints(header) or rsi_joints(header)
+    rtde = rtde_joints(header) or rsi_joints(header) or joint_states_question(header)
     if rtde is not None:
         return None, rtde
     if len(set(header)) != len(header):
@@ -419,7 +442,7 @@ def no_positions(header: Sequence[str]) -> bool:
     (``Voltaje (V)``); a name without either (``Ch1``, ``Debug 0``) could be a position, and is not such a column."""
     def other(h: str) -> bool:
         unit = _TRAILING_UNIT.search(h) and unit_in_name(h, "length") is None and counted(h) is None
-        return bool(unit) or any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in _words(h))
+        return bool(unit) or _other_quantity(_words(h))
 
     named = [h for h in header if h.strip()]
     return bool(named) and all(_is_time(h) or is_sample_number(h) or other(h) for h in named)
@@ -447,7 +470,7 @@ def _axis_number(name: str) -> int | None:
     """The number of the axis, joint or motor a name belongs to (``1`` of ``CH0 Axis1 Motor present actual
     position``; ``2`` of ``SActMachinePos[2]``, an array index), else None."""
     words = _words(name)
-    index = _INDEX.search(name)
+    index = _INDEX.search(name) or _ROS_ELEMENT.match(name.strip())
     return next((int(b) for a, b in zip(words, words[1:]) if a in _NUMBERED and b.isdigit()),
                 int(index.group(1)) if index else None)
 
@@ -483,7 +506,7 @@ def _bare_counterparts(header: Sequence[str], times: Sequence[str],
         key = [w for w in _split_axis(_words(h)) if _role([w]) is None]
         bare = [b for b in header if b not in found and b not in times and key and _split_axis(_words(b)) == key
                 and not (_TRAILING_UNIT.search(b) and unit_in_name(b, "length") is None and counted(b) is None)
-                and not any(w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in key)]
+                and not _other_quantity(key)]
         if len(bare) == 1:
             out[bare[0]] = ("act", axis)
     return out
@@ -504,8 +527,8 @@ def _roles_of_the_one_axis(found: dict[str, tuple[str, str | None]], axis: str) 
 def _no_pair(header: Sequence[str], times: Sequence[str], found: dict[str, tuple[str, str]]) -> str:
     """Why no pair was read: the positions named and the other quantities (a trace of speeds, currents or
     torques only cannot be read as positions)."""
-    other = [h for h in header if h not in times and h not in found and any(
-        w in _OTHER or any(p in w for p in _OTHER_PARTS) for w in _words(h)) and not is_sample_number(h)]
+    other = [h for h in header if h not in times and h not in found and _other_quantity(_words(h))
+             and not is_sample_number(h)]
     plain = [h for h in header if h not in times and h not in found and h not in other
              and _POSITION_WORDS.intersection(_words(h))]
     seen = ([f"positions found: {sorted(found)}"] if found else []) + (
