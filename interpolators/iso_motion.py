@@ -43,7 +43,12 @@ def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
     """End point [mm, machine] of the block's X Y Z words (``machine``: G53, absolute machine)
     or its polar words ``@ ^`` with Z."""
     if (st.rotation or st.frame is not None) and not machine:  # G10 R, G68: the rotated system's coordinates
-        prog = st.to_program(st.pos)
+        # a tool length change not yet travelled (Fanuc TOS = 0) is a machine Z distance the tool has not moved:
+        # the axes no word names keep their program values under the offset travelled (a "G43 H2 X5." under G18 G68
+        # keeps the rotated Z of the tool, not of a tool 20 mm higher), and the change travels along the machine Z
+        # as length_travel takes it up (an absolute Z word holds the new offset already)
+        pending = np.array([0.0, 0.0, st.length_pending])
+        prog = st.to_program(st.pos + pending)
         for letter in axis_words:
             if letter in POLAR_LETTERS:
                 continue
@@ -54,7 +59,7 @@ def block_target(seen, axis_words, st: State, *, machine: bool) -> np.ndarray:
                                         distance=seen["@"].value * st.scale if "@" in seen else None,
                                         angle_deg=seen["^"].value if "^" in seen else None)
         target = st.pos.copy()  # axes that no word moves stay exactly where they are
-        full = st.to_machine(prog)
+        full = st.to_machine(prog) - (0.0 if "Z" in axis_words and not st.incremental else pending)
         for i in _rotated_axes(st, {"XYZ".index(a) for a in axis_words if a not in POLAR_LETTERS}
                                | ({0, 1} if "@" in seen or "^" in seen else set())):
             target[i] = full[i]

@@ -826,10 +826,11 @@ class _Machine:
         p = self.scale_centre + (p - self.scale_centre) / self.factors
         return np.where(self.mirror, 2 * self.mirror_at - p, p)
 
-    def target(self, words: dict, *, incremental: bool | None = None) -> np.ndarray:
-        """Program coordinates of the block's end from X/Y/Z (and polar) words."""
+    def target(self, words: dict, *, incremental: bool | None = None, untravelled: float = 0.0) -> np.ndarray:
+        """Program coordinates of the block's end from X/Y/Z (and polar) words; ``untravelled``: a tool length change
+        [mm] the tool has not moved along the machine Z, the unnamed words read under the offset it travelled."""
         inc = self.incremental if incremental is None else incremental
-        cur = self.to_program(self.pos)
+        cur = self.to_program(self.pos + np.array([0.0, 0.0, untravelled]))
         t = cur.copy()
         for i, a in enumerate("xyz"):
             if a in words:
@@ -1500,7 +1501,9 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if m.tcp and m.motion in (0, 10):
         _tcp_move(m, line, words)
         return
-    end = m.to_machine(m.target(words))
+    # the unnamed axes under the offset travelled: they differ under a rotation that turns Z into X or Y (G18/G19 G68)
+    end = m.to_machine(m.target(words, untravelled=m.length_change))
+    end[2] -= 0.0 if "z" in words and not m.incremental else m.length_change
     if ("z" in words or now) and m.length_change:  # Fanuc: an incremental Z travels the offset's change too
         end[2] += m.length_change if m.incremental or now else 0.0
         m.length_change = 0.0

@@ -1,0 +1,26 @@
+"""Review of session 38's ISO changes: combinations of the new features with older ones (review38).
+
+Tools: H1 = 50 mm, H2 = 30 mm (hand-written). Every program is checked against the independent reference as well
+(:func:`tests.interpolators.iso_checks.checked_iso`).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators.context import DIALECTS, MachineContext, Tool
+from tests.interpolators.iso_checks import checked_iso
+
+TOOLS = {1: Tool(number=1, length=50.0), 2: Tool(number=2, length=30.0)}
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+@pytest.mark.parametrize("change", ["H2", "G43 H2"])
+def test_a_length_change_under_a_g18_rotation_keeps_the_rotated_z_of_the_tool(dialect, change):
+    """G43 H1 (machine Z 60, program Z 10), G18 G68 X0 Z0 R30., then "G0 X5. H2" (or "G43 H2"): the rotated Z
+    the tool holds is the one under the offset it travelled, so X5 ends where "G0 X5." alone does (machine X
+    5 cos 30 = 8.660, program Z 5), and the -20 change travels along the machine Z in the block (TOS = 0): Z 55 - 20
+    = 35. Before: the held rotated Z was read under the new, 20 mm shorter offset, rotated into X: X 17.321, Z 30."""
+    text = f"G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG18\nG68 X0 Z0 R30.\nG0 X5. {change}\nG91 Z-1.\nG90 G69\nG17\nM30\n"
+    prog = checked_iso(text, MachineContext(dialect=DIALECTS[dialect], tools=TOOLS))
+    assert [round(float(v), 3) for v in prog.blocks[2].target] == [8.66, 0.0, 35.0]
