@@ -87,7 +87,8 @@ NOTED = {"File ended with no percent sign": "no M2/M30", "K word given for arc":
          "Unknown word starting with f": "macro B", "Bad character 'w' used": "macro B",
          "Unknown word where unary operation could be": "macro B",
          "Cannot restore context from invalid stack frame": "M72 with no modal state saved",
-         "no matching while/do label": "in a repeat loop"}
+         "no matching while/do label": "in a repeat loop", "H word with no G43": "H word without G43",
+         "D word with no G41": "D word without G41"}
 #: rs274's refusal of a reused O-word label, which vcnc notes (its message begins with the line number).
 DUPLICATE_LABEL = re.compile(r"\d+: duplicate O-word label")
 #: The line number before rs274's O-word messages ("4: no matching while/do label").

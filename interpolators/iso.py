@@ -1264,13 +1264,16 @@ def _check_q_l(seen, gcodes, cycle: bool, where: Where) -> None:
 
 
 def _unused_words(seen, gcodes, st: State, notes: Notes) -> None:
-    """H and D words without the compensation that reads them: noted (Fanuc posts write them apart)."""
+    """H and D words without the compensation that reads them: noted (Fanuc posts write them apart); under the
+    ``linuxcnc`` dialect the note says that LinuxCNC refuses them (rs274 2.9: "H word with no G43 or G76 to use it",
+    "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it")."""
     if "position offset" in gcodes:  # G45-G48 read them
         return
+    refused = "; LinuxCNC refuses it" if st.context.dialect.name == "linuxcnc" else ""
     if "H" in seen and "length compensation" not in gcodes:
-        notes.add("H word without G43 (ignored)")
+        notes.add(f"H word without G43 (ignored{refused})")
     if "D" in seen and "cutter compensation" not in gcodes:
-        notes.add("D word without G41/G42 (ignored)")
+        notes.add(f"D word without G41/G42 (ignored{refused})")
 
 
 def _m98_words(words: list[Word], where: Where, *, st: State, notes: Notes) -> None:

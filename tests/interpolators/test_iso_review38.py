@@ -24,3 +24,20 @@ def test_a_length_change_under_a_g18_rotation_keeps_the_rotated_z_of_the_tool(di
     text = f"G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG18\nG68 X0 Z0 R30.\nG0 X5. {change}\nG91 Z-1.\nG90 G69\nG17\nM30\n"
     prog = checked_iso(text, MachineContext(dialect=DIALECTS[dialect], tools=TOOLS))
     assert [round(float(v), 3) for v in prog.blocks[2].target] == [8.66, 0.0, 35.0]
+
+
+def test_an_h_or_d_word_alone_under_linuxcnc_is_a_noted_leniency():
+    """rs274 2.9.0~pre1 refuses "H2" alone after G43 H1 ("H word with no G43 or G76 to use it") and "D2" alone ("D
+    word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it"); vcnc runs the program without them
+    and its note says LinuxCNC refuses them, which benchmarks/linuxcnc_diff.py counts as a noted leniency. Fanuc
+    keeps the plain note (a post writes D apart). Before: the note did not say so ("vcnc only" in the diff)."""
+    from benchmarks.linuxcnc_diff import NOTED
+
+    linuxcnc = MachineContext(dialect=DIALECTS["linuxcnc"], tools=TOOLS)
+    prog = checked_iso("G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nH2\nD2\nG0 X5.\nM2\n", linuxcnc)
+    assert [round(float(b.target[2]), 9) for b in prog.blocks] == [0.0, 60.0, 60.0]
+    for refusal in ("H word with no G43 or G76 to use it", "D word with no G41, G41.1, G42 or G96 to use it"):
+        key = next(v for k, v in NOTED.items() if refusal.startswith(k))
+        assert any(key in n and "LinuxCNC refuses" in n for n in prog.notes)
+    fanuc = checked_iso("G21 G90 G0 X0 Y0 Z0\nD2\nG0 X5.\nM30\n", MachineContext(dialect=DIALECTS["fanuc"]))
+    assert "D word without G41/G42 (ignored)" in fanuc.notes
