@@ -1,0 +1,47 @@
+"""Constructs of more CAM posts and of hand-written shop programs (Haas mill programming workbook style), read as
+their controls read them (session 38, posts38).
+
+Each program is hand-written in the output style of the post or manual named in its test; the posts were read,
+not run."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators.context import DIALECTS, MachineContext, Tool
+from tests.interpolators.iso_checks import checked_iso
+
+HAAS = MachineContext(dialect=DIALECTS["haas"], tools={1: Tool(number=1, length=10.0, radius=1.0)})
+
+#: A Haas workbook-style series without G80 between a G83 with I J K (first peck, reduction, minimum) and a G76
+#: fine bore with its shift Q.
+HAAS_PECK_THEN_BORE = ("%\nO40005\nT1 M06\nG00 G90 G54 X1. Y1. S1500 M03\nG43 H01 Z1. M08\n"
+                       "G83 G98 Z-1.5 Q0.25 I0.3 J0.05 K0.15 R0.1 F10.\nX3.\nG76 G99 Z-0.5 Q0.01 R0.1 F5.\n"
+                       "X4.\nG80 G00 Z1.\nM30\n%\n")
+
+
+def _shifts(prog, line):
+    """The X Y offsets [mm] of a G76 block's rapids from its hole."""
+    moves = [b for b in prog.blocks if b.line == line and b.kind == "rapid"]
+    hole = moves[0].target
+    return {(round(float(b.target[0] - hole[0]), 6), round(float(b.target[1] - hole[1]), 6)) for b in moves}
+
+
+@pytest.mark.parametrize("line", [8, 9])
+def test_haas_g76_shifts_by_its_q_not_by_the_i_j_of_a_g83_before_it(line):
+    # Haas mill operator's manual 96-8000 (June 1999), "G76 Fine Boring" / "G77 Back Bore": "I Optional shift
+    # value, if Q is not specified ... If Q is not specified, the optional I and J values are used to determine
+    # the shift direction and distance" (Q along Setting 27, +X by default). Before: the G83's I0.3 J0.05 (its
+    # first peck and reduction, sticky in the series) shifted the boring bar 0.3 X 0.05 Y, not Q 0.01 along +X
+    prog = checked_iso(HAAS_PECK_THEN_BORE, HAAS)
+    assert _shifts(prog, line) == {(0.0, 0.0), (0.01, 0.0)}
+
+
+def test_haas_g76_with_i_j_and_no_q_shifts_by_i_j_for_the_series():
+    # the same manual: without Q the shift is I J; a G76 block that writes I J after one that wrote Q shifts by
+    # I J from there on (and the I J stay for the next holes)
+    text = ("T1 M06\nG00 G90 G54 X1. Y1. S1500 M03\nG43 H01 Z1.\nG76 G99 Z-0.5 Q0.01 R0.1 F5.\n"
+            "X2. I-0.02 J0.03\nX3.\nG80\nM30\n")
+    prog = checked_iso(text, HAAS)
+    assert _shifts(prog, 4) == {(0.0, 0.0), (0.01, 0.0)}
+    assert _shifts(prog, 5) == _shifts(prog, 6) == {(0.0, 0.0), (-0.02, 0.03)}
