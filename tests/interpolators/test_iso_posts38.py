@@ -8,9 +8,12 @@ from __future__ import annotations
 
 import pytest
 
+from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
+from vcnc.errors import GCodeError
 
+FANUC = MachineContext(dialect=DIALECTS["fanuc"])
 HAAS = MachineContext(dialect=DIALECTS["haas"], tools={1: Tool(number=1, length=10.0, radius=1.0)})
 
 #: A Haas workbook-style series without G80 between a G83 with I J K (first peck, reduction, minimum) and a G76
@@ -45,3 +48,22 @@ def test_haas_g76_with_i_j_and_no_q_shifts_by_i_j_for_the_series():
     prog = checked_iso(text, HAAS)
     assert _shifts(prog, 4) == {(0.0, 0.0), (0.01, 0.0)}
     assert _shifts(prog, 5) == _shifts(prog, 6) == {(0.0, 0.0), (-0.02, 0.03)}
+
+
+#: Fusion's Okuma post (konkers/Mill-Post-Processors okuma.cps, "OKUMA OSP"): work offset "G15 H<n>", length
+#: offset "G0 G56 Z.. H<n>", cycle return level "G71 Z..", cycles ended by M53.
+OKUMA = ("%\nO1001\nG17 G90 G21\nT1 M6\nS5000 M3\nG15 H1\nG0 X10. Y10.\nG0 G56 Z15. H1\nG71 Z15.\n"
+         "G81 X10. Y10. Z-5. R5. F300. M53\nG80\nM30\n%\n")
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas", "linuxcnc"])
+def test_an_okuma_osp_program_is_refused_at_g15_h(dialect):
+    # Okuma OSP programming manuals: G15 H<n> selects a work coordinate system (modal), G56 H the tool length
+    # offset, G71 Z the return level. Before: under fanuc/haas "G15 H1" was Fanuc's polar cancel with an unused H
+    # (noted), G56 the third work offset, "G71 Z15." metric input and a move: the program ran 10 mm low
+    # (no tool length) and without its work offset, with no error
+    context = MachineContext(dialect=DIALECTS[dialect], tools={1: Tool(number=1, length=10.0, radius=1.0)})
+    with pytest.raises(GCodeError, match=r":6:1: G15 H1: Okuma OSP's work coordinate system selection"):
+        parse_program(OKUMA, context=context)
+    # G15 alone stays Fanuc's polar cancel
+    assert parse_program("G21 G90\nG16\nG1 X10 Y90 F100\nG15\nG1 X0 Y0\nM30\n", context=FANUC).blocks[-1].line == 5
