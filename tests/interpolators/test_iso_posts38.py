@@ -67,3 +67,12 @@ def test_an_okuma_osp_program_is_refused_at_g15_h(dialect):
         parse_program(OKUMA, context=context)
     # G15 alone stays Fanuc's polar cancel
     assert parse_program("G21 G90\nG16\nG1 X10 Y90 F100\nG15\nG1 X0 Y0\nM30\n", context=FANUC).blocks[-1].line == 5
+
+
+def test_fanuc_comma_a_angle_is_refused_naming_direct_drawing_dimensions():
+    # hand-written Fanuc programs: "G1 X20. ,A30." (the line's angle, one end coordinate; FANUC "Direct drawing
+    # dimension programming", an option). ,R and ,C are read (interpolators.iso_corners); before: "unknown word
+    # ',A30.'" without saying what it is
+    with pytest.raises(GCodeError, match=r":3:9: unknown word ',A30\.' \(Fanuc's ,A: the angle of a line in direct "
+                                         r"drawing dimension programming"):
+        parse_program("G21 G90\nG0 X0 Y0 Z5\nG1 X20. ,A30. F100\nM30\n", context=FANUC)
