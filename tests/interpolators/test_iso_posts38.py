@@ -6,9 +6,10 @@ not run."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
-from interpolators import parse_program
+from interpolators import interpolate, parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
 from tests.interpolators.iso_checks import checked_iso
 from vcnc.errors import GCodeError
@@ -76,3 +77,31 @@ def test_fanuc_comma_a_angle_is_refused_naming_direct_drawing_dimensions():
     with pytest.raises(GCodeError, match=r":3:9: unknown word ',A30\.' \(Fanuc's ,A: the angle of a line in direct "
                                          r"drawing dimension programming"):
         parse_program("G21 G90\nG0 X0 Y0 Z5\nG1 X20. ,A30. F100\nM30\n", context=FANUC)
+
+
+def _duration(text: str, dialect: str, **context) -> float:
+    prog = parse_program(text, context=MachineContext(dialect=DIALECTS[dialect], **context))
+    return float(interpolate(prog).t[-1])
+
+
+def test_fanuc_helix_feed_is_along_its_arc_in_the_plane():
+    # FANUC 15i-B connection manual B-63783EN-1, 6.7 "Helical interpolation B": with HTG = 0 (the default) "a
+    # feedrate along an arc is specified by an F command", the linear axis at F x its length / the arc's length.
+    # A full turn of radius 10 mm (62.83 mm in the plane) dropping 50 mm at F600 (10 mm/s): 6.28 s of feed on a
+    # Fanuc, 8.03 s along the 80.3 mm helix under LinuxCNC's rule. Before: 8.03 s under fanuc too
+    text = "G21 G90 G17\nG0 X10 Y0 Z0\nG2 X10 Y0 Z-50 I-10 J0 F600\nM30\n"
+    fanuc, linuxcnc = _duration(text, "fanuc"), _duration(text, "linuxcnc")
+    assert 2 * np.pi < fanuc < 2 * np.pi + 0.5  # the arc at F, plus the ramps of the default limits
+    assert linuxcnc - fanuc == pytest.approx(np.hypot(20 * np.pi, 50) / 10 - 2 * np.pi, abs=0.05)
+
+
+def test_fanuc_line_with_a_rotary_axis_takes_its_degrees_as_lengths():
+    # FANUC Power Mate i-D/H operator's manual B-63174EN/03, 4.2 "Linear interpolation (G01)": "G91 G01 X20.0
+    # C40.0 F300.0 ; This changes the unit of the C axis from 40.0 deg to 40mm with metric input", the block taking
+    # sqrt(20^2 + 40^2) / 300 = 0.14907 min (8.94 s); LinuxCNC moves X20 at F300 (4 s), C following. Before: 4 s
+    # under fanuc too
+    text = "G21 G90 G17\nG0 X0 Y0 Z0 C0\nG91 G01 X20.0 C40.0 F300.0\nM30\n"
+    fanuc = _duration(text, "fanuc", extra_axes=("c",))
+    linuxcnc = _duration(text, "linuxcnc", extra_axes=("c",))
+    assert fanuc - linuxcnc == pytest.approx(np.hypot(20, 40) / 5 - 4, abs=0.05)
+    assert 0.14907 * 60 < fanuc < 0.14907 * 60 + 0.5
