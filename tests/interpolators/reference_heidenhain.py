@@ -122,17 +122,19 @@ def _blocks(text: str) -> list[tuple[int, str]]:
 
 
 class _Formula:
-    """Recursive-descent Heidenhain formula: + - * / ^, parentheses, unary functions, Q values."""
+    """Recursive-descent Heidenhain formula: + - * / % ^, parentheses, unary functions, Q values (``%``: the
+    division remainder, iTNC 530 user's manual 60642x-04 9.8, "Q12 = 400 % 360 Result: Q12 = 40"; as * and /, the
+    dividend's sign)."""
 
     _FUNCS = {"SQRT": math.sqrt, "SQ": lambda v: v * v, "SIN": lambda v: math.sin(math.radians(v)),
               "COS": lambda v: math.cos(math.radians(v)), "TAN": lambda v: math.tan(math.radians(v)),
               "ASIN": lambda v: math.degrees(math.asin(v)), "ACOS": lambda v: math.degrees(math.acos(v)),
               "ATAN": lambda v: math.degrees(math.atan(v)), "ABS": abs, "INT": lambda v: float(math.trunc(v)),
               "NEG": lambda v: -v, "FRAC": lambda v: v - math.trunc(v), "LN": math.log, "LOG": math.log10,
-              "EXP": math.exp}
+              "EXP": math.exp, "SGN": lambda v: 1.0 if v >= 0 else -1.0}  # SGN: TNC 620 manual, 1 for >= 0
 
     def __init__(self, text: str, q: dict):
-        self.toks = re.findall(r"\d+\.?\d*|\.\d+|Q[LR]?\d+|[A-Z]+|[-+*/^()]", text.upper())
+        self.toks = re.findall(r"\d+\.?\d*|\.\d+|Q[LR]?\d+|[A-Z]+|[-+*/%^()]", text.upper())
         self.i = 0
         self.q = q
 
@@ -157,8 +159,9 @@ class _Formula:
 
     def term(self) -> float:
         v = self.power()
-        while self.peek() in ("*", "/"):
-            v = v * self.power() if self.take() == "*" else v / self.power()
+        while self.peek() in ("*", "/", "%"):
+            op = self.take()
+            v = v * self.power() if op == "*" else v / self.power() if op == "/" else math.fmod(v, self.power())
         return v
 
     def power(self) -> float:
