@@ -90,7 +90,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     FUNCTION TCPM F TCP AXIS POS    their rotary words moving too (chords within the tolerance, F the
       PATHCTRL AXIS .. RESET TCPM   tip's feed on the part: heidenhain_tcpm, tcp); the F right after
                                     M128 is its compensation feed (noted); AXIS SPAT: A B C are
-                                    spatial angles, the tool's direction (heidenhain_tcpm.spatial_axes)
+                                    spatial angles, the tool's direction (heidenhain_tcpm.spatial_axes);
+                                    in a tilted plane that turns: still lines as the plane's (tncposts38)
     LN X.. Y.. Z.. TX.. TY.. TZ..   the tool orientation alone (peripheral milling): no displacement
                                     under R0; FUNCTION FILECOPY/FILEMOVE/FILEDELETE: no motion, noted
     M2, M30                         end of the main program (subprograms follow)
@@ -472,7 +473,8 @@ class Machine:
         coordinates of the machine position, under M128 / FUNCTION TCPM those of the tool tip on the turned part
         (:func:`interpolators.tcp.part_point`). Our reading: under TCPM the program's X Y Z are the tip's, so a
         position read back and programmed again (``L X+Q1``) stays where it is, as G92 under G43.4 takes the tip."""
-        point = part_point(self.context.kinematics, self.extra, self.pos, self.tool_length) if self.tcpm else self.pos
+        tip = self.tcpm and not tilt_turns(self.tilt)  # in a plane that turns: the plane's point, TCPM or not
+        point = part_point(self.context.kinematics, self.extra, self.pos, self.tool_length) if tip else self.pos
         return self.to_program(point)
 
     def no_radius(self) -> str:

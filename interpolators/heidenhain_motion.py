@@ -41,6 +41,7 @@ from interpolators.heidenhain_tcpm import (
     TCPM_EXPECTED,
     check_tcpm_on,
     spatial_axes,
+    still_in_tilted_plane,
     tcpm_line,
     tilt_turns,
     tool_vector,
@@ -210,8 +211,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         _path_m(w, m, where)
         return False
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
-        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where,
-                      column=w.column, text=w.text)
+        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, where=where, column=w.column, text=w.text)
         m.tcpm, m.tcpm_spatial = True, None  # M128's rotary words are axis positions
         m.note("M128: TCPM (lines of the tool tip on the turned part)")
         return False
@@ -403,7 +403,9 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     spatial = m.tcpm and m.tcpm_spatial is not None and m9x is None  # FUNCTION TCPM .. AXIS SPAT
     extra = (spatial_axes(seen, m, where) if spatial else _extra_axes(seen, m, where)) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
-    if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
+    if m.tcpm and m9x is None and tilt_turns(m.tilt) and (written or kw != "L" or extra is not None):
+        still_in_tilted_plane(kw, extra, m, where)  # read as the plane's block (an error unless a still line)
+    elif m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
         waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
                    if m.comp != "R0" else None)
         target = _tcpm_target(kw, seen, waiting, m, where)
@@ -633,9 +635,6 @@ def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine
     corner, an approach, radius compensation: errors)."""
     if kw != "L" or waiting is not None:
         where.fail(f"{waiting or kw} under M128 is not supported", column=1, text=where.text,
-                   expected=TCPM_EXPECTED)
-    if tilt_turns(m.tilt):  # a PLANE .. STAY after M128
-        where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
                    expected=TCPM_EXPECTED)
     if m.plane != 2:  # a TOOL CALL .. X / Y after M128 (M128 itself checks the tool axis: check_tcpm_on)
         where.fail(f"a line under M128 with tool axis {'XYZ'[m.plane]} is not supported", column=1, text=where.text,

@@ -318,8 +318,20 @@ class _Tnc:
             return self.overrides[self.preset].copy()
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
 
+    def turned(self) -> bool:
+        """A tilted plane that turns the workpiece coordinates (its rotation or its rotary positions not 0)."""
+        if self.tilt is None:
+            return False
+        return (not np.allclose(self.tilt, np.eye(3))
+                or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in self.tilt_angles.values()))
+
+    def tip(self) -> bool:
+        """M128 acting on the points: on, and no plane that turns (in one, a line whose rotary axes stay is the
+        plane's line with or without TCPM, TNC 640 manual "Inclined-tool machining in a tilted plane")."""
+        return self.tcpm and not self.turned()
+
     def origin(self) -> np.ndarray:
-        if self.tilt is not None and not self.tcpm:  # the tilted zero on the tilted table (cycle 7 shifts within
+        if self.tilt is not None and not self.tip():  # the tilted zero on the tilted table (cycle 7 shifts within
             return self.machine(np.zeros(3))     # the plane)
         # under M128 in a plane that does not turn (_tcpm_switch): its zero on the part, as the untilted one
         o = self.preset_point() + (self.base + self.tilt @ self.shift if self.tilt is not None else self.shift)
@@ -339,7 +351,7 @@ class _Tnc:
 
     def machine(self, p: np.ndarray) -> np.ndarray:
         a, b = self.affine()
-        if self.tcpm:  # M128 on a table: the part point (rotary axes at 0) where the table carries it now
+        if self.tip():  # M128 on a table: the part point (rotary axes at 0) where the table carries it now
             length = np.array([0.0, 0.0, self.length])
             return _carry(self, self.origin() + a @ p + b - length, self.table_angles()) + length
         if self.tilt is not None:  # the part point, then where the tilted table carries it
@@ -349,7 +361,7 @@ class _Tnc:
 
     def prog(self) -> np.ndarray:
         a, b = self.affine()
-        if self.tcpm:
+        if self.tip():
             length = np.array([0.0, 0.0, self.length])
             part = _carry(self, self.pos - length, self.table_angles(), back=True) + length
             return np.linalg.solve(a, part - self.origin() - b)
@@ -436,7 +448,9 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     _reduce_display(t, w.get("MARGS", {}))
     # M128 with the rotary axes moving: the tip's program point from where it is before they turn, carried to
     # where the table holds it at their new positions; the reader's chords, the last one's end checked
-    base = t.prog() if t.tcpm and (spat or any(k[-1] in "ABC" for k in others)) else None
+    base = t.prog() if t.tip() and (spat or any(k[-1] in "ABC" for k in others)) else None
+    if spat and t.turned():
+        raise ReferenceError("AXIS SPAT angles under M128 in a tilted plane that turns")
     if spat:
         others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k)]
         _spatial_angles(t, w)
@@ -450,6 +464,8 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
         if k[0] != "I" and i < 3 and k.lower() in t.ctx.wrapped_axes:  # a modulo axis (TNC 640 manual, M126)
             rule = "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
             t.extra[i] = wrapped_end(rule, v, now[i], t.shown[i])
+    if t.tcpm and t.turned() and np.any(np.abs(t.extra[:3] - now[:3]) > 1e-9):
+        raise ReferenceError("a rotary axis moving under M128 in a tilted plane that turns")
     kind = "rapid" if "FMAX" in w else "feed"
     if t.feed_dwell is not None and kind == "feed" and (axes or others):
         _feed_dwell_line(t, line, t.target(w), bool(others))
@@ -608,9 +624,6 @@ def _tcpm_switch(t: _Tnc, ms: list) -> None:
     if 128 in ms:
         if t.ctx.kinematics is None or t.ctx.kinematics.kind != "table":
             raise ReferenceError("M128 without a tilting table")
-        if t.tilt is not None and (not np.allclose(t.tilt, np.eye(3))
-                                   or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in t.tilt_angles.values())):
-            raise ReferenceError("M128 in a tilted plane that turns the workpiece coordinates")
         t.tcpm, t.spat = True, None
     if 129 in ms:
         t.tcpm = False

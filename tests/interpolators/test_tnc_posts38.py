@@ -5,10 +5,12 @@ say more."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
+from interpolators.tilted import Kinematics, RotaryAxis
 from tests.interpolators.reference_heidenhain import heidenhain_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
@@ -49,3 +51,33 @@ def test_sgn_of_zero_is_one():
     prog = checked("1 TOOL CALL 1 Z S2000 F300\n2 L X+5 Y+0 Z+10 R0 FMAX\n3 Q6 = 0\n4 Q7 = SGN Q6\n"
                    "5 Q8 = SGN -0.001\n6 Q9 = 10 * Q7\n7 L X+Q9 Y+Q8\n")
     assert prog.blocks[-1].target == pytest.approx([10.0, -1.0, 20.0])
+
+
+# -- TCPM in a tilted working plane (hyperMILL's and NX's TNC 640 posts: PLANE .. TURN, then TCPM on) --------------
+
+BC = Kinematics(axes=(RotaryAxis(name="b", pivot=(0.0, 0.0, -50.0), limits=(-120.0, 120.0)), RotaryAxis(name="c")))
+TNC5X = MachineContext(extra_axes=("b", "c"), kinematics=BC, tools={1: Tool(number=1, length=20.0)},
+                       work_offsets={"G54": (10.0, 5.0, 0.0)}, home=(0.0, 0.0, 300.0))
+TILTED = ("1 TOOL CALL 1 Z S10000\n2 L Z+200 R0 FMAX M91\n"
+          "3 PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN MB MAX FMAX SEQ+ TABLE ROT\n")
+LINES = "5 L X+10 Y+0 Z+50 R0 FMAX M3\n6 L Z+5 F2000\n7 L X+20 Y+5\n"
+
+
+@pytest.mark.parametrize("on, off", [("4 FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS\n", "8 FUNCTION RESET TCPM\n"),
+                                     ("4 M128\n", "8 M129\n")])
+def test_tcpm_in_a_tilted_plane_runs_its_still_lines_as_the_planes(on, off):
+    # the program coordinates in the tilted plane are the tool tip with or without TCPM, which acts only when a
+    # rotary axis moves (TNC 640 user's manual, "Inclined-tool machining in a tilted plane"): the same machine
+    # points as the program without TCPM. Refused before: 'FUNCTION TCPM (TCPM) with a tilted working plane ...'.
+    plain = checked(TILTED + LINES + "9 PLANE RESET TURN FMAX\n", TNC5X)
+    prog = checked(TILTED + on + LINES + off + "9 PLANE RESET TURN FMAX\n", TNC5X)
+    assert np.array([b.target for b in prog.blocks]) == pytest.approx(np.array([b.target for b in plain.blocks]))
+    assert prog.blocks[-2].extra_target[:3] == pytest.approx([0.0, 30.0, 0.0])
+
+
+def test_a_rotary_axis_moving_under_tcpm_in_a_tilted_plane_is_an_error_naming_it():
+    text = ("0 BEGIN PGM 1 MM\n" + TILTED + "4 FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS\n"
+            "5 L X+10 Y+0 Z+50 B+35 R0 F1000\n6 END PGM 1 MM\n")
+    with pytest.raises(GCodeError, match="rotary axis moving under M128 / FUNCTION TCPM in a tilted working plane"):
+        parse_heidenhain(text, source="t.h", context=TNC5X)
+
