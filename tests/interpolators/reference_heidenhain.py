@@ -3110,9 +3110,11 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
 def _without_motion(t: _Tnc, up: str) -> None:
     """A PLANE or FUNCTION block the reference knows to move nothing (PLANE RESET, a plane of no rotation on a
     machine without kinematics, FUNCTION MODE MILL, the file functions FILECOPY / FILEMOVE / FILEDELETE of the TNC
-    640 user's manual); any other is not modelled."""
+    640 user's manual, FUNCTION PARAXCOMP DISPLAY / OFF and PARAXMODE OFF: the display of the parallel axes, their
+    resets, TNC7 basic user's manual 81762x-19); any other is not modelled."""
     if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
-                           "FUNCTION FILEDELETE"))
+                           "FUNCTION FILEDELETE", "FUNCTION PARAXCOMP OFF", "FUNCTION PARAXMODE OFF",
+                           "FUNCTION PARAXCOMP DISPLAY"))
             or re.match(r"PLANE (SPATIAL|PROJECTED|EULER|RELATIVE?|AXIAL)\b", up)
             and all(_val(v, t.q) == 0 for v in re.findall(
                 r"(?:SP[ABC]|PRO(?:PR|MIN)|(?<!EUL)ROT|EUL(?:PR|NU|ROT)|(?<![A-Z])[ABC])\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))",

@@ -81,3 +81,21 @@ def test_a_rotary_axis_moving_under_tcpm_in_a_tilted_plane_is_an_error_naming_it
     with pytest.raises(GCodeError, match="rotary axis moving under M128 / FUNCTION TCPM in a tilted working plane"):
         parse_heidenhain(text, source="t.h", context=TNC5X)
 
+
+# -- parallel axes (TNC7 basic user's manual 81762x-19, FUNCTION PARAXCOMP / PARAXMODE) ------------------------------
+
+def test_the_parallel_axis_resets_and_display_move_nothing():
+    # a post's header resets 'FUNCTION PARAXCOMP OFF' / 'FUNCTION PARAXMODE OFF', and PARAXCOMP DISPLAY (the W
+    # travel summed into Z's display only) leave the lines as written. Refused before: 'FUNCTION PARAXCOMP is not
+    # supported'.
+    prog = checked("1 FUNCTION PARAXCOMP OFF\n2 FUNCTION PARAXMODE OFF\n3 TOOL CALL 1 Z S2000 F300\n"
+                   "4 FUNCTION PARAXCOMP DISPLAY W\n5 L X+10 Y+0 Z+5 R0 FMAX\n6 FUNCTION PARAXCOMP OFF\n")
+    assert prog.blocks[-1].target == pytest.approx([10.0, 0.0, 15.0])
+    assert any("PARAXCOMP DISPLAY" in n for n in prog.notes)
+
+
+@pytest.mark.parametrize("block, why", [("FUNCTION PARAXCOMP MOVE W", "main axis moving against the parallel"),
+                                        ("FUNCTION PARAXMODE X Y W", "parallel axis machining in place")])
+def test_what_moves_the_main_axes_by_a_parallel_axis_is_an_error_naming_it(block, why):
+    with pytest.raises(GCodeError, match=why):
+        parse_heidenhain(f"0 BEGIN PGM 1 MM\n1 {block}\n2 END PGM 1 MM\n", source="t.h", context=CTX)
