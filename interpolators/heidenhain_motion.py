@@ -232,6 +232,9 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         m.note(f"M{w.value}: program stop (no motion)")
         m.stop_in_block = True
         m.at_rest = m.at_rest or w.value == 0
+    elif w.value == 130:  # TNC 640 manual, M130: the untilted coordinates in a tilted plane (_untilted_block)
+        m.note("M130: the block's coordinates untilted" if m.tilt is not None else
+               "M130 without a tilted working plane: no effect")
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(f"M{w.value} ignored (no motion)")
     return False
@@ -372,6 +375,8 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
+    if m9x is None and 130 in mvals and m.tilt is not None:  # M130: this block in the untilted coordinates
+        m9x = _untilted_block(kw, seen, m, where)
     # M129 ends M128 at the end of its block (TNC 426/430 ISO manual, M128: "M128 becomes effective at the start
     # of block, M129 at the end of block"): a line with M129 is still one of the tip on the turned part
     ended = any(_one_m(w, m, where) for w in ms if w.value != 129)
@@ -627,6 +632,27 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
         target = wrap_words(target, {k: seen[k] for k in letters if k in ROTARY_LETTERS}, m.extra, m.rotary_shift,
                             wrapped=m.context.wrapped_axes, direction=m.wrap_rule, where=where)
     return target
+
+
+def _untilted_block(kw: str, seen: dict[str, Word], m: Machine, where: Where) -> int:
+    """``M130`` in a tilted working plane: 130, the block's coordinates then being those of the untilted
+    workpiece coordinate system (:func:`interpolators.heidenhain_targets.plane_coords`), or an error.
+
+    TNC 640 user's manual, "Moving to positions in a non-tilted coordinate system with a tilted working plane:
+    M130": with M130 the control places the coordinates of straight-line blocks in the untilted coordinate system
+    and positions the tilted tool to them; M130 acts in its block, in straight lines without radius
+    compensation; the blocks after it run in the tilted plane again. Our reading on a tilting table: the untilted
+    system is the one of the program without the plane, the preset plus the datum shift of before the tilt
+    (``TiltedPlane.base_shift``) and the tool length along Z, not carried by the table (as M91 is not); an arc,
+    RL/RR, M128 or a cycle 8/10/11/26 with it is an error naming M130 (not modelled)."""
+    t = m.transform
+    why = ("an arc or a polar block" if kw not in ("L", "LN") else "radius compensation RL/RR"
+           if m.comp != "R0" or "RCOMP" in seen and seen["RCOMP"].text.upper() != "R0" else "M128 / FUNCTION TCPM"
+           if m.tcpm else "a cycle 8, 10, 11 or 26" if dataclasses.replace(t, tilt=0.0) != type(t)() else None)
+    if why is not None:
+        where.fail(f"M130 (a block in the untilted coordinates of a tilted plane) with {why} is not supported",
+                   column=1, text=where.text, expected="M130 in a straight line L under R0 (TNC 640 manual, M130)")
+    return 130
 
 
 def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine, where: Where) -> np.ndarray:

@@ -411,12 +411,19 @@ class _Tnc:
         """Machine end point of the axis words (M91/M92 and I words); ``base``: the program point the words
         change (default: the present one)."""
         ms = w.get("M", [])
-        if 91 in ms or 92 in ms:
-            base = np.zeros(3) if 91 in ms else np.array(self.ctx.home, float)
+        untilted = 130 in ms and self.tilt is not None  # M130 (TNC 640 manual): the untilted coordinates,
+        if untilted and (self.comp or self.tcpm or self.rot or self.scl != 1.0  # preset + shift before the tilt
+                         or np.any(self.mirror != 1.0) or np.any(self.factors != 1.0)):
+            raise ReferenceError("M130 with RL/RR, M128 or a transformation")
+        if 91 in ms or 92 in ms or untilted:
+            base = (np.zeros(3) if 91 in ms else np.array(self.ctx.home, float) if 92 in ms
+                    else self.preset_point() + self.base + np.array([0.0, 0.0, self.length]))
             end = self.pos.copy()
             for i, a in enumerate("XYZ"):
                 if a in w:
                     end[i] = base[i] + w[a] * self.scale
+                if "I" + a in w and untilted:
+                    end[i] += w["I" + a] * self.scale
             return end
         p = self.prog() if base is None else base.copy()
         for i, a in enumerate("XYZ"):

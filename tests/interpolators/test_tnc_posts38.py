@@ -99,3 +99,30 @@ def test_the_parallel_axis_resets_and_display_move_nothing():
 def test_what_moves_the_main_axes_by_a_parallel_axis_is_an_error_naming_it(block, why):
     with pytest.raises(GCodeError, match=why):
         parse_heidenhain(f"0 BEGIN PGM 1 MM\n1 {block}\n2 END PGM 1 MM\n", source="t.h", context=CTX)
+
+
+# -- M130 (TNC 640 user's manual, "Moving to positions in a non-tilted coordinate system with a tilted working plane")
+
+M130_BODY = ("1 TOOL CALL 1 Z S2000 F300\n2 L Z+200 R0 FMAX M91\n3 CYCL DEF 7.0 DATUM SHIFT\n4 CYCL DEF 7.1 X+10\n"
+             "5 PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX\n6 CYCL DEF 7.0 DATUM SHIFT\n7 CYCL DEF 7.1 X+5\n"
+             "8 L X+10 Y+0 Z+50 R0 FMAX\n9 L X+20 Z+50 R0 FMAX M130\n10 L IZ+10 R0 FMAX M130\n11 L X+12 Y+1 F500\n"
+             "12 PLANE RESET TURN FMAX\n")
+
+
+def test_m130_runs_its_line_in_the_untilted_coordinates():
+    # a post's safe move in a tilted plane: 'L X+20 Z+50 R0 FMAX M130' goes to X+20 Z+50 of the untilted system,
+    # the preset (work offset 10, 5, 0) plus the shift of before the tilt (X+10), the tool length 20 along Z:
+    # (40, 5, 70) in the machine, whatever the plane and its own shift X+5; IZ+10 from there; the next line in the
+    # tilted plane again. Ignored before ('M130 ignored (no motion)': the line ran to X+20 Z+50 of the plane).
+    prog = checked(M130_BODY, TNC5X)
+    by_line = {b.number: b for b in prog.blocks}
+    assert by_line[9].target == pytest.approx([40.0, 5.0, 70.0])
+    assert by_line[10].target == pytest.approx([40.0, 5.0, 80.0])
+    assert by_line[9].extra_target[:3] == pytest.approx([0.0, 30.0, 0.0])
+    assert any("M130" in n for n in prog.notes)
+
+
+def test_m130_under_radius_compensation_is_an_error_naming_it():
+    body = M130_BODY.replace("8 L X+10 Y+0 Z+50 R0 FMAX", "8 L X+10 Y+0 Z+50 RL F500")
+    with pytest.raises(GCodeError, match="M130 .* with radius compensation RL/RR"):
+        parse_heidenhain("0 BEGIN PGM 1 MM\n" + body + "13 END PGM 1 MM\n", source="t.h", context=TNC5X)
