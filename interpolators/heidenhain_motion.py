@@ -46,7 +46,7 @@ from interpolators.heidenhain_tcpm import (
     tilt_turns,
     tool_vector,
 )
-from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
+from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, ignored_m_note, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
 from interpolators.rotary_wrap import wrap_words
@@ -236,7 +236,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         m.note("M130: the block's coordinates untilted" if m.tilt is not None else
                "M130 without a tilted working plane: no effect")
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
-        m.note(f"M{w.value} ignored (no motion)")
+        m.note(ignored_m_note(w.value))
     return False
 
 

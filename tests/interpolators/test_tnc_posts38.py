@@ -126,3 +126,17 @@ def test_m130_under_radius_compensation_is_an_error_naming_it():
     body = M130_BODY.replace("8 L X+10 Y+0 Z+50 R0 FMAX", "8 L X+10 Y+0 Z+50 RL F500")
     with pytest.raises(GCodeError, match="M130 .* with radius compensation RL/RR"):
         parse_heidenhain("0 BEGIN PGM 1 MM\n" + body + "13 END PGM 1 MM\n", source="t.h", context=TNC5X)
+
+
+def test_the_feed_and_corner_m_functions_not_modelled_are_noted_as_such():
+    # M116 (rotary feed in mm/min), M109/M110 (feed at the cutting edge on arcs), M97/M98 (compensated corners)
+    # change the run on a TNC: the note says what is left out, not 'ignored (no motion)' (TNC 640 user's manual,
+    # miscellaneous functions); in the fast path (plain lines) and the general one alike
+    for body in ("1 TOOL CALL 1 Z S1000 F300\n2 L X+1 Y+0 Z+5 R0 FMAX M116\n3 L X+2 M109\n4 M98\n",
+                 "1 TOOL CALL 1 Z S1000 F300\n2 CYCL DEF 10.0 ROTATION\n3 CYCL DEF 10.1 ROT+10\n"
+                 "4 L X+1 Y+0 Z+5 R0 FMAX M116\n5 L X+2 M109\n6 M98\n"):
+        prog = checked(body)
+        notes = " ".join(prog.notes)
+        assert "M116: the feed of rotary axes in mm/min (not modelled" in notes
+        assert "M109/M110: the feed at the cutting edge" in notes and "M98: open contour corners" in notes
+        assert "ignored (no motion)" not in notes
