@@ -409,7 +409,7 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     extra = (spatial_axes(seen, m, where) if spatial else _extra_axes(seen, m, where)) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
     if m.tcpm and m9x is None and tilt_turns(m.tilt) and (written or kw != "L" or extra is not None):
-        still_in_tilted_plane(kw, extra, m, where)  # read as the plane's block (an error unless a still line)
+        still_in_tilted_plane("LN" if normal else kw, extra, m, where)  # the plane's line, or an error
     elif m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
         waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
                    if m.comp != "R0" else None)

@@ -140,3 +140,11 @@ def test_the_feed_and_corner_m_functions_not_modelled_are_noted_as_such():
         assert "M116: the feed of rotary axes in mm/min (not modelled" in notes
         assert "M109/M110: the feed at the cutting edge" in notes and "M98: open contour corners" in notes
         assert "ignored (no motion)" not in notes
+
+
+def test_an_ln_under_tcpm_in_a_tilted_plane_is_an_error_naming_it():
+    # its tool orientation TX TY TZ would turn the rotary axes there (not modelled): named, not run as a line
+    text = ("0 BEGIN PGM 1 MM\n" + TILTED + "4 FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS\n"
+            "5 LN X+10 Y+0 Z+5 TX+0 TY+0.5 TZ+0.8660254 R0 F1000\n6 END PGM 1 MM\n")
+    with pytest.raises(GCodeError, match="LN under M128 in a tilted working plane"):
+        parse_heidenhain(text, source="t.h", context=TNC5X)
