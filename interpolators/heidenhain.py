@@ -79,7 +79,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     FUNCTION FEED DWELL D-TIME0.5 F-TIME5 .. RESET
                                     a dwell after every F-TIME of feed motion (heidenhain_feed_dwell)
     FN 20: WAIT FOR ..              PLC synchronisation: met at once, noted; FN 19/29 PLC, FN 37 EXPORT,
-                                    FN 38 SEND, FUNCTION LIFTOFF/S-PULSE/COUNT: no motion, noted
+                                    FN 38 SEND, FUNCTION LIFTOFF/S-PULSE/COUNT, FUNCTION PARAXCOMP
+                                    DISPLAY/OFF, PARAXMODE OFF: no motion, noted (PARAXCOMP MOVE an error)
+    Q12 = 400 % 360, Q7 = SGN Q6    % the division remainder (40); SGN 0 is +1 (heidenhain_formulas)
+    L X+20 Z+50 R0 FMAX M130        in a tilted plane: this line in the untilted coordinates (heidenhain_motion)
     L Z-5 F500 M103 F20             M103: the feed down the tool axis at most F percent (until M103 alone)
     CYCL CALL PAT F500 / F MAX      the moves between the pattern's points at F (F MAX: rapid)
     L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
