@@ -233,8 +233,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         m.stop_in_block = True
         m.at_rest = m.at_rest or w.value == 0
     elif w.value == 130:  # TNC 640 manual, M130: the untilted coordinates in a tilted plane (_untilted_block)
-        m.note("M130: the block's coordinates untilted" if m.tilt is not None else
-               "M130 without a tilted working plane: no effect")
+        m.note("M130: the block's coordinates untilted" if m.tilt is not None else ignored_m_note(130))
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
         m.note(ignored_m_note(w.value))
     return False

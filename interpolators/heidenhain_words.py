@@ -407,6 +407,7 @@ _M_NOT_MODELLED = {
     109: "M109/M110: the feed at the cutting edge on compensated arcs (not modelled: F at the tool centre)",
     110: "M109/M110: the feed at the cutting edge on compensated arcs (not modelled: F at the tool centre)",
     116: "M116: the feed of rotary axes in mm/min (not modelled: F of a rotary axis read in deg/min)",
+    130: "M130 without a tilted working plane: no effect",  # in one: heidenhain_motion's M130
 }
 
 

@@ -148,3 +148,10 @@ def test_an_ln_under_tcpm_in_a_tilted_plane_is_an_error_naming_it():
             "5 LN X+10 Y+0 Z+5 TX+0 TY+0.5 TZ+0.8660254 R0 F1000\n6 END PGM 1 MM\n")
     with pytest.raises(GCodeError, match="LN under M128 in a tilted working plane"):
         parse_heidenhain(text, source="t.h", context=TNC5X)
+
+
+def test_m130_without_a_tilted_plane_has_no_effect_noted_alike_in_both_paths():
+    # the fast path (plain lines) and the general one (under cycle 10) word the note the same
+    prog = checked("1 TOOL CALL 1 Z S1000 F300\n2 L X+1 Y+0 Z+5 R0 FMAX M130\n3 CYCL DEF 10.0 ROTATION\n"
+                   "4 CYCL DEF 10.1 ROT+5\n5 L X+2 M130\n")
+    assert prog.notes == ("M130 without a tilted working plane: no effect x2",)
