@@ -8,9 +8,10 @@ short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`
 with cycle 32 tolerances; :func:`rotary_cam_program`: coarse chords with A-C swinging and cornering under G94 and
 G93, tangent arc chains of alternating sense, an axis of A-C/U-W written on some blocks only along lines and arcs,
 long lines and small tangent arcs of either sense with one or two of A-C/U-W moving on every block,
-a third in G20), each run under the trapezoid and the S-curve with random but sane limits per axis
-(:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, 400x for rotary_cam, rapid
-rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
+a third in G20; :func:`fanuc_cam_program`: Fanuc 30i code with G06.2 NURBS and G02.4 three-dimensional arcs among
+such chords, under ``--dialect fanuc``), each run under the trapezoid and the S-curve with random but sane limits
+per axis (:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, 400x for
+rotary_cam, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
 
 * ``nonfinite``: a NaN or infinity in a column;
 * ``limits``: an axis beyond its velocity, acceleration (or, S-curve, jerk) limit by finite differences or in the
