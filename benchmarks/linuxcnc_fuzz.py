@@ -170,7 +170,8 @@ def _rotary_words(rng: random.Random) -> str:
 
 def chunk_offsets(w: _Writer) -> None:
     """Work offsets and their changes: G10 L2 (with R rotation) / L20, G54-G59.3, G52, G92 and its cancels, some
-    with A B C words (:func:`_rotary_words`), then moves with and without the rotary axes."""
+    with A B C words (:func:`_rotary_words`), then moves with and without the rotary axes; a G92.1-G92.3 with X Y
+    words after a feed move (the cancel, then the modal motion to them: rs274 and vcnc since session 37)."""
     rng = w.rng
     w.units()
     systems = ["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"]
@@ -193,6 +194,9 @@ def chunk_offsets(w: _Writer) -> None:
             w.emit(rng.choice(["G92.1", "G92.2", "G92.3"]))
         w.start(w.coord(), w.coord(), w.coord(0, 20))
         w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]])} {w.feed()}")
+        if rng.random() < 0.2:  # a G92 cancel with axis words: the modal G1 moves to them in the new frame, in
+            w.incremental = False  # G90 (the current point's coordinates change with the frame)
+            w.emit(f"G90 {rng.choice(['G92.1', 'G92.2', 'G92.3'])} {w.axes([w.coord(), w.coord(), w.pos[2]], 'XY')}")
         if rng.random() < 0.3:
             words = " ".join(f"{a}{rng.randint(-120, 120)}" for a in rng.sample("ABC", rng.randint(1, 3)))
             w.emit(f"G{rng.choice([0, 1])} {words} {w.feed()}")
@@ -230,15 +234,20 @@ def chunk_tools(w: _Writer) -> None:
 
 
 def chunk_home(w: _Writer) -> None:
-    """G28 / G30 with and without axis words (absolute and incremental), G28.1 / G30.1, G53 moves."""
+    """G28 / G30 with and without axis words (absolute and incremental), G28.1 / G30.1 (also with axis words, which
+    the modal motion moves to after the position is stored: rs274ngc interp_check.cc ``enhance_block`` lets only
+    G10, G28, G30, G52 and G92 of the group 0 codes use axis words), G53 moves."""
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(0, 20))
     for _ in range(rng.randint(1, 3)):
         kind = rng.choice(["G28", "G30", "G28.1", "G30.1", "G53"])
         if kind in ("G28.1", "G30.1"):
             w.emit(f"G0 G90 X{w.num(w.coord())} Y{w.num(w.coord())} Z{w.num(w.coord(0, 20))}")
-            w.emit(kind)
             w.incremental = False
+            if rng.random() < 0.4:  # SheetCAM's Mach3 plasma posts: "G28.1 Z3.00", the axis words the G0's
+                w.emit(f"{kind} {w.axes([w.pos[0], w.pos[1], w.coord(0, 20)], rng.choice(['Z', 'Z', 'XY']))}")
+            else:
+                w.emit(kind)
             continue
         if kind == "G53":
             w.emit(f"G90 G53 G{rng.choice([0, 1])} X{w.num(w.coord())} Z{w.num(w.coord(-10, 30))}"
@@ -500,7 +509,8 @@ def subroutines() -> tuple[list[str], list[str]]:
 def chunk_mcodes(w: _Writer) -> None:
     """M codes and G codes that do not move (spindle, also with the ``$`` spindle word, m-code.adoc "M3, M4, M5":
     ``$0`` the first spindle, ``$-1`` all; coolant, overrides, digital outputs, dwell, path mode) between straight
-    moves; sometimes the modal state saved by M70, units and distance mode changed, and restored by M72 (m-code.adoc
+    moves, a dwell also with an X word (LinuxCNC: the dwell, then the modal G1 to it); sometimes the modal state
+    saved by M70, units and distance mode changed, and restored by M72 (m-code.adoc
     "M70 Save Modal State", "M72 Restore Modal State")."""
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(0, 10))
@@ -519,6 +529,8 @@ def chunk_mcodes(w: _Writer) -> None:
         elif code == "distance":
             w.incremental = not w.incremental
             code = "G91" if w.incremental else "G90"
+        elif code == "G4 P0.2" and rng.random() < 0.3:  # the dwell, then the modal G1 to the axis words
+            code += f" {w.axes([w.pos[0] + w.coord(-8, 8), w.pos[1], w.pos[2]], 'X')}"
         w.emit(code)
         w.emit(f"G1 {w.axes([w.pos[0] + w.coord(-8, 8), w.pos[1] + w.coord(-8, 8), w.pos[2]], 'XY')} {w.feed()}")
     if saved:

@@ -8,9 +8,10 @@ short segments, feed changes, dwells, G61 / G64 / G64 P; :func:`tnc_cam_program`
 with cycle 32 tolerances; :func:`rotary_cam_program`: coarse chords with A-C swinging and cornering under G94 and
 G93, tangent arc chains of alternating sense, an axis of A-C/U-W written on some blocks only along lines and arcs,
 long lines and small tangent arcs of either sense with one or two of A-C/U-W moving on every block,
-a third in G20), each run under the trapezoid and the S-curve with random but sane limits per axis
-(:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, 400x for rotary_cam, rapid
-rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
+a third in G20; :func:`fanuc_cam_program`: Fanuc 30i code with G06.2 NURBS and G02.4 three-dimensional arcs among
+such chords, under ``--dialect fanuc``), each run under the trapezoid and the S-curve with random but sane limits
+per axis (:func:`random_limits`: velocity, acceleration and jerk differing up to 40x between axes, 400x for
+rotary_cam, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoints` names what is wrong:
 
 * ``nonfinite``: a NaN or infinity in a column;
 * ``limits``: an axis beyond its velocity, acceleration (or, S-curve, jerk) limit by finite differences or in the
@@ -50,14 +51,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks import linuxcnc_fuzz  # noqa: E402
 from interpolators import DEFAULT_TOLERANCE, AxisLimits, interpolate, parse_program  # noqa: E402
-from interpolators.context import DEFAULT_CONTEXT, INTERPOLATION_CONTEXT, MachineContext  # noqa: E402
+from interpolators.context import DEFAULT_CONTEXT, DIALECTS, INTERPOLATION_CONTEXT, MachineContext  # noqa: E402
 from tests.interpolators import fanuc_generator, tnc_generator  # noqa: E402
 from tests.interpolators.setpoint_checks import check_limits, path_distances, xyz  # noqa: E402
 from vcnc.core.axes import EXTRA_NAMES  # noqa: E402
 from vcnc.errors import GCodeError, ProgramTooLongError  # noqa: E402
 
 #: Sources of programs: name -> (program text, machine context) of a seed.
-SOURCES = ("cam", "tnc_cam", "rotary_cam", "linuxcnc", "fanuc", "haas", "tnc")
+SOURCES = ("cam", "tnc_cam", "rotary_cam", "linuxcnc", "fanuc", "haas", "tnc", "fanuc_cam")
 #: Largest number of samples a case may take (a longer one is skipped as ``too_long``).
 MAX_SAMPLES = 3_000_000
 #: rotary_cam seeds from this one run a quarter each at 0.25 ms and 4 ms (seeds below keep their sample times).
@@ -403,6 +404,75 @@ def cam_program(seed: int, *, tnc: bool = False) -> str:
     return "\n".join([*g.lines, "M2"]) + "\n"
 
 
+def _fanuc_nurbs(g: _Cam) -> None:
+    """A Fanuc ``G06.2`` NURBS as Siemens NX Post Builder's Fanuc 30i post writes it (``G06.2 X Y Z K F P<rank>``, a
+    block ``X Y Z K [R]`` per control point, then ``K`` alone rank times; FANUC 15i-MA operator's manual "NURBS
+    interpolation (G06.2)"): rank 2-4, 3-10 control points 0.05-20 mm apart turning up to 70 degrees at each,
+    weights 0.3-3 or none, knots clamped and uniform or random inside; the first control point the current one."""
+    r = g.r
+    rank = r.choice((2, 3, 4, 4))
+    n = r.randint(max(rank, 3), rank + 6)
+    step, heading = 10 ** r.uniform(math.log10(0.05), math.log10(20)), r.uniform(0, 2 * math.pi)
+    points = [g.pos.copy()]
+    for _ in range(n - 1):
+        heading += math.radians(r.uniform(-70, 70))
+        points.append(points[-1] + step * np.array([math.cos(heading), math.sin(heading), r.choice((0, 0, 0.2))]))
+    inner = (sorted(r.uniform(0.0, 1.0) for _ in range(n - rank)) if r.random() < 0.5
+             else [(k + 1) / (n - rank + 1) for k in range(n - rank)])
+    knots = [0.0] * rank + inner + [1.0] * rank
+    weighted = r.random() < 0.5
+    for k, p in enumerate(points):
+        words = " ".join(f"{a}{_num(r, v)}" for a, v in zip("XYZ", p)) if k else "X{:.6f} Y{:.6f} Z{:.6f}".format(*p)
+        weight = f" R{r.uniform(0.3, 3):.4f}" if weighted and 0 < k < n - 1 else ""
+        head = f"G06.2 P{rank} " if k == 0 else ""
+        feed = f" F{g.feed():.0f}" if k == 0 else ""
+        g.lines.append(f"{head}{words} K{knots[k]:.6f}{weight}{feed}")
+        if k:
+            g.pos = np.array([float(w[1:]) for w in words.split()])
+    g.lines += [f"K{v:.6f}" for v in knots[n:]]
+
+
+def _fanuc_arc3d(g: _Cam) -> None:
+    """Fanuc ``G02.4`` three-dimensional arcs as Fusion's fanuc.cps writes them with "Allow 3D arcs" (the arc's
+    middle, then its end; :mod:`interpolators.iso_arc3d`): a chain of arcs 0.05-20 mm in radius on circles tilted
+    5-90 degrees, each leaving where the last ended."""
+    r = g.r
+    g.move(g.pos, feed=g.feed())
+    for _ in range(r.randint(1, 6)):
+        radius = 10 ** r.uniform(math.log10(0.05), math.log10(20))
+        tilt, turn = math.radians(r.uniform(5, 90)), r.uniform(0, 2 * math.pi)
+        u = np.array([math.cos(turn), math.sin(turn), 0.0])
+        v = np.array([-math.sin(turn) * math.cos(tilt), math.cos(turn) * math.cos(tilt), math.sin(tilt)])
+        centre = g.pos - radius * u
+        sweep = r.uniform(0.3, 1.9 * math.pi)
+        for a in (sweep / 2, sweep):
+            p = centre + radius * (u * math.cos(a) + v * math.sin(a))
+            words = " ".join(f"{x}{_num(r, c)}" for x, c in zip("XYZ", p))
+            g.lines.append(f"G02.4 {words}" if a < sweep else words)
+            g.pos = np.array([float(w[1:]) for w in words.split()])
+
+
+_FANUC_SECTIONS = (_chords, _arc_chain, _zigzag, _helix, _reversals, _fanuc_nurbs, _fanuc_nurbs, _fanuc_arc3d,
+                   _fanuc_arc3d)
+
+
+def fanuc_cam_program(seed: int) -> str:
+    """A CAM-like Fanuc 30i program of ``seed`` (``--dialect fanuc``): ``G05.1 Q1`` AI contour control, dense chords,
+    arc chains, helices and reversals as :func:`cam_program`'s, ``G06.2`` NURBS (:func:`_fanuc_nurbs`) and
+    ``G02.4`` three-dimensional arcs (:func:`_fanuc_arc3d`), in G61 / G64 / G64 P."""
+    r = random.Random(f"fanuc_cam:{seed}")
+    g = _Cam(r)
+    g.lines.append("G21 G17 G90 G40 G94")
+    g.lines.append("G05.1 Q1")
+    g.move([0, 0, 5], rapid=True)
+    for _ in range(r.randint(2, 6)):
+        g.mode()
+        r.choice(_FANUC_SECTIONS)(g)
+        if r.random() < 0.2:
+            g.move(g.pos + [0, 0, r.uniform(0.5, 5)], rapid=True)
+    return "\n".join([*g.lines, "G05.1 Q0", "M30"]) + "\n"
+
+
 def program_of(source: str, seed: int) -> tuple[str, MachineContext]:
     """The program text of ``source`` and ``seed`` and the machine context it runs on."""
     if source == "cam":
@@ -411,6 +481,8 @@ def program_of(source: str, seed: int) -> tuple[str, MachineContext]:
         return cam_program(seed, tnc=True), DEFAULT_CONTEXT
     if source == "rotary_cam":
         return rotary_cam_program(seed), INTERPOLATION_CONTEXT
+    if source == "fanuc_cam":
+        return fanuc_cam_program(seed), MachineContext(dialect=DIALECTS["fanuc"])
     if source == "linuxcnc":
         return linuxcnc_fuzz.generate(seed)[0], INTERPOLATION_CONTEXT
     if source in ("fanuc", "haas"):

@@ -318,6 +318,20 @@ class Dialect:
         "Tool Length Compensation + (Add)" takes the Fanuc words) and Fadal (its Format 2 is Fanuc's) follow
         Fanuc's default here: no Haas or Fadal text we found says otherwise. A machine file's ``[program]
         length_offset_motion`` sets it for its machine (false: Fanuc TOS = 1).
+    fanuc_feed : bool
+        Whether F is measured as a Fanuc measures it (True: ``fanuc``) or along the X Y Z path (False: RS274/NGC 3,
+        Sec. 2.1.2.5, LinuxCNC, grbl's three axes; Haas and Fadal: no text we found says otherwise). A Fanuc takes
+        a helix's F along its arc in the plane, the third axis following (FANUC Series 15i/150i-MODEL B connection
+        manual (function) B-63783EN-1/01, 6.7 "Helical interpolation B": "If HTG is set to 0, a feedrate along an
+        arc is specified by an F command. Therefore, the feedrate on a linear axis is F x length of linear axis /
+        length of circular arc"; HTG, parameter No. 1401#2, 0 by default; 16/18 B-63002EN "Helical interpolation":
+        "The feedrate along the circumference of two circular interpolated axes is the specified feedrate"), and a
+        line's F along every axis it moves, a rotary axis' degrees counted as lengths in the input unit (FANUC Power
+        Mate i-D/H operator's manual B-63174EN/03, 4.2 "Linear interpolation (G01)": "When the straight line axis
+        alpha (such as X, Y, or Z) and the rotating axis beta (such as A, B, or C) are linearly interpolated, the
+        feed rate is that in which the tangential feed rate in the alpha and beta cartesian coordinate system is
+        commanded by F"; "G91 G01 X20.0 C40.0 F300.0 ; This changes the unit of the C axis from 40.0 deg to 40mm
+        with metric input", so the block takes sqrt(20^2 + 40^2) / 300 = 0.14907 min).
     """
 
     name: str = "linuxcnc"
@@ -333,6 +347,7 @@ class Dialect:
     rapid_feed_stop: bool = True
     feed_mode_clears_feed: bool = True
     length_offset_motion: bool = False
+    fanuc_feed: bool = False
 
     def __post_init__(self) -> None:
         if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
@@ -355,7 +370,7 @@ class Dialect:
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({
     "linuxcnc": Dialect(name="linuxcnc", dwell_p_unit="s"),
     "fanuc": Dialect(name="fanuc", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False,
-                     length_offset_motion=True),
+                     length_offset_motion=True, fanuc_feed=True),
     "haas": Dialect(name="haas", dwell_p_unit="ms", tap_out_to_r=True, feed_mode_clears_feed=False,
                     length_offset_motion=True),
     "grbl": Dialect(name="grbl", dwell_p_unit="s", arc_rule="grbl", rapid_feed_stop=False,

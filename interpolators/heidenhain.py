@@ -79,7 +79,10 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     FUNCTION FEED DWELL D-TIME0.5 F-TIME5 .. RESET
                                     a dwell after every F-TIME of feed motion (heidenhain_feed_dwell)
     FN 20: WAIT FOR ..              PLC synchronisation: met at once, noted; FN 19/29 PLC, FN 37 EXPORT,
-                                    FN 38 SEND, FUNCTION LIFTOFF/S-PULSE/COUNT: no motion, noted
+                                    FN 38 SEND, FUNCTION LIFTOFF/S-PULSE/COUNT, FUNCTION PARAXCOMP
+                                    DISPLAY/OFF, PARAXMODE OFF: no motion, noted (PARAXCOMP MOVE an error)
+    Q12 = 400 % 360, Q7 = SGN Q6    % the division remainder (40); SGN 0 is +1 (heidenhain_formulas)
+    L X+20 Z+50 R0 FMAX M130        in a tilted plane: this line in the untilted coordinates (heidenhain_motion)
     L Z-5 F500 M103 F20             M103: the feed down the tool axis at most F percent (until M103 alone)
     CYCL CALL PAT F500 / F MAX      the moves between the pattern's points at F (F MAX: rapid)
     L Z-10 FMAX M91                 M91: coordinates of this block are machine coordinates
@@ -90,7 +93,8 @@ Blocks read here (HEIDENHAIN TNC 640 / iTNC 530 conversational user's manuals)::
     FUNCTION TCPM F TCP AXIS POS    their rotary words moving too (chords within the tolerance, F the
       PATHCTRL AXIS .. RESET TCPM   tip's feed on the part: heidenhain_tcpm, tcp); the F right after
                                     M128 is its compensation feed (noted); AXIS SPAT: A B C are
-                                    spatial angles, the tool's direction (heidenhain_tcpm.spatial_axes)
+                                    spatial angles, the tool's direction (heidenhain_tcpm.spatial_axes);
+                                    in a tilted plane that turns: still lines as the plane's (tncposts38)
     LN X.. Y.. Z.. TX.. TY.. TZ..   the tool orientation alone (peripheral milling): no displacement
                                     under R0; FUNCTION FILECOPY/FILEMOVE/FILEDELETE: no motion, noted
     M2, M30                         end of the main program (subprograms follow)
@@ -472,7 +476,8 @@ class Machine:
         coordinates of the machine position, under M128 / FUNCTION TCPM those of the tool tip on the turned part
         (:func:`interpolators.tcp.part_point`). Our reading: under TCPM the program's X Y Z are the tip's, so a
         position read back and programmed again (``L X+Q1``) stays where it is, as G92 under G43.4 takes the tip."""
-        point = part_point(self.context.kinematics, self.extra, self.pos, self.tool_length) if self.tcpm else self.pos
+        tip = self.tcpm and not tilt_turns(self.tilt)  # in a plane that turns: the plane's point, TCPM or not
+        point = part_point(self.context.kinematics, self.extra, self.pos, self.tool_length) if tip else self.pos
         return self.to_program(point)
 
     def no_radius(self) -> str:

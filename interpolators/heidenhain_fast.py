@@ -43,7 +43,7 @@ import numpy as np
 
 from interpolators.arcs import arc_from_center, arc_from_radius
 from interpolators.heidenhain_paths import arc_end_tolerance
-from interpolators.heidenhain_words import SourceBlock
+from interpolators.heidenhain_words import SourceBlock, ignored_m_note
 from interpolators.iso_words import PLAIN_NUMBER
 from interpolators.program import Block
 from interpolators.tcp import machine_point, part_point
@@ -258,4 +258,4 @@ class PlainBlocks:
         """The notes of the block's M functions (none with a meaning here: spindle, coolant, and others ignored)."""
         for v in ms:
             if v not in _QUIET_M:
-                self.m.note(f"M{v} ignored (no motion)")
+                self.m.note(ignored_m_note(v))

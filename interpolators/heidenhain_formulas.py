@@ -3,12 +3,18 @@
 
 A program that loops (``LBL 2`` ... ``FN 12: IF +Q4 LT +18,85 GOTO LBL 2``) evaluates the same formula
 text tens of thousands of times. :func:`compile_formula` turns the token list of a formula into a tree
-of closures once by recursive descent (``+ -`` over ``* /`` over ``^``, right-associative, over unary
+of closures once by recursive descent (``+ -`` over ``* / %`` over ``^``, right-associative, over unary
 signs and functions, over numbers, parameters and parentheses); each evaluation then only reads the Q
 parameters and computes, left to right within a level.
 
 Errors that depend on the values (division by zero, a function or power outside its domain) are
-raised during the evaluation through the context's ``fail``. A formula that does not parse raises
+raised during the evaluation through the context's ``fail``.
+
+``a % b`` is the modulo value, the division remainder (iTNC 530 user's manual 60642x-04, 9.8 "Entering formulas
+directly": "Calculate modulo value (division remainder) Example: Q12 = 400 % 360 Result: Q12 = 40"; the same in
+the TNC 320 and TNC 620 manuals). Our reading: it binds as ``*`` and ``/`` do (the manuals give no precedence),
+the remainder takes the sign of the dividend (``math.fmod``: the manuals give no negative example), and a
+modulo by 0 is an error as a division by 0 is. A formula that does not parse raises
 :class:`FormulaSyntaxError` naming what is wrong (a missing operand or ``)``, an unknown function, an
 unexpected token), once, when it is compiled.
 """
@@ -64,24 +70,24 @@ class _Compiler:
 
     def term(self) -> Compiled:
         first, rest = self.power(), []
-        while (t := self.peek()) is not None and t[0] == "op" and t[1] in "*/":
+        while (t := self.peek()) is not None and t[0] == "op" and t[1] in "*/%":
             self.i += 1
             start = self.i
             operand = self.power()
-            rest.append((t[1] == "/", operand, " ".join(text for _, text in self.tokens[start:self.i])))
+            rest.append((t[1], operand, " ".join(text for _, text in self.tokens[start:self.i])))
         if not rest:
             return first
 
         def run(ctx: FormulaContext) -> float:
             value = first(ctx)
-            for divide, g, text in rest:
+            for op, g, text in rest:
                 rhs = g(ctx)
-                if divide:
-                    if rhs == 0:  # the divisor named: a Q parameter of 0 is often an unset tool or table value
-                        ctx.fail(f"division by zero ({text} is 0)")
-                    value = value / rhs
-                else:
+                if op == "*":
                     value = value * rhs
+                    continue
+                if rhs == 0:  # the divisor named: a Q parameter of 0 is often an unset tool or table value
+                    ctx.fail(f"{'division' if op == '/' else 'modulo'} by zero ({text} is 0)")
+                value = value / rhs if op == "/" else math.fmod(value, rhs)
             return value
         return run
 

@@ -41,11 +41,12 @@ from interpolators.heidenhain_tcpm import (
     TCPM_EXPECTED,
     check_tcpm_on,
     spatial_axes,
+    still_in_tilted_plane,
     tcpm_line,
     tilt_turns,
     tool_vector,
 )
-from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, read_value, read_words
+from interpolators.heidenhain_words import EMPTY_FIELD_NOTE, SourceBlock, Word, ignored_m_note, read_value, read_words
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS
 from interpolators.iso_splines import SPLINE_TOLERANCE
 from interpolators.rotary_wrap import wrap_words
@@ -210,8 +211,7 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         _path_m(w, m, where)
         return False
     if w.value == 128:  # TNC 640 manual, "Retaining the position of the tool tip when positioning tilting axes"
-        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where,
-                      column=w.column, text=w.text)
+        check_tcpm_on(m.context.kinematics, tool_axis=m.plane, where=where, column=w.column, text=w.text)
         m.tcpm, m.tcpm_spatial = True, None  # M128's rotary words are axis positions
         m.note("M128: TCPM (lines of the tool tip on the turned part)")
         return False
@@ -232,8 +232,10 @@ def _one_m(w: Word, m: Machine, where: Where) -> bool:
         m.note(f"M{w.value}: program stop (no motion)")
         m.stop_in_block = True
         m.at_rest = m.at_rest or w.value == 0
+    elif w.value == 130:  # TNC 640 manual, M130: the untilted coordinates in a tilted plane (_untilted_block)
+        m.note("M130: the block's coordinates untilted" if m.tilt is not None else ignored_m_note(130))
     elif w.value not in (3, 4, 5, 8, 9, 89, 91, 92, 99, 140):
-        m.note(f"M{w.value} ignored (no motion)")
+        m.note(ignored_m_note(w.value))
     return False
 
 
@@ -372,6 +374,8 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     seen, ms = _motion_words(kw, words, m, where)
     mvals = [w.value for w in ms]
     m9x = 91 if 91 in mvals else 92 if 92 in mvals else None
+    if m9x is None and 130 in mvals and m.tilt is not None:  # M130: this block in the untilted coordinates
+        m9x = _untilted_block(kw, seen, m, where)
     # M129 ends M128 at the end of its block (TNC 426/430 ISO manual, M128: "M128 becomes effective at the start
     # of block, M129 at the end of block"): a line with M129 is still one of the tip on the turned part
     ended = any(_one_m(w, m, where) for w in ms if w.value != 129)
@@ -403,7 +407,9 @@ def motion_block(kw: str, words: list[Word], m: Machine, where: Where, blk: Sour
     spatial = m.tcpm and m.tcpm_spatial is not None and m9x is None  # FUNCTION TCPM .. AXIS SPAT
     extra = (spatial_axes(seen, m, where) if spatial else _extra_axes(seen, m, where)) if kw == "L" else None
     turning = False  # under M128 a rotary axis moves: the line's chords (heidenhain_tcpm.tcpm_line)
-    if m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
+    if m.tcpm and m9x is None and tilt_turns(m.tilt) and (written or kw != "L" or extra is not None):
+        still_in_tilted_plane("LN" if normal else kw, extra, m, where)  # the plane's line, or an error
+    elif m.tcpm and m9x is None and (written or kw != "L" or extra is not None):
         waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
                    if m.comp != "R0" else None)
         target = _tcpm_target(kw, seen, waiting, m, where)
@@ -627,15 +633,33 @@ def _extra_axes(seen: dict[str, Word], m: Machine, where: Where) -> np.ndarray |
     return target
 
 
+def _untilted_block(kw: str, seen: dict[str, Word], m: Machine, where: Where) -> int:
+    """``M130`` in a tilted working plane: 130, the block's coordinates then being those of the untilted
+    workpiece coordinate system (:func:`interpolators.heidenhain_targets.plane_coords`), or an error.
+
+    TNC 640 user's manual, "Moving to positions in a non-tilted coordinate system with a tilted working plane:
+    M130": with M130 the control places the coordinates of straight-line blocks in the untilted coordinate system
+    and positions the tilted tool to them; M130 acts in its block, in straight lines without radius
+    compensation; the blocks after it run in the tilted plane again. Our reading on a tilting table: the untilted
+    system is the one of the program without the plane, the preset plus the datum shift of before the tilt
+    (``TiltedPlane.base_shift``) and the tool length along Z, not carried by the table (as M91 is not); an arc,
+    RL/RR, M128 or a cycle 8/10/11/26 with it is an error naming M130 (not modelled)."""
+    t = m.transform
+    why = ("an arc or a polar block" if kw not in ("L", "LN") else "radius compensation RL/RR"
+           if m.comp != "R0" or "RCOMP" in seen and seen["RCOMP"].text.upper() != "R0" else "M128 / FUNCTION TCPM"
+           if m.tcpm else "a cycle 8, 10, 11 or 26" if dataclasses.replace(t, tilt=0.0) != type(t)() else None)
+    if why is not None:
+        where.fail(f"M130 (a block in the untilted coordinates of a tilted plane) with {why} is not supported",
+                   column=1, text=where.text, expected="M130 in a straight line L under R0 (TNC 640 manual, M130)")
+    return 130
+
+
 def _tcpm_target(kw: str, seen: dict[str, Word], waiting: str | None, m: Machine, where: Where) -> np.ndarray:
     """The end point of a line under M128 (:mod:`interpolators.heidenhain_tcpm`) on the part with every rotary
     axis at 0 [mm, machine, tool length included]. ``waiting``: what the block is or what waits for it (an LN, a
     corner, an approach, radius compensation: errors)."""
     if kw != "L" or waiting is not None:
         where.fail(f"{waiting or kw} under M128 is not supported", column=1, text=where.text,
-                   expected=TCPM_EXPECTED)
-    if tilt_turns(m.tilt):  # a PLANE .. STAY after M128
-        where.fail("a line under M128 in a tilted working plane is not supported", column=1, text=where.text,
                    expected=TCPM_EXPECTED)
     if m.plane != 2:  # a TOOL CALL .. X / Y after M128 (M128 itself checks the tool axis: check_tcpm_on)
         where.fail(f"a line under M128 with tool axis {'XYZ'[m.plane]} is not supported", column=1, text=where.text,

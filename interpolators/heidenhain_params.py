@@ -47,7 +47,7 @@ __all__ = ["QParameters", "FN_ARITHMETIC", "FN_CONDITIONS", "MACHINE_STATUS", "Q
 Q_NAME_RE = re.compile(r"Q[LR]?\d+", re.I)
 
 _TOKEN_RE = re.compile(
-    r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+))|(?P<q>Q[LR]?\d+)|(?P<name>[A-Z]+)|(?P<op>[-+*/^()]))", re.I
+    r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+))|(?P<q>Q[LR]?\d+)|(?P<name>[A-Z]+)|(?P<op>[-+*/%^()]))", re.I
 )
 
 #: Formula text -> its compiled closure (:mod:`interpolators.heidenhain_formulas`), shared by all runs; at most
@@ -71,7 +71,9 @@ _FUNCTIONS = {
     "INT": lambda v: float(math.trunc(v)),
     "ABS": abs,
     "FRAC": lambda v: v - math.trunc(v),
-    "SGN": lambda v: float((v > 0) - (v < 0)),
+    # iTNC 530 user's manual 60642x-04, 9.8, "Check algebraic sign of a number": "If result for Q12 = 1, then Q50 >= 0;
+    # If result for Q12 = -1, then Q50 < 0" (the TNC 320 and TNC 620 manuals alike): SGN 0 is 1, not 0
+    "SGN": lambda v: 1.0 if v >= 0 else -1.0,
 }
 
 #: ``FN n`` arithmetic: number -> (operator word between the operands or None, function).
@@ -169,7 +171,7 @@ class QParameters:
                                         "SUBSTR)")
                 if m is None:
                     where.fail(f"malformed formula {text.strip()!r}", column=column + pos, text=text.strip(),
-                               expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
+                               expected="numbers, Q parameters, + - * / % ^ ( ) and functions such as SIN or SQRT")
                 kind = m.lastgroup
                 tokens.append((kind, m.group(kind).upper()))
                 pos = m.end()
@@ -194,7 +196,7 @@ class _Formula:
 
     def fail(self, why: str):
         self.where.fail(f"bad formula {self.text!r}: {why}", column=self.column, text=self.text,
-                        expected="numbers, Q parameters, + - * / ^ ( ) and functions such as SIN or SQRT")
+                        expected="numbers, Q parameters, + - * / % ^ ( ) and functions such as SIN or SQRT")
 
 
 _FN_RE = re.compile(r"FN\s*(\d+)\s*:\s*", re.I)

@@ -19,13 +19,18 @@ __all__ = ["plane_coords", "program_target"]
 
 def plane_coords(seen: dict[str, Word], m: Machine, where: Where, *, m9x: int | None) -> tuple[np.ndarray, set]:
     """Machine end point [mm] of the axis words of a block, and the axes written (M91: machine
-    coordinates, M92: from ``context.home``; neither transformed). Under M91/M92 the tool length is not added
+    coordinates, M92: from ``context.home``; neither transformed; ``m9x`` 130: M130's untilted coordinates of a
+    tilted plane, the tool length added). Under M91/M92 the tool length is not added
     and a radius compensation stays in force (TNC 310 user's manual, 7.3 "Miscellaneous functions for
     coordinate data": "Radius compensation remains the same in blocks that are programmed with M91 or M92.
     The tool length, however, is not compensated"; the TNC 360 manual's M91/M92 page alike)."""
     values = {k: seen[k].value * m.scale for k in ("X", "Y", "Z", "IX", "IY", "IZ") if k in seen}
     if m9x is None:
         return program_target(m, values, m.pos)
+    if m9x == 130:  # M130 in a tilted plane: the untilted coordinates, tool length included (heidenhain_motion)
+        origin = np.add(m.preset_value(), m.tilt.base_shift, dtype=float)
+        origin[m.plane] += m.tool_length
+        return _absolute_target(values, m.pos, origin)
     origin = np.zeros(3) if m9x == 91 else np.array(m.context.home, dtype=float)
     return _absolute_target(values, m.pos, origin)
 

@@ -23,8 +23,16 @@ change the feed rate of the tool relative to the workpiece"; the F after M128, t
 movements, is noted and ignored) and ``FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS`` (:func:`function_tcpm`).
 ``LN X Y Z NX NY NZ TX TY TZ`` under it is the tool-vector form (:func:`tool_vector`): the rotary axes turn to
 make T the spindle's axis, moving linearly to it, the part point displaced along N by the delta values. An arc,
-a polar, approach or compensated block, a cycle, a tilted plane that turns (:func:`tilt_turns`), a head-tilting
-machine or a tool axis other than Z are errors naming them.
+a polar, approach or compensated block, a cycle, a head-tilting machine or a tool axis other than Z are errors
+naming them.
+
+In a tilted working plane that turns the workpiece coordinates (:func:`tilt_turns`; the CAM posts' "3+2" with TCPM
+on: hyperMILL's and NX's TNC 640 posts write ``PLANE SPATIAL .. TURN`` then ``FUNCTION TCPM F TCP AXIS POS
+PATHCTRL AXIS`` or ``M128``) a line whose rotary axes stay is the plane's line: the programmed X, Y, Z are the tool
+tip in the tilted coordinates with or without TCPM, which only acts when a rotary axis moves (TNC 640 user's
+manual, "Inclined-tool machining in a tilted plane"; M128: "the position of the tool tip relative to the workpiece
+... when positioning tilting axes"). A rotary axis moving there, or another block than such a line, is an error
+naming it (:func:`still_in_tilted_plane`; our reading, not modelled).
 """
 
 from __future__ import annotations
@@ -45,12 +53,14 @@ if TYPE_CHECKING:
     from interpolators.heidenhain import Machine
     from interpolators.heidenhain_transforms import TiltedPlane
 
-__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "spatial_axes", "tcpm_line", "tilt_turns", "tool_vector"]
+__all__ = ["TCPM_EXPECTED", "check_tcpm_on", "function_tcpm", "spatial_axes", "still_in_tilted_plane", "tcpm_line",
+           "tilt_turns", "tool_vector"]
 
 #: What M128 / FUNCTION TCPM need here.
 TCPM_EXPECTED = ("M128 or FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS on a machine whose rotary axes turn the part "
-                 "([program.kinematics] kind = \"table\"), tool axis Z, no tilted plane that turns the "
-                 "workpiece coordinates, straight lines L until M129 / FUNCTION RESET TCPM")
+                 "([program.kinematics] kind = \"table\"), tool axis Z, straight lines L until M129 / FUNCTION "
+                 "RESET TCPM (in a tilted plane that turns the workpiece coordinates: lines with the rotary axes "
+                 "still)")
 
 #: The words of FUNCTION TCPM and what vcnc reads of each (None: read as M128 does; AXIS SPAT: :func:`spatial_axes`).
 _TCPM_WORDS = {
@@ -79,8 +89,7 @@ def tilt_turns(tilt: TiltedPlane | None) -> bool:
             or any(abs(math.remainder(a, 360.0)) > 1e-9 for a in tilt.angles.values()))
 
 
-def check_tcpm_on(kinematics: Kinematics | None, *, tool_axis: int, tilted: bool, where: Where, column: int,
-                  text: str) -> None:
+def check_tcpm_on(kinematics: Kinematics | None, *, tool_axis: int, where: Where, column: int, text: str) -> None:
     """An error at ``where`` unless M128 can be read on this machine in this state (see the module text)."""
     if kinematics is None:
         where.fail(f"{text.upper()} (TCPM, tool centre point management) needs the machine's kinematics",
@@ -88,9 +97,23 @@ def check_tcpm_on(kinematics: Kinematics | None, *, tool_axis: int, tilted: bool
     if kinematics.kind != "table":
         where.fail(f"{text.upper()} (TCPM) on a head-tilting machine is not supported", column=column, text=text,
                    expected=TCPM_EXPECTED)
-    if tool_axis != 2 or tilted:
-        where.fail(f"{text.upper()} (TCPM) with a tilted working plane or a tool axis other than Z is not supported",
+    if tool_axis != 2:
+        where.fail(f"{text.upper()} (TCPM) with a tool axis other than Z is not supported",
                    column=column, text=text, expected=TCPM_EXPECTED)
+
+
+def still_in_tilted_plane(kw: str, extra: np.ndarray | None, m: Machine, where: Where) -> None:
+    """A block under M128 / FUNCTION TCPM in a tilted plane that turns the workpiece coordinates: nothing when it is
+    a line ``L`` whose rotary axes stay (the caller runs it as the plane's line), else an error naming what it is
+    (a rotary axis moving, an arc, a compensated or approach block: see the module text)."""
+    if extra is not None and np.any(np.abs(extra[:3] - m.extra[:3]) > 1e-9):
+        where.fail("a rotary axis moving under M128 / FUNCTION TCPM in a tilted working plane is not supported",
+                   column=1, text=where.text, expected=TCPM_EXPECTED)
+    waiting = ("RND/CHF" if m.pending is not None else "APPR/DEP" if m.approach is not None else "RL/RR"
+               if m.comp != "R0" else None)
+    if kw != "L" or waiting is not None:
+        where.fail(f"{waiting or kw} under M128 in a tilted working plane is not supported", column=1,
+                   text=where.text, expected=TCPM_EXPECTED)
 
 
 def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
@@ -125,8 +148,7 @@ def function_tcpm(rest: str, m: Machine, where: Where, *, column: int) -> None:
                        expected=TCPM_EXPECTED)
         spat = spat or word == "AXIS SPAT"
         pos = wm.end()
-    check_tcpm_on(m.context.kinematics, tool_axis=m.plane, tilted=tilt_turns(m.tilt), where=where, column=column,
-                  text="FUNCTION TCPM")
+    check_tcpm_on(m.context.kinematics, tool_axis=m.plane, where=where, column=column, text="FUNCTION TCPM")
     m.tcpm = True
     m.tcpm_spatial = np.zeros(3) if spat else None
     m.note("FUNCTION TCPM: lines of the tool tip on the turned part (as M128)"

@@ -277,6 +277,8 @@ def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0
             return f"{kw} {form} {second}: no motion"
         if form in _NO_MOTION_FUNCTIONS:
             return f"{kw} {form}: {_NO_MOTION_FUNCTIONS[form]} (no motion)"
+        if form in ("PARAXCOMP", "PARAXMODE"):
+            return _parallel_axes(form, second, where, column0=column0)
         where.fail(f"{what} is not supported", column=column0, text=what,
                    expected="a FUNCTION vcnc runs: TCPM, RESET TCPM, DWELL, FEED DWELL, MODE MILL, "
                             + ", ".join(_NO_MOTION_FUNCTIONS))
@@ -289,6 +291,29 @@ def tilt_block(kw: str, rest: str, where: Where, params: QParameters, *, column0
             return f"{what} with angles 0: no tilt (no motion)"
     where.fail(f"{what} (a tilted working plane) is not supported without the machine's kinematics", column=column0,
                text=what, expected=KINEMATICS_HINT)
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def _parallel_axes(form: str, second: str, where: Where, *, column0: int) -> str:
+    """``FUNCTION PARAXCOMP DISPLAY|MOVE|OFF``, ``FUNCTION PARAXMODE ..|OFF``: the note of a block that moves
+    nothing, else an error naming it.
+
+    TNC7 basic user's manual 81762x-19, "Defining behavior when positioning parallel axes with FUNCTION
+    PARAXCOMP": DISPLAY "includes movements of the parallel axis in the position display of the associated main
+    axis" (the display only), MOVE "compensate[s] for movements of a parallel axis by performing compensation
+    movements in the associated main axis", OFF switches both off; FUNCTION PARAXMODE selects the parallel axis
+    that machines in place of a main axis, PARAXMODE OFF ends it. CAM posts write the OFF forms as resets in a
+    program's header. What moves the main axes otherwise (MOVE, a PARAXMODE with axes) is not modelled: an error."""
+    what = f"FUNCTION {form} {second}".strip()
+    if second == "OFF":
+        return f"{what}: parallel axes as programmed (no motion)"
+    if form == "PARAXCOMP" and second == "DISPLAY":
+        return f"{what}: the parallel axis summed into the main axis' display only (no motion)"
+    why = ("the main axis moving against the parallel axis" if form == "PARAXCOMP" and second == "MOVE"
+           else "a parallel axis machining in place of a main axis" if form == "PARAXMODE"
+           else "expected DISPLAY, MOVE or OFF")
+    where.fail(f"{what} ({why}) is not supported", column=column0, text=what,
+               expected="FUNCTION PARAXCOMP DISPLAY / OFF, FUNCTION PARAXMODE OFF (no motion)")
     raise AssertionError("unreachable")  # pragma: no cover
 
 

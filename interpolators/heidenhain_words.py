@@ -27,7 +27,8 @@ import re
 from interpolators._words import NUMBER_RE, Where, lines_of, token_at
 from interpolators.heidenhain_params import Q_NAME_RE, QParameters
 
-__all__ = ["EMPTY_FIELD_NOTE", "SourceBlock", "Word", "decimal_points", "source_blocks", "read_words", "read_value"]
+__all__ = ["EMPTY_FIELD_NOTE", "SourceBlock", "Word", "decimal_points", "ignored_m_note", "source_blocks", "read_words",
+           "read_value"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -396,3 +397,21 @@ def _unknown_word(tok: str, col: int, where: Where) -> None:
         where.fail(f"unknown word {tok!r}: no radius compensation is written with the letter O", column=col,
                    text=tok, expected="R0 (with the digit zero), RL or RR")
     where.fail(f"unknown word {tok!r}", column=col, text=tok, expected=WORDS_EXPECTED)
+
+
+#: M functions that change the feed or a compensated corner in a way vcnc does not model (TNC 640 user's manual,
+#: "Miscellaneous functions"): the note says what the run leaves out, rather than "no motion".
+_M_NOT_MODELLED = {
+    97: "M97: small contour steps under RL/RR machined as the TNC would (not modelled: compensated as without it)",
+    98: "M98: open contour corners under RL/RR (not modelled: compensated as without it)",
+    109: "M109/M110: the feed at the cutting edge on compensated arcs (not modelled: F at the tool centre)",
+    110: "M109/M110: the feed at the cutting edge on compensated arcs (not modelled: F at the tool centre)",
+    116: "M116: the feed of rotary axes in mm/min (not modelled: F of a rotary axis read in deg/min)",
+    130: "M130 without a tilted working plane: no effect",  # in one: heidenhain_motion's M130
+}
+
+
+def ignored_m_note(value: int) -> str:
+    """The note of an M function the run gives no meaning: what it leaves out (:data:`_M_NOT_MODELLED`), else
+    ``M<n> ignored (no motion)``."""
+    return _M_NOT_MODELLED.get(value, f"M{value} ignored (no motion)")

@@ -1080,6 +1080,15 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     _lathe_program(seen, gcodes, st, where)
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
+    if gcodes.get("polar", (0,))[0] == 150 and "H" in seen:
+        # Okuma OSP (OSP-E100M/P300M programming manuals, G15 "work coordinate system selection", modal; Fusion's
+        # okuma.cps writes "G15 H<work offset>" then "G56 Z.. H<n>" for the tool length and "G71 Z.." for the
+        # cycles' return level): read as Fanuc's polar cancel, the offsets would be lost without a word
+        w = gcodes["polar"][1]
+        where.fail(f"G15 {seen['H'].text}: Okuma OSP's work coordinate system selection (then G56 H is its tool "
+                   "length offset, G71 Z its cycle return level); vcnc reads no OSP program (Fanuc's G15, polar "
+                   "coordinates off, takes no H)", column=w.column, text=w.text,
+                   expected="a Fanuc/Haas/LinuxCNC/grbl program: G54-G59 and G43 H in place of G15 H and G56 H")
     for grp in ("rotation", "scaling", "polar"):
         if grp in gcodes and gcodes[grp][0] not in (680, 510, 160):
             # G69, G50, G15 are no LinuxCNC codes (interp_array.cc gees[]: -1)

@@ -127,6 +127,7 @@ class CycleWords:
     i: float | None = None  # G76/G87 shift words (Haas; Fanuc with parameter SIJ)
     j: float | None = None
     k: float | None = None  # Haas G73/G83 minimum peck
+    shift_by_q: bool | None = None  # the last G76/G87 block that wrote a shift wrote Q (True) or I J (False)
     factors: tuple[float, float, float] = (1.0, 1.0, 1.0)  # the G51 scaling the series began under
     fagor: bool = False  # a Fagor G81 Z I series: Z is the reference plane, I the depth (interpolators.iso)
     # machine minus program coordinate [mm] along the drilling axis at the series' last block: work, G92 and tool
@@ -339,6 +340,10 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
     for letter in ("R", "Z", "Q", "P", *shift):
         if letter in words:
             setattr(cycle, letter.lower(), words[letter])
+    if g in (76, 87) and ("Q" in words or "I" in words or "J" in words):
+        # Haas (G76, G77: "I/J ... if Q is not specified") takes a written Q over I J; our Fanuc reading takes
+        # I J when written (parameter SIJ), Q otherwise
+        cycle.shift_by_q = "Q" in words and (haas or not ("I" in words or "J" in words))
     if cycle.r is None:
         # LinuxCNC interp_cycles.cc convert_cycle: NCE_R_CLEARANCE_PLANE_UNSPECIFIED_IN_CYCLE when the
         # first block after another motion mode has no R; the R level has no default
@@ -368,8 +373,9 @@ def _sticky_words(g: int, words: dict[str, float], cycle: CycleWords, *, dwell_p
 
 
 def _shift(cycle: CycleWords, scale: float) -> tuple[float, float]:
-    """The G76/G87 shift [mm] in the positioning plane: I J if given, else |Q| along +X."""
-    if cycle.i or cycle.j:
+    """The G76/G87 shift [mm] in the positioning plane: what the series' last G76/G87 block with a shift wrote
+    (|Q| along +X, or I J); without one (the series' values come from G73/G83 blocks) I J if given, else Q."""
+    if cycle.shift_by_q is None and (cycle.i or cycle.j) or cycle.shift_by_q is False:
         return (cycle.i or 0.0) * scale, (cycle.j or 0.0) * scale
     return abs(cycle.q) * scale, 0.0
 

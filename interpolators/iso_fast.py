@@ -114,6 +114,7 @@ class PlainMoves:
         self.fanuc = st.context.dialect.name == "fanuc"
         self.grbl = st.context.dialect.arc_rule == "grbl"
         self.g94_clears = st.context.dialect.feed_mode_clears_feed
+        self.fanuc_feed = st.context.dialect.fanuc_feed  # F along a helix's arc, over every axis of a line
 
     def reset(self) -> None:
         """The general path ran a block: judge the state again before the next plain move."""
@@ -200,8 +201,9 @@ class PlainMoves:
             extra_start, extra_target = self._extra(extra, scale)
         else:
             extra_start = extra_target = None
-        if motion != 0 and (inverse or extra and seg.length == 0):
-            # G93: the block's length over its 1/F minutes; the extra axes alone: the F along their own distance
+        if motion != 0 and (inverse or extra and seg.length == 0 or self.fanuc_feed and (extra or motion >= 20)):
+            # G93: the block's length over its 1/F minutes; the extra axes alone: the F along their own distance;
+            # Fanuc: F along a helix's arc in the plane, over every axis of a line (iso_motion.fanuc_feed_share)
             path_feed = move_feed(st, seg, None if extra_start is None else extra_target - extra_start)
         st.motion = motion
         st.after_g80 = False

@@ -7,6 +7,7 @@ G4, G93-G95), Fanuc 0i-MF operator's manual where the dialects differ (each func
 from __future__ import annotations
 
 import dataclasses
+import math
 import re
 from typing import TYPE_CHECKING, NoReturn
 
@@ -509,10 +510,25 @@ def move_feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> flo
             return length * st.block_f / 60.0
         return st.feed if linear else st.feed_rotary
     if not st.inverse_time:
-        return st.feed
+        return st.feed * fanuc_feed_share(seg, turn, st.scale) if st.context.dialect.fanuc_feed else st.feed
     if type(seg) is Arc and st.context.dialect.name == "fanuc":
         return seg.length * st.block_f / (60.0 * abs(seg.sweep))
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
+
+
+def fanuc_feed_share(seg: Line | Arc, turn: np.ndarray | None, scale: float) -> float:
+    """The speed along ``seg``'s X Y Z path per unit of F on a Fanuc (:attr:`interpolators.context.Dialect.fanuc_feed`):
+    a helix's length over its arc's in the plane (F is the feed along that arc, parameter HTG = 0); a line's length
+    over the length of its move in every axis, ``turn`` the motion of a, b, c [deg], u, v, w [mm], the degrees
+    counted as lengths in the program's unit (``scale`` mm per unit); 1 otherwise."""
+    if type(seg) is Arc:
+        planar = seg.radius * abs(seg.sweep)
+        return seg.length / planar if seg.helix != 0 and planar > 0 else 1.0
+    if turn is None or seg.length == 0 or not np.any(turn != 0):
+        return 1.0
+    path = seg.length / scale
+    others = np.concatenate([turn[:3], turn[3:] / scale])
+    return path / math.sqrt(path * path + float(others @ others))
 
 
 #: A whole-number G04 P of this many seconds or more, under a dialect that reads P in seconds, gets a note [s]:

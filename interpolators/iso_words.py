@@ -163,7 +163,7 @@ def foreign_hint(tok: str, *, first: bool = True) -> str:
     ``mfunc53.mac`` as github.com/tcmaker/cnc1325 keeps it), and, our reading of an Acorn router's macros, a macro
     file to run, ``G65 "\\cncm\\defines.cnc"``; a grbl ``$`` line (grbl wiki "Grbl v1.1 Configuration": "$x=val",
     "$H"), which only the grbl dialect reads (:mod:`interpolators.iso_grbl`), on a line of its own (``first``: the
-    token starts its line; inside a block grbl reads none)."""
+    token starts its line; inside a block grbl reads none); Fanuc's ``,A`` (direct drawing dimensions)."""
     if re.fullmatch(r"\*\d+", tok):
         return " (a RepRap/Marlin line checksum, which a 3D printer host adds: no CNC control reads it)"
     if ord(tok[0]) < 32:
@@ -174,6 +174,11 @@ def foreign_hint(tok: str, *, first: bool = True) -> str:
     if tok.startswith("$"):
         return (" (a grbl setting or system command, such as $32=1 (laser mode) or $H (homing), which grbl reads "
                 "on a line of its own: read the program with --dialect grbl)")
+    if re.match(r",\s*A", tok, re.I):
+        # FANUC Series 0i-TF / 30i operator's manuals, "Direct drawing dimension programming": ",A_" the angle of a
+        # straight line, with one end coordinate (an option; ,C ,R are read: interpolators.iso_corners)
+        return (" (Fanuc's ,A: the angle of a line in direct drawing dimension programming, an option vcnc does not "
+                "read; write both end coordinates)")
     if tok.startswith('"'):
         return (" (a quoted text, as Centroid CNC12 macros write a prompt, M225 #100 \"text\", or a macro file, "
                 "G65 \"file\"; vcnc reads ISO G-code with Fanuc macro B or LinuxCNC O-codes)")

@@ -29,6 +29,7 @@ tool radius, a cycle's R plane is above its bottom and below the initial level, 
 from __future__ import annotations
 
 import dataclasses
+import math
 import random
 
 from interpolators.context import DIALECTS, MachineContext, Tool
@@ -46,7 +47,8 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "tool_change", "g91_arcs", "comp_rotated", "cycles_rotated", "boring", "corner_words", "nested_sub",
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
-            "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch")
+            "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch",
+            "length_block", "length_reference", "length_cycle", "rigid_tap_end", "arc3d")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -890,6 +892,143 @@ class _Gen:
             self.subs.append([f"O{prog} (BRANCH)", *body])
             self.emit(f"M98 P{prog}{repeat}")
 
+    def length_block_section(self) -> None:
+        """A tool length change in a G00/G01 block without a Z word, which moves Z by the change in that block under
+        TOS = 0 (FANUC B-63943EN-1/02 12.5.2: under TOS = 1 "if no move command is specified together with the
+        G43, G44, or G49 command, the tool will not move along the axis"; the Allen-Bradley 8520 mill manual's
+        "N2 G43 H01;" as a linear block): ``G0 G43 H.. X.. Y..`` after a tool change, ``G43 H..`` alone under the
+        modal G00 or G01, ``G49 G0 X.. Y..``; then an absolute Z, and the spindle tool's offset again."""
+        self.start(self.r.choice((30, 40)))
+        t = self.r.randint(1, 6)
+        kind = self.r.choice(("xy", "xy", "alone", "feed", "g49"))
+        x, y = self.pos[0] + self.r.randint(-4, 4) * 5, self.pos[1] + self.r.randint(-4, 4) * 5
+        if kind == "xy":
+            self.emit(f"G0 G43 H{t} {self.xyz(x, y)}")
+        elif kind == "alone":
+            self.emit(f"G43 H{t}")
+        elif kind == "feed":
+            self.emit(f"G1 {self.xyz(x, y)} {self.feed()}")
+            self.emit(f"G43 H{t}")
+        else:
+            self.emit(f"G49 G0 {self.xyz(x, y)}")
+        self.emit(f"G0 {self.xyz(z=self.pos[2] + 5)}")
+        self.emit(f"G43 H{self.tool or 1} {self.xyz(z=50)}")
+
+    def length_reference_section(self) -> None:
+        """Z at its reference (G28/G30, in G91 or through an intermediate point) or at a G53 machine coordinate
+        cancels the length vector, G43 staying, and the next Z move restores it (0i-MB B-63844EN/02 14.1.2): a
+        reference return between operations, then an incremental Z (which travels the vector back) or an
+        absolute one; or the Fusion post's tool end ``G28 G91 Z0.`` / ``G90`` / ``G49``, which moves nothing."""
+        self.start(20)
+        to_z = self.r.choice(("G91 G28 Z0.", "G91 G28 Z0.", "G91 G30 Z0.", "g28_point", "G53"))
+        if to_z == "g28_point":
+            self.emit(f"G90 G28 {self.xyz(z=self.pos[2] + 5)}")
+        elif to_z == "G53":
+            self.emit(f"G90 G53 G0 Z{_num(-self.r.choice((0, 10)) * self.unit)}")
+        else:
+            self.emit(to_z)
+        after = self.r.choice(("inc", "inc", "abs", "g49"))
+        if after == "inc":
+            self.emit(f"G91 G0 Z{self.v(-self.r.choice((5, 10, 20)))}")
+            self.emit("G90")
+        elif after == "g49":
+            self.emit("G90")
+            self.emit("G49")
+            self.emit(f"G0 {self.xyz(self.pos[0] + 5, self.pos[1])}")
+            self.emit(f"G43 H{self.tool or 1} {self.xyz(z=50)}")
+        self.emit(f"G90 G0 {self.xyz(z=40)}")
+
+    def length_cycle_section(self) -> None:
+        """A tool length change within a canned cycle series, taken up at the next hole's positioning to R
+        (FANUC 15i-MA B-63784EN, canned cycles: "When a tool length offset (G43, G44, or G49) is specified in the
+        canned cycle, the offset is applied at the time of positioning to point R"): ``G43 H.. X..`` in a
+        position block, in G90 or G91 (where R, measured from the initial level, moves by the change), G98 or
+        G99; after ``G80`` an incremental Z, then the spindle tool's offset again."""
+        code = self.r.choice(("G81", "G82", "G83", "G73", "G85"))
+        ret = self.r.choice(("G98", "G99"))
+        self.start(20)
+        t = self.r.randint(1, 6)
+        q = f" Q{self.v(2)}" if code in ("G73", "G83") else ""
+        p = " P300" if code == "G82" else ""
+        if self.r.random() < 0.4:
+            self.emit(f"G91 {ret} {code} X{self.v(5)} Y0. Z{self.v(-5)} R{self.v(-3)}{q}{p} {self.feed()}")
+            self.emit(f"G43 H{t} X{self.v(5)}")
+            self.emit("G80")
+        else:
+            self.emit(f"G90 {ret} {code} {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-6)} R{self.v(3)}{q}{p} "
+                      f"{self.feed()}")
+            self.emit(f"G43 H{t} {self.xyz(self.pos[0] + 5, self.pos[1] + self.r.choice((0, 5)))}")
+            if self.r.random() < 0.5:
+                self.emit(self.xyz(self.pos[0], self.pos[1] + 5))
+            self.emit("G80")
+        if self.r.random() < 0.5:
+            self.emit(f"G91 G0 Z{self.v(-1)}")
+        self.emit(f"G90 G0 Z{self.v(25)}")
+        self.emit(f"G43 H{self.tool or 1} {self.xyz(z=50)}")
+
+    def rigid_tap_end_section(self) -> None:
+        """Fanuc M29 rigid tapping and where it ends (0i-B connection manual B-63833EN "Rigid tapping": "M29 S1000 ;
+        G84 Z-100. R-20. F1. ; ... G80 ;"; the S of the tap is cleared with it): ``M29 S..`` in a block of its own or
+        with a rapid of Z, a dwell between it and the G84, two taps each with its own ``M29 S..``, or a drilling
+        cycle after ``S.. M03`` ending the rigid mode without G80 (Haas and Fadal: plain tapping)."""
+        if not self.fanuc:
+            return self.rigid_tap_section()
+        self.start(20)
+        self.emit("G95")
+        for k in range(self.r.randint(1, 2)):
+            s, pitch = self.r.choice((300, 500, 800)), self.r.choice((0.8, 1.0, 1.25)) * (0.04 if self.unit < 1 else 1)
+            how = self.r.choice(("alone", "alone", "rapid", "dwell"))
+            if how == "rapid":
+                self.emit(f"G0 {self.xyz(z=self.pos[2] - 5)} M29 S{s}")
+            else:
+                self.emit(f"M29 S{s}")
+                if how == "dwell":
+                    self.emit("G04 X0.5")
+            self.emit(f"G98 G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)} F{_num(pitch)}")
+            if self.r.random() < 0.4 and k == 0:  # a drill after the tap: another cycle ends the rigid mode
+                self.emit(f"S{self.r.choice((1200, 3000))} M03")
+                self.emit("G94")
+                self.emit(f"G81 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-6)} R{self.v(3)} {self.feed()}")
+                self.emit("G80")
+                self.emit("M05")
+                self.emit("G95")
+            else:
+                self.emit("G80")
+        self.emit("G94")
+        self.emit(f"S{self.r.choice((1200, 3000))} M03")
+        self.emit(f"G90 G0 {self.xyz(z=25)} {self.feed()}")
+
+    def arc3d_section(self) -> None:
+        """Fanuc G02.4 / G03.4 three-dimensional arcs, as Fusion's fanuc.cps writes them with "Allow 3D arcs"
+        (``G02.4 X Y Z`` the arc's middle, then ``X Y Z`` its end; Mitsubishi M700V programming manual 6.14, which
+        describes the same command): one to three arcs on circles in tilted planes, in G90 or G91 (the
+        intermediate point from the start, the end from the intermediate point). Haas and Fadal: plain arcs."""
+        if not self.fanuc:
+            return self.arcs_section()
+        self.start(10)
+        self.emit(f"G1 {self.xyz(z=0)} {self.feed()}")
+        inc = self.r.random() < 0.3
+        if inc:
+            self.emit("G91")
+        for _ in range(self.r.randint(1, 3)):
+            radius = self.r.choice((5, 10, 15))
+            tilt, turn = math.radians(self.r.choice((15, 30, 45, 60, 90))), math.radians(self.r.randint(0, 11) * 30)
+            u = (math.cos(turn), math.sin(turn), 0.0)
+            v = (-math.sin(turn) * math.cos(tilt), math.cos(turn) * math.cos(tilt), math.sin(tilt))
+            centre = [self.pos[k] - radius * u[k] for k in range(3)]
+            sweep = math.radians(self.r.choice((60, 90, 135, 180, 270)))
+            points = []
+            for a in (sweep / 2, sweep):
+                points.append([round(centre[k] + radius * (u[k] * math.cos(a) + v[k] * math.sin(a)), 3)
+                               for k in range(3)])
+            code = self.r.choice(("G02.4", "G03.4"))
+            self.emit(f"{code} {self.xyz(*points[0], inc=inc)}")
+            self.emit(self.xyz(*points[1], inc=inc))
+        if inc:
+            self.emit("G90")
+        self.emit(f"G0 {self.xyz(z=self.pos[2] + 20)}")
+        self.emit(f"G0 {self.xyz(z=40)}")
+
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)
         self.emit("G91 G28 Z0.")
@@ -931,7 +1070,10 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "g10_tools": g.g10_tools_section, "cycle_sub": g.cycle_sub_section,
              "g52_rotated": g.g52_rotated_section, "external": g.external_section, "tcp": g.tcp_section,
              "length_motion": g.length_motion_section, "rigid_tap": g.rigid_tap_section,
-             "haas_g73k": g.haas_g73k_section, "m99_branch": g.m99_branch_section}
+             "haas_g73k": g.haas_g73k_section, "m99_branch": g.m99_branch_section,
+             "length_block": g.length_block_section, "length_reference": g.length_reference_section,
+             "length_cycle": g.length_cycle_section, "rigid_tap_end": g.rigid_tap_end_section,
+             "arc3d": g.arc3d_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
@@ -944,10 +1086,14 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
 
 
 #: The sections of a ``fadal`` program: Fadal reads Haas's cycle words (Fusion's fadal.cps writes ``G83 .. I J K``
-#: and ``G73 .. Q K`` as its Haas post), not Haas's extended offsets, patterns, pockets, macros or M97.
+#: and ``G73 .. Q K`` as its Haas post), not Haas's extended offsets, patterns, pockets, macros or M97. Not
+#: ``length_cycle`` yet: after a change to a longer tool within a G99 series the next hole starts below its R, and
+#: there the reference reads Fadal by LinuxCNC's rule (up to R, then over to the hole) and the reader by Fanuc's
+#: (over at the current height, then up to R), as for any Fadal cycle started below R (fuzz38, fadal seed 630376:
+#: which rule a Fadal follows is not settled).
 FADAL_FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", "subprogram", "rotation",
                   "g52", "g92", "g28_g53", "dwell", "g91_arcs", "tool_length", "haas_peck", "haas_g73k",
-                  "length_motion", "depth_passes")
+                  "length_motion", "depth_passes", "length_block", "length_reference")
 
 
 def features(seed: int, dialect: str = "fanuc") -> list[str]:

@@ -122,17 +122,19 @@ def _blocks(text: str) -> list[tuple[int, str]]:
 
 
 class _Formula:
-    """Recursive-descent Heidenhain formula: + - * / ^, parentheses, unary functions, Q values."""
+    """Recursive-descent Heidenhain formula: + - * / % ^, parentheses, unary functions, Q values (``%``: the
+    division remainder, iTNC 530 user's manual 60642x-04 9.8, "Q12 = 400 % 360 Result: Q12 = 40"; as * and /, the
+    dividend's sign)."""
 
     _FUNCS = {"SQRT": math.sqrt, "SQ": lambda v: v * v, "SIN": lambda v: math.sin(math.radians(v)),
               "COS": lambda v: math.cos(math.radians(v)), "TAN": lambda v: math.tan(math.radians(v)),
               "ASIN": lambda v: math.degrees(math.asin(v)), "ACOS": lambda v: math.degrees(math.acos(v)),
               "ATAN": lambda v: math.degrees(math.atan(v)), "ABS": abs, "INT": lambda v: float(math.trunc(v)),
               "NEG": lambda v: -v, "FRAC": lambda v: v - math.trunc(v), "LN": math.log, "LOG": math.log10,
-              "EXP": math.exp}
+              "EXP": math.exp, "SGN": lambda v: 1.0 if v >= 0 else -1.0}  # SGN: TNC 620 manual, 1 for >= 0
 
     def __init__(self, text: str, q: dict):
-        self.toks = re.findall(r"\d+\.?\d*|\.\d+|Q[LR]?\d+|[A-Z]+|[-+*/^()]", text.upper())
+        self.toks = re.findall(r"\d+\.?\d*|\.\d+|Q[LR]?\d+|[A-Z]+|[-+*/%^()]", text.upper())
         self.i = 0
         self.q = q
 
@@ -157,8 +159,9 @@ class _Formula:
 
     def term(self) -> float:
         v = self.power()
-        while self.peek() in ("*", "/"):
-            v = v * self.power() if self.take() == "*" else v / self.power()
+        while self.peek() in ("*", "/", "%"):
+            op = self.take()
+            v = v * self.power() if op == "*" else v / self.power() if op == "/" else math.fmod(v, self.power())
         return v
 
     def power(self) -> float:
@@ -315,8 +318,20 @@ class _Tnc:
             return self.overrides[self.preset].copy()
         return np.array(self.ctx.offset(self.preset), float) if self.preset else np.zeros(3)
 
+    def turned(self) -> bool:
+        """A tilted plane that turns the workpiece coordinates (its rotation or its rotary positions not 0)."""
+        if self.tilt is None:
+            return False
+        return (not np.allclose(self.tilt, np.eye(3))
+                or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in self.tilt_angles.values()))
+
+    def tip(self) -> bool:
+        """M128 acting on the points: on, and no plane that turns (in one, a line whose rotary axes stay is the
+        plane's line with or without TCPM, TNC 640 manual "Inclined-tool machining in a tilted plane")."""
+        return self.tcpm and not self.turned()
+
     def origin(self) -> np.ndarray:
-        if self.tilt is not None and not self.tcpm:  # the tilted zero on the tilted table (cycle 7 shifts within
+        if self.tilt is not None and not self.tip():  # the tilted zero on the tilted table (cycle 7 shifts within
             return self.machine(np.zeros(3))     # the plane)
         # under M128 in a plane that does not turn (_tcpm_switch): its zero on the part, as the untilted one
         o = self.preset_point() + (self.base + self.tilt @ self.shift if self.tilt is not None else self.shift)
@@ -336,7 +351,7 @@ class _Tnc:
 
     def machine(self, p: np.ndarray) -> np.ndarray:
         a, b = self.affine()
-        if self.tcpm:  # M128 on a table: the part point (rotary axes at 0) where the table carries it now
+        if self.tip():  # M128 on a table: the part point (rotary axes at 0) where the table carries it now
             length = np.array([0.0, 0.0, self.length])
             return _carry(self, self.origin() + a @ p + b - length, self.table_angles()) + length
         if self.tilt is not None:  # the part point, then where the tilted table carries it
@@ -346,7 +361,7 @@ class _Tnc:
 
     def prog(self) -> np.ndarray:
         a, b = self.affine()
-        if self.tcpm:
+        if self.tip():
             length = np.array([0.0, 0.0, self.length])
             part = _carry(self, self.pos - length, self.table_angles(), back=True) + length
             return np.linalg.solve(a, part - self.origin() - b)
@@ -396,12 +411,19 @@ class _Tnc:
         """Machine end point of the axis words (M91/M92 and I words); ``base``: the program point the words
         change (default: the present one)."""
         ms = w.get("M", [])
-        if 91 in ms or 92 in ms:
-            base = np.zeros(3) if 91 in ms else np.array(self.ctx.home, float)
+        untilted = 130 in ms and self.tilt is not None  # M130 (TNC 640 manual): the untilted coordinates,
+        if untilted and (self.comp or self.tcpm or self.rot or self.scl != 1.0  # preset + shift before the tilt
+                         or np.any(self.mirror != 1.0) or np.any(self.factors != 1.0)):
+            raise ReferenceError("M130 with RL/RR, M128 or a transformation")
+        if 91 in ms or 92 in ms or untilted:
+            base = (np.zeros(3) if 91 in ms else np.array(self.ctx.home, float) if 92 in ms
+                    else self.preset_point() + self.base + np.array([0.0, 0.0, self.length]))
             end = self.pos.copy()
             for i, a in enumerate("XYZ"):
                 if a in w:
                     end[i] = base[i] + w[a] * self.scale
+                if "I" + a in w and untilted:
+                    end[i] += w["I" + a] * self.scale
             return end
         p = self.prog() if base is None else base.copy()
         for i, a in enumerate("XYZ"):
@@ -433,7 +455,9 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
     _reduce_display(t, w.get("MARGS", {}))
     # M128 with the rotary axes moving: the tip's program point from where it is before they turn, carried to
     # where the table holds it at their new positions; the reader's chords, the last one's end checked
-    base = t.prog() if t.tcpm and (spat or any(k[-1] in "ABC" for k in others)) else None
+    base = t.prog() if t.tip() and (spat or any(k[-1] in "ABC" for k in others)) else None
+    if spat and t.turned():
+        raise ReferenceError("AXIS SPAT angles under M128 in a tilted plane that turns")
     if spat:
         others = [k for k in w if re.fullmatch(r"I?[ABCUVW]", k)]
         _spatial_angles(t, w)
@@ -447,6 +471,8 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
         if k[0] != "I" and i < 3 and k.lower() in t.ctx.wrapped_axes:  # a modulo axis (TNC 640 manual, M126)
             rule = "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
             t.extra[i] = wrapped_end(rule, v, now[i], t.shown[i])
+    if t.tcpm and t.turned() and np.any(np.abs(t.extra[:3] - now[:3]) > 1e-9):
+        raise ReferenceError("a rotary axis moving under M128 in a tilted plane that turns")
     kind = "rapid" if "FMAX" in w else "feed"
     if t.feed_dwell is not None and kind == "feed" and (axes or others):
         _feed_dwell_line(t, line, t.target(w), bool(others))
@@ -605,9 +631,6 @@ def _tcpm_switch(t: _Tnc, ms: list) -> None:
     if 128 in ms:
         if t.ctx.kinematics is None or t.ctx.kinematics.kind != "table":
             raise ReferenceError("M128 without a tilting table")
-        if t.tilt is not None and (not np.allclose(t.tilt, np.eye(3))
-                                   or any(abs(math.remainder(v, 360.0)) > 1e-9 for v in t.tilt_angles.values())):
-            raise ReferenceError("M128 in a tilted plane that turns the workpiece coordinates")
         t.tcpm, t.spat = True, None
     if 129 in ms:
         t.tcpm = False
@@ -3094,9 +3117,11 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
 def _without_motion(t: _Tnc, up: str) -> None:
     """A PLANE or FUNCTION block the reference knows to move nothing (PLANE RESET, a plane of no rotation on a
     machine without kinematics, FUNCTION MODE MILL, the file functions FILECOPY / FILEMOVE / FILEDELETE of the TNC
-    640 user's manual); any other is not modelled."""
+    640 user's manual, FUNCTION PARAXCOMP DISPLAY / OFF and PARAXMODE OFF: the display of the parallel axes, their
+    resets, TNC7 basic user's manual 81762x-19); any other is not modelled."""
     if not (up.startswith(("PLANE RESET", "FUNCTION MODE MILL", "FUNCTION FILECOPY", "FUNCTION FILEMOVE",
-                           "FUNCTION FILEDELETE"))
+                           "FUNCTION FILEDELETE", "FUNCTION PARAXCOMP OFF", "FUNCTION PARAXMODE OFF",
+                           "FUNCTION PARAXCOMP DISPLAY"))
             or re.match(r"PLANE (SPATIAL|PROJECTED|EULER|RELATIVE?|AXIAL)\b", up)
             and all(_val(v, t.q) == 0 for v in re.findall(
                 r"(?:SP[ABC]|PRO(?:PR|MIN)|(?<!EUL)ROT|EUL(?:PR|NU|ROT)|(?<![A-Z])[ABC])\s*([-+]?\s*(?:[\d.]+|Q[LR]?\d+))",

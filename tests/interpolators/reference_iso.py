@@ -1647,6 +1647,10 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     for k in "rqpijk":
         if k in words:
             m.sticky[k] = words[k][-1]
+    written = {k for k in "qij" if k in words}
+    if code in (76, 87) and written:  # Haas "G77": "If Q is not specified, the optional I and J values are used"
+        haas = m.ctx.dialect.name == "haas"
+        m.sticky["shift"] = "q" if "q" in written and (haas or written == {"q"}) else "ij"
     if depth in words:
         m.sticky["z"] = words[depth][-1]
     cur = m.to_program(m.pos)[list(axes)]
@@ -1754,8 +1758,10 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
 
 
 def _shift(m: _Machine) -> np.ndarray:
-    """The G76/G87 shift in the hole plane [mm]: I J when given, else |Q| along the first axis."""
-    if m.sticky.get("i") or m.sticky.get("j"):
+    """The G76/G87 shift in the hole plane [mm]: the last shift a G76/G87 block of the series wrote (|Q| along the
+    first axis, or I J), else I J when given, else Q."""
+    by = m.sticky.get("shift", "ij" if m.sticky.get("i") or m.sticky.get("j") else "q")
+    if by == "ij":
         return np.array([m.sticky.get("i", 0.0), m.sticky.get("j", 0.0)]) * m.scale
     return np.array([abs(m.sticky["q"]) * m.scale, 0.0])
 

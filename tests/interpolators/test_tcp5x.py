@@ -187,7 +187,7 @@ def test_the_chords_of_a_rapid_under_tcp_are_one_move():
     ("3 FUNCTION TCPM F TCP AXIS POS PATHCTRL AXIS REFPNT TIP-CENTER", "REFPNT TIP-CENTER"),
     ("3 FUNCTION TCPM F TCP AXIS POS ROT", "unexpected 'ROT'"),
     ("3 FUNCTION RESET TCPM NOW", "malformed FUNCTION RESET TCPM"),
-    ("3 M128\n4 PLANE SPATIAL SPA+0 SPB+30 SPC+0 STAY\n5 L X+5 B+30 F100", "under M128 in a tilted working plane"),
+    ("3 M128\n4 PLANE SPATIAL SPA+0 SPB+30 SPC+0 STAY\n5 L X+5 B+30 F100", "TCPM in a tilted working"),
     ("3 M128\n4 L X+5 Y+0 RL F500", "RL/RR under M128"),
     ("3 M128\n4 LN X+5 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0 TY+0.5 F500", "only part of the tool orientation"),
     ("3 M128\n4 LN X+5 Y+0 Z+0 NX+0 NY+0 NZ+1 TX+0 TY+0 TZ-1 F500", "cannot tilt the part"),

@@ -37,7 +37,8 @@ def test_m128_in_a_plane_that_does_not_turn_reads_as_without_it():
     assert np.array(same) == pytest.approx(np.array([b.target for b in without.blocks[1:]]), abs=1e-12)
 
 
-def test_m128_in_a_plane_that_turns_is_an_error_naming_it():
+def test_a_rotary_move_under_m128_in_a_plane_that_turns_is_an_error_naming_it():
+    # M128 itself is read there since tncposts38 (a line whose rotary axes stay is the plane's line); C+45 moves
     plane = "PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX\n"
-    with pytest.raises(GCodeError, match=r"M128 \(TCPM\) with a tilted working plane .* not supported"):
+    with pytest.raises(GCodeError, match=r"rotary axis moving under M128 / FUNCTION TCPM in a tilted working plane"):
         tnc(plane + MOVE.format(m128="M128"))

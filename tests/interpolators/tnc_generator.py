@@ -8,8 +8,9 @@ incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/
 ``M30``), cycles 7 (absolute and incremental), 9, 32, drilling 1/200/203/205 called by ``CYCL CALL``, ``M99``,
 ``CYCL CALL POS`` and ``CYCL CALL PAT`` (``PATTERN DEF`` items continued by ``~`` or on lines of their own),
 pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``; on a B/C table (:func:`context`, a quarter
-of the seeds) ``PLANE SPATIAL`` (also followed by ``PLANE RELATIV``)/``PLANE RESET`` and ``M128`` with B C or
-``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`).
+of the seeds) ``PLANE SPATIAL`` (also with ``TABLE ROT``/``COORD ROT``), ``PROJECTED``, ``EULER``, ``VECTOR``,
+``POINTS`` and ``AXIAL`` (:meth:`_Gen.plane_definition`; ``TURN`` or ``MOVE``; also followed by ``PLANE RELATIV``)/
+``PLANE RESET`` and ``M128`` with B C or ``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`).
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
 Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
@@ -341,8 +342,7 @@ class _Gen:
         self.reset_transforms()
         self.emit("L Z+100 R0 FMAX")
         if r.random() < 0.5:
-            self.emit(f"PLANE SPATIAL SPA+0 SPB{_n(r.choice([-30, 15, 45, 90]))} SPC{_n(r.choice([0, 30, -90]))} "
-                      "TURN MB MAX FMAX")
+            self.emit(self.plane_definition())
             if r.random() < 0.4:  # NX TNC posts chain an incremental turn about the active plane's own axis
                 axis, angle = r.choice([("SPB", r.choice([-20, 10, 15])), ("SPC", r.choice([-45, 30, 90])),
                                         ("SPA", 10)])
@@ -373,6 +373,44 @@ class _Gen:
         self.known = False
         self.polar_ok = False
         self.pole_kept = self.cc is not None
+
+    def plane_definition(self) -> str:
+        """A ``PLANE`` block tilting the working plane on the B/C table, in the forms posts and shops write (TNC 640
+        user's manual, "Tilting the working plane", PLANE SPATIAL, PROJECTED, EULER, VECTOR, POINTS, AXIAL; the
+        positioning ``TURN MB MAX FMAX`` or ``MOVE DIST.. F..``; ``TABLE ROT``/``COORD ROT`` on a plane turned about
+        C alone): half of the time SPATIAL as before, the rest the other forms (tool axes B within -90..90)."""
+        r = self.r
+        move = "TURN MB MAX FMAX" if r.random() < 0.8 else f"MOVE DIST+{r.choice([20, 50])} F{r.choice([2000, 5000])}"
+        form = r.choice(["spatial"] * 5 + ["table", "projected", "euler", "vector", "points", "axial"])
+        if form == "spatial":
+            return (f"PLANE SPATIAL SPA+0 SPB{_n(r.choice([-30, 15, 45, 90]))} SPC{_n(r.choice([0, 30, -90]))} "
+                    f"{move}")
+        if form == "table":
+            rot = r.choice(["TABLE", "COORD"])
+            return f"PLANE SPATIAL SPA+0 SPB+0 SPC{_n(r.choice([30, -45, 90]))} {move} {rot} ROT"
+        if form == "projected":
+            return (f"PLANE PROJECTED PROPR{_n(r.choice([-45, -20, 0, 30]))} PROMIN{_n(r.choice([0, 15, 35, -40]))} "
+                    f"ROT{_n(r.choice([0, 15, -90]))} {move}")
+        if form == "euler":
+            return (f"PLANE EULER EULPR{_n(r.choice([0, 30, -60, 90]))} EULNU{_n(r.choice([15, 30, 45, 60]))} "
+                    f"EULROT{_n(r.choice([0, -30, 90]))} {move}")
+        if form == "axial":
+            b = r.choice([-40, 20, 45])
+            if r.random() < 0.3:
+                return f"PLANE AXIAL B{_n(b)} {move}"
+            return f"PLANE AXIAL B{_n(b)} C{_n(r.choice([0, 90, 170, -30]))} {move}"
+        b, c = math.radians(r.choice([20, 30, 45, -35])), math.radians(r.choice([0, 45, -90, 120]))
+        x = (math.cos(b) * math.cos(c), math.cos(b) * math.sin(c), -math.sin(b))  # the tilted X, square to N
+        y = (-math.sin(c), math.cos(c), 0.0)
+        if form == "vector":
+            n = (math.sin(b) * math.cos(c), math.sin(b) * math.sin(c), math.cos(b))
+            return (f"PLANE VECTOR BX{_n(round(x[0], 4))} BY{_n(round(x[1], 4))} BZ{_n(round(x[2], 4))} "
+                    f"NX{_n(round(n[0], 4))} NY{_n(round(n[1], 4))} NZ{_n(round(n[2], 4))} {move}")
+        p1 = [r.choice([0, 10, -5]), r.choice([0, 20]), r.choice([0, -3])]
+        p2 = [p1[k] + 20 * x[k] for k in range(3)]
+        p3 = [p1[k] + 15 * y[k] + r.choice([0, 5]) * x[k] for k in range(3)]
+        return "PLANE POINTS " + " ".join(f"P{i + 1}{a}{_n(round(p[k], 4))}" for i, p in enumerate((p1, p2, p3))
+                                          for k, a in enumerate("XYZ")) + f" {move}"
 
     def pocket(self) -> None:
         """Cycle 251 RECTANGULAR POCKET or 252 CIRCULAR POCKET (TNC 640 cycle programming manual, "POCKET MILLING
