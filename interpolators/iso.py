@@ -1080,7 +1080,8 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     _lathe_program(seen, gcodes, st, where)
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
-    if gcodes.get("polar", (0,))[0] == 150 and "H" in seen:
+    if gcodes.get("polar", (0,))[0] == 150 and "H" in seen and "length compensation" not in gcodes \
+            and h_alone(gcodes, seen, st) is None:  # in G43/G44 mode "G15 H2" is Fanuc's: the H changes the length
         # Okuma OSP (OSP-E100M/P300M programming manuals, G15 "work coordinate system selection", modal; Fusion's
         # okuma.cps writes "G15 H<work offset>" then "G56 Z.. H<n>" for the tool length and "G71 Z.." for the
         # cycles' return level): read as Fanuc's polar cancel, the offsets would be lost without a word

@@ -41,3 +41,14 @@ def test_an_h_or_d_word_alone_under_linuxcnc_is_a_noted_leniency():
         assert any(key in n and "LinuxCNC refuses" in n for n in prog.notes)
     fanuc = checked_iso("G21 G90 G0 X0 Y0 Z0\nD2\nG0 X5.\nM30\n", MachineContext(dialect=DIALECTS["fanuc"]))
     assert "D word without G41/G42 (ignored)" in fanuc.notes
+
+
+@pytest.mark.parametrize("block", ["G15 H2", "G15 G43 H2"])
+def test_g15_with_an_h_in_g43_mode_is_fanucs_polar_cancel_and_length_change(block):
+    """An Okuma OSP "G15 H1" (work offset selection) is refused by name (posts38), but in G43 mode a Fanuc's "G15
+    H2" is the polar cancel and an H word alone (tlen38: the length offset becomes H2's, 30, and the block under the
+    modal G00 moves Z down 20, TOS = 0), and "G15 G43 H2" is plainly Fanuc's: neither names Okuma. Before: both
+    were refused as Okuma OSP programs."""
+    text = f"G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG16\nG0 X10. Y90.\n{block}\nG0 X1. Y0\nM30\n"
+    prog = checked_iso(text, MachineContext(dialect=DIALECTS["fanuc"], tools=TOOLS))
+    assert [round(float(v), 6) for v in prog.blocks[-1].target] == [1.0, 0.0, 40.0]
