@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -94,7 +95,7 @@ class TiltedRotation(Rotation):
 
 
 def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zero: np.ndarray, extra: np.ndarray,
-                   scale: float) -> TiltedRotation:
+                   scale: float, turns: Mapping[str, Callable[[float], float]] | None = None) -> TiltedRotation:
     """The plane a ``G68.2 [P0|P1 Q] X Y Z I J K`` block defines.
 
     Parameters
@@ -109,6 +110,13 @@ def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zer
         Positions of a, b, c [deg] (and u, v, w) now.
     scale : float
         mm per program unit.
+    turns : mapping of str to callable, optional
+        For each rotary axis that wraps at 360 deg, the turn [deg] G53.1 makes it take to a machine angle (the
+        solutions are weighed by it, and such an axis' position is the angle it shows, in [0, 360):
+        :meth:`interpolators.tilted.Kinematics.choose`). FANUC Series 16i/18i-MB operator's manual, "Angle of rotation
+        axis" (tool axis direction control G53.1): of the "computed angles", the pair whose master (first rotation)
+        axis' "moving angle" is smallest, then the slave's, then the master angle nearest 0 (a multiple of 360
+        deg); vcnc weighs the sum of both axes' turns, as the TNC (our reading where the two differ).
 
     Raises
     ------
@@ -123,7 +131,7 @@ def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zer
                         "a machine with [program.kinematics] (vcnc machines --show: the rotary axes that tilt the "
                         "part)")
     kin.require_table()
-    angles = kin.choose(plane, kin.solution_at(extra))
+    angles = kin.choose(plane, kin.solution_at(extra), turns=turns)
     origin = np.array([words.get(a, 0.0) * scale for a in "XYZ"])
     theta, datum = tilted_frame(kin, plane, angles, np.asarray(work_zero, dtype=float) + origin)
     shift = datum - np.asarray(work_zero, dtype=float)

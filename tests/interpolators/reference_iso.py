@@ -967,8 +967,10 @@ def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
         for ax, v in zip(axes, pair, strict=False):
             now_ax = m.extra["abc".index(ax.name)]  # the turn of 360 deg nearest the axis' position (Fanuc 15i)
             turns = sorted((v + 360.0 * k for k in range(-4, 5)), key=lambda c: abs(c - now_ax))
-            w = next((c for c in turns if ax.limits[0] - 1e-6 <= c <= ax.limits[1] + 1e-6), None)
-            fit.append(w)
+            inside = [c for c in turns if ax.limits[0] - 1e-6 <= c <= ax.limits[1] + 1e-6]
+            if ax.name in m.ctx.wrapped_axes and inside:  # a wrapping axis: the shorter way from wherever it is
+                inside = [wrapped_end("shortest", v, now_ax, 0.0)]  # (its limits hold modulo 360 deg)
+            fit.append(inside[0] if inside else None)
         if None not in fit:
             key = (sum(abs(f - c) for f, c in zip(fit, now, strict=True)), -fit[0])
             best = min(best, (key, fit)) if best is not None else (key, fit)
