@@ -378,7 +378,8 @@ class Kinematics:
         return out
 
     def choose(self, plane: np.ndarray, current: Solution, *, sequence: int = 0, table_rot: bool = False,
-               nearest: bool = False, turns: Mapping[str, Callable[[float], float]] | None = None) -> Solution:
+               nearest: bool = False, turns: Mapping[str, Callable[[float], float]] | None = None,
+               order: str = "sum") -> Solution:
         """The solution the control takes: within the limits, the outer (master) axis' angle of the sign
         ``sequence`` (+1 SEQ+/SYM+, -1 SEQ-/SYM-), else (0) the one nearest ``current`` [deg] (the sum of
         both axes' travel; a tie goes to the positive master angle). When the tilted tool axis is the
@@ -405,11 +406,20 @@ class Kinematics:
         B-30 C-90: C270 is 10 deg away under the shorter-way rule, C90 190 deg). Its limits hold modulo 360 deg
         (some turn of the angle within them), and SEQ judges its angle in (-180, 180].
 
+        ``order="master"`` ranks them as FANUC's tool axis direction control (G53.1) does (FANUC Series 16i/18i-MB
+        operator's manual, "Angle of rotation axis", output judgement conditions of a table or tool rotation type
+        machine): the smallest "master axis (first rotation axis) moving angle", then the slave's, then the master angle
+        nearer 0 deg ("multiple of 360 degrees"), then the slave's; travels equal within :data:`ANGLE_TOLERANCE`
+        (a tie left goes to the positive master angle, as above).
+        FANUC counts every turn of 360 deg of a "computed angle" as a candidate: the caller asks for ``nearest`` too.
+
         Raises
         ------
         TiltError
             No solution within the limits (with the sign asked for).
         """
+        if order not in ("sum", "master"):
+            raise ValueError(f"order must be 'sum' or 'master', got {order!r}")
         turns = turns or {}
         now = (current.outer, current.inner)
         near = now if nearest else (None, None)
@@ -427,7 +437,12 @@ class Kinematics:
             if sequence and master * sequence < -ANGLE_TOLERANCE:
                 continue
             solution = Solution(outer=placed[0][0], inner=placed[1][0] if len(placed) == 2 else 0.0)
-            found.append((sum(p[1] for p in placed), -master, solution))
+            if order == "sum":
+                found.append((sum(p[1] for p in placed), -master, solution))
+            else:
+                found.append((*(round(p[1] / ANGLE_TOLERANCE) for p in placed),
+                              *(round(abs(math.remainder(p[0], 360.0)) / ANGLE_TOLERANCE) for p in placed), -master,
+                              solution))
         if not found:
             outer = self.axes[0]
             sign = {1: " with a positive", -1: " with a negative"}.get(sequence, "")
@@ -435,7 +450,7 @@ class Kinematics:
             raise TiltError(f"the rotary axes {', '.join(n.upper() for n in self.names)} cannot tilt the part to "
                             f"this plane{sign} {outer.name.upper()} within their limits {limits} deg",
                             "a working plane the machine's rotary axes reach")
-        return min(found, key=lambda f: f[:2])[2]
+        return min(found, key=lambda f: f[:-1])[-1]
 
     def _square_inner(self, plane: np.ndarray, outer: float) -> float:
         """The inner angle [deg] that turns the tilted X onto the machine's X, the tool axis being the inner's."""

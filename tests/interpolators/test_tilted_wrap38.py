@@ -137,3 +137,20 @@ def test_g43_5_turns_a_wrapping_axis_the_shorter_way():
         assert float(chords[0].extra_start[2]) == (370.0 if ctx.wrapped_axes else 10.0)  # after the K1 block
         last = chords[-1]
         assert [float(last.extra_target[0]), float(last.extra_target[2])] == pytest.approx(expected, abs=1e-6)
+
+
+@pytest.mark.parametrize(("start", "expected"), [
+    ("G0 A5. C-170.", [30.0, -270.0]),  # A moves 25 (A-30: 35); C to -270, 100 deg, where -90 is 80
+    ("G0 A0 C-170.", [-30.0, -90.0]),  # A moves 30 either way: the smaller C move, 80 to -90 (to -270: 100)
+    ("G0 A0 C0", [30.0, 90.0]),  # a tie in every rule: the positive master angle
+])
+def test_g53_1_takes_fanucs_output_angles(start: str, expected: list[float]):
+    """FANUC Series 16i/18i-MB operator's manual, "Angle of rotation axis": of the "computed angles" (every turn of 360
+    deg of the two solutions, within the limits), the pair whose master (first rotation) axis moves least, then the
+    slave. On the A/C table, C not wrapping, ``G68.2 I90. J30. K0`` needs A+30 C+90 or A-30 C-90. From A5 C-170 the
+    master rule takes A+30 C-270; before session 38 the sum of both travels, each angle in (-180, 180] first, took
+    A-30 C-90."""
+    ctx = dataclasses.replace(FANUC, wrapped_axes=())
+    prog = parse_iso(f"G21 G90\n{start}\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n", source="t.nc", context=ctx)
+    last = prog.blocks[-1]
+    assert [float(last.extra_target[0]), float(last.extra_target[2])] == pytest.approx(expected)
