@@ -220,10 +220,11 @@ class RotaryAxis:
     def within(self, angle: float, near: float | None = None) -> float | None:
         """``angle`` [deg] or a turn of 360 deg from it inside :attr:`limits` (the one in (-180, 180]
         first; with ``near`` [deg], the one nearest it), else None."""
-        if near is not None:
-            k = round((near - angle) / 360.0)
-            fits = [c for c in (angle + 360.0 * (k + j) for j in (0, -1, 1))
-                    if self.limits[0] - ANGLE_TOLERANCE <= c <= self.limits[1] + ANGLE_TOLERANCE]
+        if near is not None:  # the turns within the limits, the one nearest ``near`` (also from beyond them)
+            first = math.ceil((self.limits[0] - ANGLE_TOLERANCE - angle) / 360.0)
+            last = math.floor((self.limits[1] + ANGLE_TOLERANCE - angle) / 360.0)
+            k = min(max(round((near - angle) / 360.0), first), last)
+            fits = [angle + 360.0 * (k + j) for j in (0, -1, 1) if first <= k + j <= last]
             if fits:
                 return min(fits, key=lambda c: abs(c - near))
         a = math.remainder(angle, 360.0)

@@ -79,7 +79,7 @@ from collections.abc import Callable
 import numpy as np
 
 from tests.interpolators.reference_heidenhain_fk import FkReference
-from tests.interpolators.reference_iso import Expected, ReferenceError, wrapped_end
+from tests.interpolators.reference_iso import Expected, ReferenceError, turns_within, wrapped_end
 from tests.interpolators.reference_match import match_blocks, reader_rows
 
 __all__ = ["heidenhain_reference"]
@@ -2745,7 +2745,7 @@ def _in_limits(ax, deg: float, near: float | None = None) -> float | None:
     """``deg`` or a turn of 360 from it within the axis' limits: the one in (-180, 180] first, or nearest ``near``."""
     d = (deg + 180.0) % 360.0 - 180.0
     d = 180.0 if abs(d + 180.0) < 1e-9 else d
-    turns = (d, d + 360.0, d - 360.0) if near is None else sorted((d + 360.0 * k for k in range(-4, 5)),
+    turns = (d, d + 360.0, d - 360.0) if near is None else sorted(turns_within(ax.limits, d),
                                                                      key=lambda v: abs(v - near))
     for v in turns:
         if ax.limits[0] - 1e-6 <= v <= ax.limits[1] + 1e-6:

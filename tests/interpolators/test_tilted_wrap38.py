@@ -1,9 +1,10 @@
 """A tilted plane or a tool direction on a rotary axis that wraps at 360 deg (``[axes.c] wrap = true``): the
 solution the control takes is the one its axes really turn least to (:meth:`interpolators.tilted.Kinematics.choose`
-``turns``), its wrapping axis' angle stated as the axis shows it, in [0, 360). Hand-written programs, each worked out
-here; the TNC and G43.5 programs are also checked against the independent references (reference_heidenhain.py,
-reference_iso.py). Before session 38 ``choose`` compared the unwrapped angles: C shown at 280 with ``PLANE SPATIAL
-SPA+0 SPB+30 SPC+90`` took B+30 C+90 (C turning 190 deg) where B-30 C-90 (C270 shown) is 10 deg away."""
+``turns``), its wrapping axis' angle stated as the axis shows it, in [0, 360); G53.1 ranks FANUC's way (the master
+axis' move first). Hand-written programs, each worked out here, also checked against the independent references
+(reference_heidenhain.py; reference_iso.py, which models G68.2 / G53.1 since session 38). Before session 38
+``choose`` compared the unwrapped angles: C shown at 280 with ``PLANE SPATIAL SPA+0 SPB+30 SPC+90`` took B+30 C+90 (C
+turning 190 deg) where B-30 C-90 (C270 shown) is 10 deg away."""
 
 from __future__ import annotations
 
@@ -37,6 +38,14 @@ def _tnc(body: str, context: MachineContext = TNC):
     text = "0 BEGIN PGM W MM\n1 TOOL CALL 1 Z S1000\nL X+0 Y+0 Z+50 B+0 C+0 R0 FMAX\n" + body + "\nEND PGM W MM\n"
     prog = parse_heidenhain(text, source="w.h", context=context)
     match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
+    assert match.mismatch is None, match.mismatch
+    return prog
+
+
+def _iso(text: str, context: MachineContext):
+    """The ISO reader's blocks of ``text``, checked against tests/interpolators/reference_iso.py."""
+    prog = parse_iso(text, source="t.nc", context=context)
+    match = match_blocks(iso_reference(text, context), reader_rows(*blocks_table(prog)))
     assert match.mismatch is None, match.mismatch
     return prog
 
@@ -115,8 +124,7 @@ def test_g53_1_takes_the_solution_a_wrapping_axis_turns_least_to(rule, expected)
     RAB = 0, the dialect's own) reaches C270 turning -10 deg, C90 +170: A-30 C270 (before: A+30 C+90, +170). Under
     RAB = 1 (``sign``) the positive word turns positive: to 90 +170, to 270 +350, so A+30 to 450."""
     ctx = dataclasses.replace(FANUC, wrap_direction=rule)
-    prog = parse_iso("G21 G90\nG0 A0 C0\nG91 G0 C280.\nG90\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n", source="t.nc",
-                     context=ctx)
+    prog = _iso("G21 G90\nG0 A0 C0\nG91 G0 C280.\nG90\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n", ctx)
     last = prog.blocks[-1]
     assert [float(last.extra_target[0]), float(last.extra_target[2])] == pytest.approx(expected)
     assert np.allclose(last.target, last.start)
@@ -130,9 +138,7 @@ def test_g43_5_turns_a_wrapping_axis_the_shorter_way():
     text = ("G21 G90\nG0 A0 C0\nG91 G0 C370.\nG90\nG0 G43.5 H1 X0 Y0 Z50. I0 J0 K1.\n"
             "G1 X10. I0.5 J0 K0.8660254 F600.\nG49\nM30\n")
     for ctx, expected in ((FANUC, [30.0, 450.0]), (dataclasses.replace(FANUC, wrapped_axes=()), [30.0, 90.0])):
-        prog = parse_iso(text, source="t.nc", context=ctx)
-        match = match_blocks(iso_reference(text, ctx), reader_rows(*blocks_table(prog)))
-        assert match.mismatch is None, match.mismatch
+        prog = _iso(text, ctx)
         chords = [b for b in prog.blocks if b.line == 6]
         assert float(chords[0].extra_start[2]) == (370.0 if ctx.wrapped_axes else 10.0)  # after the K1 block
         last = chords[-1]
@@ -151,6 +157,26 @@ def test_g53_1_takes_fanucs_output_angles(start: str, expected: list[float]):
     master rule takes A+30 C-270; before session 38 the sum of both travels, each angle in (-180, 180] first, took
     A-30 C-90."""
     ctx = dataclasses.replace(FANUC, wrapped_axes=())
-    prog = parse_iso(f"G21 G90\n{start}\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n", source="t.nc", context=ctx)
+    prog = _iso(f"G21 G90\n{start}\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n", ctx)
     last = prog.blocks[-1]
     assert [float(last.extra_target[0]), float(last.extra_target[2])] == pytest.approx(expected)
+
+
+def test_g53_1_leaves_a_wrapping_axis_where_it_is_when_the_plane_needs_no_turn():
+    """``G68.2 .. I0 J0 K114.823`` keeps the tool axis along Z: A to 0, C stays (any C will do). C at -110.319 under
+    RAB = 1 (``sign``): the angle it shows, 249.681 reduced in floating point to 249.68099999999998, is where C is,
+    not a whole turn away (before: G53.1 turned C +360 deg to 249.681)."""
+    ctx = dataclasses.replace(FANUC, wrap_direction="sign")
+    prog = _iso("G21 G90\nG0 A0 C0\nG91 G0 C-110.319\nG90\nG0 A47.203\nG68.2 X0 Y0 Z0 I0 J0 K114.823\nG53.1\nM30\n",
+                ctx)
+    assert [float(prog.blocks[-1].extra_target[i]) for i in (0, 2)] == pytest.approx([0.0, -110.319])
+
+
+def test_g43_5_from_beyond_the_limits_takes_the_nearest_turn_within_them():
+    """C at 880 (``G91 C880.``, beyond its limits -360..360, not wrapping), ``G43.5 .. I0.5 J0 K0.866``: A+30 C+90 or
+    A-30 C-90. Within the limits C90 is 790 deg away and 270 (= -90) 610: A-30 C270 (before: the turns searched only
+    around 880, none within the limits, so C-90, 970 deg away, and A+30 C90 won)."""
+    ctx = dataclasses.replace(FANUC, wrapped_axes=())
+    prog = _iso("G21 G90\nG0 A0 C0\nG91 G0 C880.\nG90\nG0 G43.5 H1 X0 Y0 Z50. I0.5 J0 K0.8660254\nG49\nM30\n", ctx)
+    last = [b for b in prog.blocks if b.line == 5][-1]
+    assert [float(last.extra_target[0]), float(last.extra_target[2])] == pytest.approx([-30.0, 270.0], abs=1e-6)
