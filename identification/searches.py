@@ -994,7 +994,7 @@ _DELAY_REFINED = 3
 _LAG_EXTRA = (0.0, 0.5)
 
 
-def lag_removed(parameters: dict, tau: float, viscous_rate: float) -> dict:
+def lag_removed(parameters: dict, tau: float, viscous_rate: float) -> dict | None:
     """The split form's parameters (module augmented) whose loop with the control action held ``tau`` [s] late
     behaves, to first order in ``tau``, as the loop of ``parameters`` without it: the lag a reduced model took
     into its parameters given back to the delay.
@@ -1013,10 +1013,13 @@ def lag_removed(parameters: dict, tau: float, viscous_rate: float) -> dict:
     damping) and a higher a2: ident_fuzz seed 91 case 16 (fadal-pid/x, a 2-sample delay at 1 ms): the current
     a1 107, a2 67214 /s^2 with a 2-sample delay diverged, and the regression's starts screened at 15.2 um against
     the model's 4.02; taken out for 1 ms they give a1 149, a2 57548 (the refit of a 1-sample delay: 142, 56527)
-    and screen at 1.10 um, for 2 ms the refit reaches the delay of the truth, 0.45 um.
+    and screen at 1.10 um, for 2 ms the refit reaches the delay of the truth, 0.45 um. None when no such loop
+    exists (g outside (0, 1]: a loop with no lag to give back).
     """
     a1, a2, a3 = parameters["a1"], parameters["a2"], parameters["a3"]
     g = (1.0 + viscous_rate * tau) / (1.0 + tau * a1 + tau ** 2 * a2 + tau ** 3 * a3)
+    if not 0.0 < g <= 1.0:
+        return None
     a3_ = g * a3
     b2 = g * parameters["b2"] + tau * a3_
     b1 = g * parameters["b1"] + tau * b2
@@ -1078,8 +1081,9 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
 
     def lag_given_back(n: int) -> list[tuple[float, AugmentedAxisModel]]:
         e = Delay(samples=n, sample_time=d.T)
-        return [_screened(ctx, augment(ctx.model, others + [e], parameters=lag_removed(
-            ctx.model.parameters, (n + extra) * d.T, cvis), viscous_rate=cvis)) for extra in _LAG_EXTRA]
+        given_back = (lag_removed(ctx.model.parameters, (n + extra) * d.T, cvis) for extra in _LAG_EXTRA)
+        return [_screened(ctx, augment(ctx.model, others + [e], parameters=p, viscous_rate=cvis))
+                for p in given_back if p is not None]
 
     # each delay is independent: side by side, judged in order
     delays = list(range(0, Delay.MAX + 1))

@@ -117,3 +117,5 @@ def test_lag_removed_gives_the_reduced_loop_back_to_first_order():
         assert 0.0 < g < 1.0  # the delay's lag comes out of the loop's damping
         for k, v in reduced.items():
             np.testing.assert_allclose(back[k], v, rtol=1e-9)
+    # a loop with no lag to give back (its cubic not Hurwitz, a1 < 0) has no such split form
+    assert lag_removed(dict(reduced, a1=-2000.0), 1e-3, 2.1) is None
