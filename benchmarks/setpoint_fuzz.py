@@ -31,16 +31,26 @@ rotary_cam, rapid rates) and a sample time of 0.25 - 4 ms. :func:`check_setpoint
 * ``axis_path``: such an axis farther from its value programmed at the nearest point of the path than the sample's
   tolerance (deg on A-C), beyond the axis' rate times the sample's distance from the path (:func:`_axis_path_failures`).
 
+* ``wrap``: with ``--wrap RULE`` or ``--machine FILE`` (rotary axes that wrap at 360 deg), a line with an absolute
+  word of a wrapping axis that ends elsewhere than the word's angle modulo 360 deg, or turns the axis otherwise than
+  the rule says (:func:`wrap_failures`; checked on ISO programs without G91, G53, G28/G30, offsets or parameters).
+
 ``python -m benchmarks.setpoint_fuzz --count 200 --seed 0`` prints a table of outcomes per source; ``--list``
-names every failing case (source, seed, profile, sample time, kind and detail).
+names every failing case (source, seed, profile, sample time, kind and detail). ``--wrap sign|shortest|difference``
+runs every source with its rotary axes A, B, C wrapping at 360 deg under that rule (``[axes.a] wrap = true``,
+``[program] wrap_direction``, :mod:`interpolators.rotary_wrap`); ``--machine FILE`` takes the wrapping axes and the
+rule from a machine file (unset: each source's control's own), the rest of each source's context kept. The limits
+and every check are then judged on the motion the axes really make (the blocks carry the unwrapped angle).
 """
 
 from __future__ import annotations
 
 import argparse
 import collections
+import dataclasses
 import math
 import random
+import re
 import sys
 from pathlib import Path
 
@@ -52,6 +62,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from benchmarks import linuxcnc_fuzz  # noqa: E402
 from interpolators import DEFAULT_TOLERANCE, AxisLimits, interpolate, parse_program  # noqa: E402
 from interpolators.context import DEFAULT_CONTEXT, DIALECTS, INTERPOLATION_CONTEXT, MachineContext  # noqa: E402
+from interpolators.rotary_wrap import ROTARY_AXES, WRAP_DIRECTIONS, default_direction  # noqa: E402
 from tests.interpolators import fanuc_generator, tnc_generator  # noqa: E402
 from tests.interpolators.setpoint_checks import check_limits, path_distances, xyz  # noqa: E402
 from vcnc.core.axes import EXTRA_NAMES  # noqa: E402
@@ -732,11 +743,67 @@ def check_setpoints(program, sp, limits: dict[str, AxisLimits], profile: str) ->
     return out
 
 
-def run_case(source: str, seed: int, sample_time: float | None = None) -> list[tuple[str, str, float, list[str]]]:
+#: Words after which a line's absolute rotary word is not simply the angle it ends at (:func:`wrap_failures`).
+_WRAP_UNCHECKED = re.compile(r"G9[12]|G5[23]|G28|G30|G10|G68|G43\.[45]|G234|#|\[|(?<![A-Z])O\d|M98|M99")
+_ROTARY_WORD = re.compile(r"(?<![A-Z])([ABC])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
+
+
+def wrap_failures(program, text: str, context: MachineContext) -> list[str]:
+    """``wrap``: each line of ``text`` with an absolute word of an axis ``context`` wraps at 360 deg must end that
+    axis at the word's angle modulo 360 deg (``sign``: its magnitude's), the turn from the line's first block's start
+    to its last block's end being the rule's (:mod:`interpolators.rotary_wrap`): ``shortest`` at most half a turn
+    (exactly half the positive way), ``sign`` in the word's sign's direction (less than a turn), ``difference`` the
+    word minus the angle shown in [0, 360). Only for ISO programs with neither G91 nor G53, G28/G30, G92/G52/G10,
+    G68, TCP, parameters or subprograms (a word there is not simply the angle it ends at), with no work offsets on
+    the rotary axes."""
+    if not context.wrapped_axes or "BEGIN PGM" in text.upper() or _WRAP_UNCHECKED.search(text.upper()):
+        return []
+    rule = context.wrap_direction or default_direction(context.dialect.name)
+    lines: dict[int, list] = {}
+    for b in program.blocks:
+        if b.extra_start is not None and b.extra_target is not None:
+            lines.setdefault(b.line, []).append(b)
+    for line, blocks in lines.items():
+        code = re.sub(r"\(.*?\)|;.*", "", blocks[-1].text.upper())
+        for letter, word in _ROTARY_WORD.findall(code):
+            if letter.lower() not in context.wrapped_axes:
+                continue
+            i, w = "ABC".index(letter), float(word)
+            start, end = float(blocks[0].extra_start[i]), float(blocks[-1].extra_target[i])
+            turn, angle = end - start, abs(w) if rule == "sign" else w
+            shown = start % 360.0 if abs(math.remainder(start, 360.0)) > 1e-9 else 0.0
+            off = abs(math.remainder(end - angle, 360.0)) > 1e-6
+            wrong = {"shortest": not -180.0 - 1e-6 < turn <= 180.0 + 1e-6,
+                     "sign": not -1e-6 <= turn * math.copysign(1.0, w) < 360.0 + 1e-6,
+                     "difference": abs(turn - (w - shown)) > 1e-6}[rule]
+            if off or wrong:
+                return [f"wrap: line {line} {letter}{word} ({rule}) from {start:.6g} ends at {end:.6g} (turn "
+                        f"{turn:.6g})"]
+    return []
+
+
+def on_machine(context: MachineContext, machine: MachineContext) -> MachineContext:
+    """``context`` (a source's) with ``machine``'s rotary axes that wrap at 360 deg (those ``context`` has) and its
+    rule of an absolute move on them."""
+    wrapped = tuple(a for a in machine.wrapped_axes if a in context.extra_axes)
+    return dataclasses.replace(context, wrapped_axes=wrapped, wrap_direction=machine.wrap_direction if wrapped
+                               else None)
+
+
+def wrapping(rule: str) -> MachineContext:
+    """A machine context whose rotary axes A, B, C wrap at 360 deg under ``rule`` (for :func:`on_machine`)."""
+    return MachineContext(extra_axes=ROTARY_AXES, wrapped_axes=ROTARY_AXES, wrap_direction=rule)
+
+
+def run_case(source: str, seed: int, sample_time: float | None = None, *,
+             machine: MachineContext | None = None) -> list[tuple[str, str, float, list[str]]]:
     """Both profiles of the program of ``source`` and ``seed``: (outcome, profile, sample time, failures) each;
     outcome ``ok``, ``fail``, ``refused`` (the reader's GCodeError), ``too_long`` or ``crash``. ``sample_time``
-    [s]: instead of the seed's own (the program and the limits stay the seed's)."""
+    [s]: instead of the seed's own (the program and the limits stay the seed's); ``machine``: its wrapping rotary
+    axes and their rule on the source's context (:func:`on_machine`), the ``wrap`` check added."""
     text, context = program_of(source, seed)
+    if machine is not None:
+        context = on_machine(context, machine)
     rng = random.Random(f"limits:{source}:{seed}")
     Ts = 10 ** rng.uniform(math.log10(2.5e-4), math.log10(4e-3))
     if source == "rotary_cam" and seed >= ROTARY_EDGE_TS_SEED:
@@ -760,9 +827,20 @@ def run_case(source: str, seed: int, sample_time: float | None = None) -> list[t
         except Exception as e:  # noqa: BLE001 - a fuzzer reports every failure
             out.append(("crash", profile, Ts, [f"crash: {type(e).__name__}: {e}"]))
             continue
-        fails = check_setpoints(program, sp, limits, profile)
+        fails = check_setpoints(program, sp, limits, profile) + wrap_failures(program, text, context)
         out.append(("fail" if fails else "ok", profile, Ts, fails))
     return out
+
+
+def _machine_context(path: Path) -> MachineContext:
+    """The program context of the machine file ``path``; exit status 2 naming the file when it is none."""
+    from vcnc.engine.machine import load_machine
+    from vcnc.errors import VcncError
+    try:
+        return load_machine(path).context
+    except (OSError, VcncError) as e:
+        print(f"error: {path}: {e}", file=sys.stderr)
+        raise SystemExit(2) from e
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -772,12 +850,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--sources", default=",".join(SOURCES), help="comma-separated: " + ", ".join(SOURCES))
     ap.add_argument("--list", action="store_true", help="name every failing case")
     ap.add_argument("--sample-time", type=float, help="sample time [s] of every case (default: each seed's own)")
+    wrap = ap.add_mutually_exclusive_group()
+    wrap.add_argument("--wrap", choices=WRAP_DIRECTIONS,
+                      help="rotary axes A, B, C wrap at 360 deg, an absolute move turning them by this rule")
+    wrap.add_argument("--machine", type=Path, metavar="FILE",
+                      help="a machine TOML whose [axes.a] wrap = true axes and [program] wrap_direction apply")
     args = ap.parse_args(argv)
+    machine = wrapping(args.wrap) if args.wrap else _machine_context(args.machine) if args.machine else None
     table: dict[str, collections.Counter] = {}
     for source in args.sources.split(","):
         counts = table.setdefault(source, collections.Counter())
         for seed in range(args.seed, args.seed + args.count):
-            for outcome, profile, Ts, fails in run_case(source, seed, args.sample_time):
+            for outcome, profile, Ts, fails in run_case(source, seed, args.sample_time, machine=machine):
                 counts[outcome] += 1
                 for f in fails if outcome in ("fail", "crash") else ():
                     counts[f.split(":")[0]] += 1

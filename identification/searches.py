@@ -989,6 +989,43 @@ def _digital_regression(d: Data, delay: int, rows: np.ndarray,
 
 #: regression starts of the delay search refined by Gauss-Newton before they are ranked: the best screened [-]
 _DELAY_REFINED = 3
+#: delays [sample periods] beyond the n of a delay's own samples whose lag the starts of :func:`lag_removed` take out of
+#: the current parameters: the sampled split form adds about half a sample of hold to the current model's lag [-]
+_LAG_EXTRA = (0.0, 0.5)
+
+
+def lag_removed(parameters: dict, tau: float, viscous_rate: float) -> dict | None:
+    """The split form's parameters (module augmented) whose loop with the control action held ``tau`` [s] late
+    behaves, to first order in ``tau``, as the loop of ``parameters`` without it: the lag a reduced model took
+    into its parameters given back to the delay.
+
+    With u delayed, e^(-s tau) ~ 1 - s tau (Taylor) turns Eq. (3.3)'s split form into::
+
+        (1 - tau k_d) s^3 + (c + k_d - tau a2) s^2 + (a2 - tau a3) s + a3
+            = (b0 - tau b1) s^3 + (b1 - tau b2) s^2 + (b2 - tau a3) s + a3   (x_r side; its s^4 term dropped)
+
+    with k_d = a1 - c; divided by g = 1 - tau k_d it is the reduced model the record showed, ``parameters``
+    (a1', ...). Solved for the split form's own: g = (1 + c tau) / (1 + tau a1' + tau^2 a2' + tau^3 a3'),
+    a3 = g a3', a2 = g a2' + tau a3, k_d = (1 - g) / tau, b2 = g b2' + tau a3, b1 = g b1' + tau b2,
+    b0 = g b0' + tau b1, and the Coulomb levels g d' (w enters the plant undelayed).
+
+    ``viscous_rate`` c [1/s] is the plant's. A reduced model's lag from a delay shows as a lower a1 (less
+    damping) and a higher a2: ident_fuzz seed 91 case 16 (fadal-pid/x, a 2-sample delay at 1 ms): the current
+    a1 107, a2 67214 /s^2 with a 2-sample delay diverged, and the regression's starts screened at 15.2 um against
+    the model's 4.02; taken out for 1 ms they give a1 149, a2 57548 (the refit of a 1-sample delay: 142, 56527)
+    and screen at 1.10 um, for 2 ms the refit reaches the delay of the truth, 0.45 um. None when no such loop
+    exists (g outside (0, 1]: a loop with no lag to give back).
+    """
+    a1, a2, a3 = parameters["a1"], parameters["a2"], parameters["a3"]
+    g = (1.0 + viscous_rate * tau) / (1.0 + tau * a1 + tau ** 2 * a2 + tau ** 3 * a3)
+    if not 0.0 < g <= 1.0:
+        return None
+    a3_ = g * a3
+    b2 = g * parameters["b2"] + tau * a3_
+    b1 = g * parameters["b1"] + tau * b2
+    return {"a1": viscous_rate + (1.0 - g) / tau, "a2": g * a2 + tau * a3_, "a3": a3_,
+            "b0": g * parameters["b0"] + tau * b1, "b1": b1, "b2": b2,
+            "d0": g * parameters["d0"], "d1": g * parameters["d1"]}
 #: Gauss-Newton iterations of each refined regression start [-]
 _DELAY_REFINE_ITERATIONS = 4
 
@@ -1014,6 +1051,14 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
     below it they are not tried: benchmarks/diagnosis.py's fadal-pid with a 2-sample delay ringing into its limit
     refitted the delay from a refined start into a basin (3.99 um held out against 4.36) from which the
     saturation's search of the next round found no start (0.20 um with the delay's own start).
+
+    Every delay is also started from the current parameters with the lag a delay of n and n + 1/2 samples would add
+    taken out of them (:func:`lag_removed`; the half sample is the split form's hold, which the exact form of a
+    reduced model lacks), after that choice, so that it stays the regression's; when one of them wins, the
+    neighbouring delays' starts go to the refit too. ident_fuzz seed 91 case 16 (fadal-pid/x, 2 samples on
+    circles): every earlier start of 2 samples diverged and 1 screened at 15.2 um against the model's 4.02, and a
+    450 Hz mode was refitted instead; the lag given back to 1 sample screens at 1.10 um, and the refit from the
+    2-sample neighbour names 2 samples, 4.06 -> 0.459 um held out.
     """
     d = ctx.data
     rows = _train_rows(d, 4)
@@ -1034,6 +1079,12 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
             starts.append(_screened(ctx, ctx.gn_refine(augment(ctx.model, others + [e], viscous_rate=cvis), 6)[1]))
         return starts
 
+    def lag_given_back(n: int) -> list[tuple[float, AugmentedAxisModel]]:
+        e = Delay(samples=n, sample_time=d.T)
+        given_back = (lag_removed(ctx.model.parameters, (n + extra) * d.T, cvis) for extra in _LAG_EXTRA)
+        return [_screened(ctx, augment(ctx.model, others + [e], parameters=p, viscous_rate=cvis))
+                for p in given_back if p is not None]
+
     # each delay is independent: side by side, judged in order
     delays = list(range(0, Delay.MAX + 1))
     by_delay = dict(zip(delays, thread_map(tried, delays)))
@@ -1048,6 +1099,10 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
 
         for n, p in thread_map(refined, regression):
             by_delay[n].append(p)
+    lagged = set()
+    for n, starts in zip(delays[1:], thread_map(lag_given_back, delays[1:])):
+        by_delay[n] += starts
+        lagged.update(id(m) for _, m in starts)
     best_of = {n: min(s, key=lambda p: p[0]) for n, s in by_delay.items() if s}
     scores = {n: p[0] for n, p in best_of.items()}
     if not best_of:
@@ -1056,8 +1111,9 @@ def search_delay(ctx: SearchContext) -> list[Candidate]:
     if n == 0 or not math.isfinite(scores[n]):
         return []
     sc, s_ = best_of[n]
+    # a first-order start ranks the delays as roughly as the refined ones do: the refit takes the neighbours too
     near = tuple(best_of[k][1] for k in (n - 1, n + 1)
-                 if refine and k >= 1 and k in best_of and math.isfinite(scores[k]))
+                 if (refine or id(s_) in lagged) and k >= 1 and k in best_of and math.isfinite(scores[k]))
     return [Candidate(effect=s_.elements[-1], start=s_, screen_rms_um=sc, other_starts=near,
                       evidence={"search": f"delays 0..{Delay.MAX} samples: sampled split-form regression (trimmed "
                                           "least squares), the best refined by Gauss-Newton, then simulation",

@@ -162,6 +162,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -1517,6 +1518,20 @@ def _rotary_now(m: Machine) -> Solution:
     return m.context.kinematics.solution_at(shown)
 
 
+def _wrap_turns(m: Machine) -> dict[str, Callable[[float], float]]:
+    """For each kinematics axis the machine wraps at 360 deg, the turn [deg] it makes to an angle it shows, reached
+    as :func:`_position_rotary` reaches it (an absolute word by the machine's rule): what
+    :meth:`interpolators.tilted.Kinematics.choose` weighs the solutions by (TNC7 user's manual 81762x-17, "Tilting
+    solution": "Based on the current position of the rotary axes, choose the possible solution with the shortest
+    path"; C shown at 280 and B+30 C+90 or B-30 C-90: C270, 10 deg away under the TNC's own rule, not C90, -190)."""
+    def turn(i: int) -> Callable[[float], float]:
+        now, shift = float(m.extra[i]), float(m.rotary_shift[i])
+        return lambda angle: wrapped_end(angle, now, shift, m.wrap_rule) - now
+
+    return {a: turn(EXTRA_LETTERS.index(a.upper())) for a in m.context.kinematics.names
+            if a in m.context.wrapped_axes}
+
+
 def _plane(text: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> None:
     """``PLANE <form> .. MOVE|TURN|STAY``, ``PLANE RESET``: tilt the working plane on the machine's tilting
     table (:mod:`interpolators.tilted`, :func:`interpolators.heidenhain_transforms.read_plane`).
@@ -1545,7 +1560,7 @@ def _plane(text: str, m: Machine, where: Where, blk: SourceBlock, col: int) -> N
             angles = axial_angles(pb, kinematics=kin, current=current)
         else:
             angles = None if rotation is None else kin.choose(rotation, current, sequence=pb.sequence,
-                                                              table_rot=pb.table_rot)
+                                                              table_rot=pb.table_rot, turns=_wrap_turns(m))
     except TiltError as exc:
         where.fail(f"PLANE {pb.form}: {exc.message}", column=col, text=text.strip(), expected=exc.expected)
     _retract(pb, m, where, blk)
@@ -1723,7 +1738,7 @@ def _tilt_cycle(rest: str, m: Machine, where: Where, col: int, blk: SourceBlock)
             kin.require_table()
             if tilted:
                 rotation = spatial(angles.get("A", 0.0), angles.get("B", 0.0), angles.get("C", 0.0))
-                solution = kin.choose(rotation, current)
+                solution = kin.choose(rotation, current, turns=_wrap_turns(m))
         except TiltError as exc:
             where.fail(f"cycle 19: {exc.message}", column=col, text=rest.strip(), expected=exc.expected)
     if tilted:

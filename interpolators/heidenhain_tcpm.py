@@ -207,7 +207,7 @@ def _turn_tool_to(direction, m: Machine, where: Where, w, *, what: str) -> np.nd
     spindle (:func:`interpolators.tcp.tool_vector_extra`), the axes marked used; an error at the word ``w``."""
     kin = m.context.kinematics
     try:
-        extra = tool_vector_extra(kin, direction, m.extra)
+        extra = tool_vector_extra(kin, direction, m.extra, wrapped=m.context.wrapped_axes)
     except TiltError as exc:
         where.fail(f"{what}: {exc.message}", column=w.column, text=w.text, expected=exc.expected)
     m.extra_used = True

@@ -35,6 +35,7 @@ accepted with a note, as CAM posts write it on 3-axis work).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 import numpy as np
 
@@ -43,7 +44,7 @@ from interpolators.rotary_wrap import ROTARY_AXES, default_direction, wrap_refer
 from vcnc.core.axes import EXTRA_NAMES
 
 __all__ = ["EXTRA_LETTERS", "ROTARY_LETTERS", "word_values", "extra_target", "wrapped_target", "wrapped_reference",
-           "refuse_wrapped_offset", "fill_extra"]
+           "reference_turns", "refuse_wrapped_offset", "fill_extra"]
 
 #: Axis words beyond X, Y, Z, in the column order of ``Block.extra_start`` / ``extra_target``.
 EXTRA_LETTERS: str = "".join(EXTRA_NAMES).upper()
@@ -127,6 +128,22 @@ def wrapped_reference(target: np.ndarray, st, moving: tuple[str, ...] = ROTARY_A
     direction = _direction(ctx)
     return wrap_reference(target, st.extra, wrapped=ctx.wrapped_axes, moving=moving, direction=direction,
                           linuxcnc_offset=_linuxcnc_offset(st, direction))
+
+
+def reference_turns(st, names: tuple[str, ...]) -> dict[str, Callable[[float], float]]:
+    """For each of the rotary axes ``names`` the machine wraps at 360 deg, the turn [deg] it makes to a machine angle
+    reached as :func:`wrapped_reference` reaches it (G53.1 turning the axes to a tilted plane): what
+    :meth:`interpolators.tilted.Kinematics.choose` weighs the solutions by."""
+    def turn(name: str) -> Callable[[float], float]:
+        i = EXTRA_LETTERS.index(name.upper())
+
+        def to(angle: float) -> float:
+            target = st.extra.copy()
+            target[i] = angle
+            return float(wrapped_reference(target, st, (name,))[i] - st.extra[i])
+        return to
+
+    return {a: turn(a) for a in names if a in st.context.wrapped_axes}
 
 
 def refuse_wrapped_offset(seen: dict, st, where, code: str) -> None:

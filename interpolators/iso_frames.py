@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
-from interpolators.iso_axes import EXTRA_LETTERS, wrapped_reference
+from interpolators.iso_axes import EXTRA_LETTERS, reference_turns, wrapped_reference
 from interpolators.iso_codes import DIALECT_G, G_CODES, MILL_G
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES
 from interpolators.iso_tilt import PLANE_WORDS, TiltedRotation, TiltError, g68_2_rotation
@@ -86,8 +86,9 @@ def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], wh
                        text=bad.text, expected="G68.2 X.. Y.. Z.. I.. J.. K.. with G40 and G69")
         zero = st.offset() - np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
         try:
+            kin = st.context.kinematics
             rot = g68_2_rotation({k: v.value for k, v in seen.items()}, context=st.context, work_zero=zero,
-                                 extra=st.extra, scale=st.scale)
+                                 extra=st.extra, scale=st.scale, turns=reference_turns(st, kin.names if kin else ()))
         except TiltError as exc:
             bad = seen.get(exc.letter, w)
             where.fail(exc.message, column=bad.column, text=bad.text, expected=exc.expected)

@@ -128,7 +128,8 @@ def _tool_direction(seen, st: State, where: Where) -> np.ndarray:
     omitted I, J, or K is assumed to be 0"). Our reading: the axes move linearly to it, as under type 1."""
     kin = st.context.kinematics
     try:
-        rot = tool_vector_extra(kin, [seen[k].value if k in seen else 0.0 for k in ("I", "J", "K")], st.extra)
+        rot = tool_vector_extra(kin, [seen[k].value if k in seen else 0.0 for k in ("I", "J", "K")], st.extra,
+                                wrapped=st.context.wrapped_axes)
     except TiltError as exc:
         w = next(seen[k] for k in ("I", "J", "K") if k in seen)
         where.fail(f"G43.5 tool direction I J K: {exc.message}", column=w.column, text=w.text, expected=exc.expected)

@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -94,7 +95,7 @@ class TiltedRotation(Rotation):
 
 
 def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zero: np.ndarray, extra: np.ndarray,
-                   scale: float) -> TiltedRotation:
+                   scale: float, turns: Mapping[str, Callable[[float], float]] | None = None) -> TiltedRotation:
     """The plane a ``G68.2 [P0|P1 Q] X Y Z I J K`` block defines.
 
     Parameters
@@ -109,12 +110,28 @@ def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zer
         Positions of a, b, c [deg] (and u, v, w) now.
     scale : float
         mm per program unit.
+    turns : mapping of str to callable, optional
+        For each rotary axis that wraps at 360 deg, the turn [deg] G53.1 makes it take to a machine angle (the
+        solutions are weighed by it, and such an axis' position is the angle it shows, in [0, 360):
+        :meth:`interpolators.tilted.Kinematics.choose`).
 
     Raises
     ------
     TiltError
         No kinematics, a head-tilting machine, a form :func:`g68_2_plane` refuses, or a plane the rotary axes
         cannot reach.
+
+    Notes
+    -----
+    Of the solutions, the one FANUC's G53.1 takes (FANUC Series 16i/18i-MB operator's manual, "Angle of rotation
+    axis": "When tool axis direction control (G53.1) has been performed, more than two pairs of 'computed angles' of
+    the rotation axes usually exist"; the output angles are the pair whose master (first rotation) axis' moving
+    angle is smallest, then the slave's, then the master angle nearest 0 deg, a multiple of 360 deg, then the
+    slave's): :meth:`interpolators.tilted.Kinematics.choose` ``order="master"``, each axis at the turn of 360 deg of
+    its angle nearest its position within its limits (``nearest``). The master axis is the outer, tilting one (our
+    reading of "first rotation axis" on a table-rotation machine). Before session 38 the sum of both axes' travels
+    decided, each angle in (-180, 180] first (A5 C-170 to a plane of A+-30 C+-90: A-30 C-90, where FANUC's master
+    rule gives A+30 C-270).
     """
     plane = g68_2_plane(words)
     kin = context.kinematics
@@ -123,7 +140,7 @@ def g68_2_rotation(words: dict[str, float], *, context: MachineContext, work_zer
                         "a machine with [program.kinematics] (vcnc machines --show: the rotary axes that tilt the "
                         "part)")
     kin.require_table()
-    angles = kin.choose(plane, kin.solution_at(extra))
+    angles = kin.choose(plane, kin.solution_at(extra), nearest=True, turns=turns, order="master")
     origin = np.array([words.get(a, 0.0) * scale for a in "XYZ"])
     theta, datum = tilted_frame(kin, plane, angles, np.asarray(work_zero, dtype=float) + origin)
     shift = datum - np.asarray(work_zero, dtype=float)

@@ -53,6 +53,9 @@ WRAP_DIRECTIONS: tuple[str, ...] = ("shortest", "sign", "difference")
 #: The axes that may wrap (rotary a, b, c).
 ROTARY_AXES: tuple[str, ...] = ("a", "b", "c")
 
+#: Angles closer than this are one position of a wrapping axis [deg] (rounding, not a turn).
+_SAME = 1e-9
+
 #: The column of each rotary letter in ``Block.extra_target`` (``interpolators.iso_axes.EXTRA_LETTERS`` order).
 _COLUMN = {"A": 0, "B": 1, "C": 2}
 
@@ -80,7 +83,7 @@ def within_turn(angle: float) -> float:
     turn (``0.3 - 3 * 0.1`` = -2.8e-17) reads 0, not 360 minus it (a shown 359.99.. would turn the next absolute
     word a whole revolution under ``"difference"``)."""
     r = angle % 360.0
-    return 0.0 if r > 360.0 - 1e-9 else r
+    return 0.0 if r > 360.0 - _SAME else r
 
 
 def wrapped_end(value: float, current: float, offset: float, direction: str) -> float:
@@ -88,12 +91,14 @@ def wrapped_end(value: float, current: float, offset: float, direction: str) -> 
     ``current`` [deg, machine, unwrapped], whose program position is the machine's minus ``offset`` [deg]: by the
     rule ``direction`` of :data:`WRAP_DIRECTIONS`. ``"sign"`` expects ``|value| < 360`` (the caller checks it)."""
     here = current - offset  # the program position, unwrapped
-    if direction == "sign":  # rs274ngc unwrap_rotary, its arithmetic, in program coordinates
+    if direction == "sign":  # rs274ngc unwrap_rotary, its arithmetic, in program coordinates; an end within
+        # _SAME of the axis is where it is (a shown angle reduced from it, 249.68099999999998 for -110.319, is no
+        # whole turn: G53.1 keeping C where it is turned it +360 deg)
         end = abs(value) + math.floor(here / 360.0) * 360.0
         if math.copysign(1.0, value) > 0.0:
-            end = end + 360.0 if end < here else end
+            end = end + 360.0 if end < here - _SAME else end
         else:
-            end = end - 360.0 if end > here else end
+            end = end - 360.0 if end > here + _SAME else end
         return end + offset
     if direction == "shortest":
         turn = (value - here) % 360.0

@@ -54,11 +54,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
 from interpolators.lookahead import DEFAULT_TOLERANCE
+from interpolators.rotary_wrap import wrapped_end
 from interpolators.tilted import Kinematics, vector
 
 __all__ = ["MAX_CHORDS", "ChordsError", "TcpChords", "part_point", "machine_point", "tcp_chords", "block_time",
@@ -93,14 +94,17 @@ def machine_point(kinematics: Kinematics, extra: Sequence[float], point: Sequenc
     return kinematics.place(np.asarray(point, dtype=float) - _tool(length), angles) + _tool(length)
 
 
-def tool_vector_extra(kinematics: Kinematics, direction: Sequence[float], extra: np.ndarray) -> np.ndarray:
+def tool_vector_extra(kinematics: Kinematics, direction: Sequence[float], extra: np.ndarray, *,
+                      wrapped: tuple[str, ...] = ()) -> np.ndarray:
     """The positions of a, b, c, u, v, w [deg, mm] that turn the tool direction ``direction`` (a vector in the
     workpiece coordinates, from the tip towards the spindle) onto the spindle axis: ``extra`` with the kinematics'
     axes at the solution nearest their present positions within their limits, each axis at the turn of 360 deg
     nearest its position (:meth:`interpolators.tilted.Kinematics.choose` with ``nearest``; FANUC Series
     15i/150i-MODEL A connection manual B-63323EN-1/03, 10.4.10, type 2, note 4: "Movement of the rotation axes
     is controlled by a shortcut control so that the amount of movement does not exceed 180°"; our reading for
-    HEIDENHAIN's ``LN .. TX TY TZ`` too).
+    HEIDENHAIN's ``LN .. TX TY TZ`` too). An axis among ``wrapped`` (it wraps at 360 deg) turns by at most half a
+    turn whatever its unwrapped position (C at 370 to 90: +80 to 450; the limits, which hold a wrapping axis'
+    angle modulo 360 deg, no longer keep it near 0: :func:`interpolators.rotary_wrap.wrapped_end` ``"shortest"``).
 
     Raises
     ------
@@ -109,11 +113,18 @@ def tool_vector_extra(kinematics: Kinematics, direction: Sequence[float], extra:
     """
     d = np.asarray(direction, dtype=float)
     base = np.eye(3)[int(np.argmin(np.abs(d)))]  # any direction not along d: only the tool axis matters here
-    angles = kinematics.choose(vector(base, d), kinematics.solution_at(extra), nearest=True)
+    turns = {name: _shortest_from(float(extra["abc".index(name)])) for name in kinematics.names if name in wrapped}
+    angles = kinematics.choose(vector(base, d), kinematics.solution_at(extra), nearest=True, turns=turns)
     out = np.array(extra, dtype=float)
     for name, value in kinematics.positions(angles).items():
-        out["abc".index(name)] = value
+        i = "abc".index(name)
+        out[i] = out[i] + turns[name](value) if name in turns else value  # a wrapping axis: where its turn ends
     return out
+
+
+def _shortest_from(now: float) -> Callable[[float], float]:
+    """The turn [deg] of a wrapping axis at ``now`` [deg, unwrapped] to an angle, the shorter way."""
+    return lambda angle: wrapped_end(angle, now, 0.0, "shortest") - now
 
 
 def block_time(start: Sequence[float], end: Sequence[float], turn: Sequence[float], *, feed: float,

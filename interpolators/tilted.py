@@ -43,10 +43,11 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
+from interpolators.rotary_wrap import within_turn
 from vcnc.core.errors import InputError
 
 __all__ = ["RotaryAxis", "Kinematics", "TiltError", "spatial", "projected", "euler", "vector", "points",
@@ -219,10 +220,11 @@ class RotaryAxis:
     def within(self, angle: float, near: float | None = None) -> float | None:
         """``angle`` [deg] or a turn of 360 deg from it inside :attr:`limits` (the one in (-180, 180]
         first; with ``near`` [deg], the one nearest it), else None."""
-        if near is not None:
-            k = round((near - angle) / 360.0)
-            fits = [c for c in (angle + 360.0 * (k + j) for j in (0, -1, 1))
-                    if self.limits[0] - ANGLE_TOLERANCE <= c <= self.limits[1] + ANGLE_TOLERANCE]
+        if near is not None:  # the turns within the limits, the one nearest ``near`` (also from beyond them)
+            first = math.ceil((self.limits[0] - ANGLE_TOLERANCE - angle) / 360.0)
+            last = math.floor((self.limits[1] + ANGLE_TOLERANCE - angle) / 360.0)
+            k = min(max(round((near - angle) / 360.0), first), last)
+            fits = [angle + 360.0 * (k + j) for j in (0, -1, 1) if first <= k + j <= last]
             if fits:
                 return min(fits, key=lambda c: abs(c - near))
         a = math.remainder(angle, 360.0)
@@ -377,7 +379,8 @@ class Kinematics:
         return out
 
     def choose(self, plane: np.ndarray, current: Solution, *, sequence: int = 0, table_rot: bool = False,
-               nearest: bool = False) -> Solution:
+               nearest: bool = False, turns: Mapping[str, Callable[[float], float]] | None = None,
+               order: str = "sum") -> Solution:
         """The solution the control takes: within the limits, the outer (master) axis' angle of the sign
         ``sequence`` (+1 SEQ+/SYM+, -1 SEQ-/SYM-), else (0) the one nearest ``current`` [deg] (the sum of
         both axes' travel; a tie goes to the positive master angle). When the tilted tool axis is the
@@ -388,43 +391,67 @@ class Kinematics:
 
         iTNC 530 user's manual (DIN/ISO, 2010), "Selection of alternate tilting possibilities": SEQ+
         positions the master axis so that it assumes a positive angle, SEQ- a negative one; without SEQ
-        the TNC selects the solution closest to the current position; its example (tilting table A,
+        the TNC selects the solution closest to the current position (TNC7 user's manual 81762x-17, "Tilting
+        solution": "Two possible solutions: Based on the current position of the rotary axes, choose the
+        possible solution with the shortest path"); its example (tilting table A,
         rotary table C, PLANE SPATIAL SPB+45: A+45 C+90 from A+0 C+0, A-45 C-90 from A+0 C-105, an error
         for SEQ+ with -90 < A < +10) is what this returns. The master axis is here the outer axis, the
         one that tilts; SYM (TNC 640: the side of the master axis' symmetry point, at 0) is read as SEQ.
         With ``nearest`` each axis takes the turn of 360 deg of its angle nearest its ``current`` one (a tool
         direction under TCP: :func:`interpolators.tcp.tool_vector_extra`), else the one in (-180, 180] first.
 
+        An axis named in ``turns`` wraps at 360 deg (:mod:`interpolators.rotary_wrap`): its angle is stated as the
+        axis shows it, in [0, 360) (what the caller then turns it to, as an absolute word by the machine's rule),
+        ``turns[name](angle)`` is the turn [deg] the axis makes to reach it from where it is, and its travel is
+        that turn's size, not the distance of two unwrapped angles (C shown at 280, a plane needing B+30 C+90 or
+        B-30 C-90: C270 is 10 deg away under the shorter-way rule, C90 190 deg). Its limits hold modulo 360 deg
+        (some turn of the angle within them), and SEQ judges its angle in (-180, 180].
+
+        ``order="master"`` ranks them as FANUC's tool axis direction control (G53.1) does (FANUC Series 16i/18i-MB
+        operator's manual, "Angle of rotation axis", output judgement conditions of a table or tool rotation type
+        machine): the smallest "master axis (first rotation axis) moving angle", then the slave's, then the master angle
+        nearer 0 deg ("multiple of 360 degrees"), then the slave's; travels equal within :data:`ANGLE_TOLERANCE`
+        (a tie left goes to the positive master angle, as above).
+        FANUC counts every turn of 360 deg of a "computed angle" as a candidate: the caller asks for ``nearest`` too.
+
         Raises
         ------
         TiltError
             No solution within the limits (with the sign asked for).
         """
-        outer, inner = self.axes[0], self.axes[-1]
-        found = []
-        near_o, near_i = (current.outer, current.inner) if nearest else (None, None)
+        if order not in ("sum", "master"):
+            raise ValueError(f"order must be 'sum' or 'master', got {order!r}")
+        turns = turns or {}
+        now = (current.outer, current.inner)
+        near = now if nearest else (None, None)
+        found = []  # (travel, -master angle, solution)
         for s in self.solutions(plane):
-            if len(self.axes) == 1:
-                o = outer.within(s.outer, near_o)
-                found += [] if o is None else [Solution(outer=o, inner=0.0)]
+            angles = [s.outer]
+            if len(self.axes) == 2:
+                free = self._square_inner(plane, s.outer) if table_rot else current.inner
+                angles.append(free if math.isnan(s.inner) else s.inner)
+            placed = [_place(axis, a, n, c, turns.get(axis.name))
+                      for axis, a, n, c in zip(self.axes, angles, near, now, strict=False)]
+            if any(p is None for p in placed):
                 continue
-            free = self._square_inner(plane, s.outer) if table_rot else current.inner
-            o, i = outer.within(s.outer, near_o), inner.within(free if math.isnan(s.inner) else s.inner, near_i)
-            if o is not None and i is not None:
-                found.append(Solution(outer=o, inner=i))
-        if sequence:
-            found = [s for s in found if s.outer * sequence >= -ANGLE_TOLERANCE]
+            master = s.outer if self.axes[0].name in turns else placed[0][0]
+            if sequence and master * sequence < -ANGLE_TOLERANCE:
+                continue
+            solution = Solution(outer=placed[0][0], inner=placed[1][0] if len(placed) == 2 else 0.0)
+            if order == "sum":
+                found.append((sum(p[1] for p in placed), -master, solution))
+            else:
+                found.append((*(round(p[1] / ANGLE_TOLERANCE) for p in placed),
+                              *(round(abs(math.remainder(p[0], 360.0)) / ANGLE_TOLERANCE) for p in placed), -master,
+                              solution))
         if not found:
+            outer = self.axes[0]
             sign = {1: " with a positive", -1: " with a negative"}.get(sequence, "")
             limits = ", ".join(f"{a.name.upper()} {a.limits[0]:g}..{a.limits[1]:g}" for a in self.axes)
             raise TiltError(f"the rotary axes {', '.join(n.upper() for n in self.names)} cannot tilt the part to "
                             f"this plane{sign} {outer.name.upper()} within their limits {limits} deg",
                             "a working plane the machine's rotary axes reach")
-
-        def travel(s: Solution) -> tuple[float, float]:
-            return abs(s.outer - current.outer) + abs(s.inner - current.inner), -s.outer
-
-        return min(found, key=travel)
+        return min(found, key=lambda f: f[:-1])[-1]
 
     def _square_inner(self, plane: np.ndarray, outer: float) -> float:
         """The inner angle [deg] that turns the tilted X onto the machine's X, the tool axis being the inner's."""
@@ -449,6 +476,21 @@ def _angle_between(a: np.ndarray, b: np.ndarray, axis: np.ndarray) -> float:
     pa = a - (a @ axis) * axis
     pb = b - (b @ axis) * axis
     return math.degrees(math.atan2(float(axis @ np.cross(pa, pb)), float(pa @ pb)))
+
+
+def _place(axis: RotaryAxis, angle: float, near: float | None, now: float,
+           turn: Callable[[float], float] | None) -> tuple[float, float] | None:
+    """The angle [deg] ``axis`` takes for the solution's ``angle`` and its travel [deg] from ``now``, or None when its
+    limits forbid it: :meth:`RotaryAxis.within` (nearest ``near`` when given), or on a wrapping axis (``turn``, the
+    turn it makes to an angle it shows) the angle reduced to [0, 360) and the size of that turn
+    (:meth:`Kinematics.choose`)."""
+    if turn is not None:
+        if axis.within(angle) is None:
+            return None
+        shown = within_turn(angle)
+        return shown, abs(turn(shown))
+    placed = axis.within(angle, near)
+    return None if placed is None else (placed, abs(placed - now))
 
 
 def tilted_frame(kinematics: Kinematics, plane: np.ndarray, angles: Solution,

@@ -74,11 +74,12 @@ import copy
 import dataclasses
 import math
 import re
+from collections.abc import Callable
 
 import numpy as np
 
 from tests.interpolators.reference_heidenhain_fk import FkReference
-from tests.interpolators.reference_iso import Expected, ReferenceError, wrapped_end
+from tests.interpolators.reference_iso import Expected, ReferenceError, turns_within, wrapped_end
 from tests.interpolators.reference_match import match_blocks, reader_rows
 
 __all__ = ["heidenhain_reference"]
@@ -469,8 +470,7 @@ def _line_block(t: _Tnc, line: int, w: dict) -> None:
         v = w[k] * (1.0 if i < 3 else t.scale)
         t.extra[i] = t.extra[i] + v if k[0] == "I" else v + (t.shown[i] if i < 3 else 0.0)
         if k[0] != "I" and i < 3 and k.lower() in t.ctx.wrapped_axes:  # a modulo axis (TNC 640 manual, M126)
-            rule = "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
-            t.extra[i] = wrapped_end(rule, v, now[i], t.shown[i])
+            t.extra[i] = wrapped_end(_rule(t), v, now[i], t.shown[i])
     if t.tcpm and t.turned() and np.any(np.abs(t.extra[:3] - now[:3]) > 1e-9):
         raise ReferenceError("a rotary axis moving under M128 in a tilted plane that turns")
     kind = "rapid" if "FMAX" in w else "feed"
@@ -2768,7 +2768,7 @@ def _in_limits(ax, deg: float, near: float | None = None) -> float | None:
     """``deg`` or a turn of 360 from it within the axis' limits: the one in (-180, 180] first, or nearest ``near``."""
     d = (deg + 180.0) % 360.0 - 180.0
     d = 180.0 if abs(d + 180.0) < 1e-9 else d
-    turns = (d, d + 360.0, d - 360.0) if near is None else sorted((d + 360.0 * k for k in range(-4, 5)),
+    turns = (d, d + 360.0, d - 360.0) if near is None else sorted(turns_within(ax.limits, d),
                                                                      key=lambda v: abs(v - near))
     for v in turns:
         if ax.limits[0] - 1e-6 <= v <= ax.limits[1] + 1e-6:
@@ -2776,23 +2776,27 @@ def _in_limits(ax, deg: float, near: float | None = None) -> float | None:
     return None
 
 
-def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False,
-           table_rot: bool = False) -> dict[str, float]:
+def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False, table_rot: bool = False,
+           turn: Callable[[str, float], float] | None = None) -> dict[str, float]:
     """The rotary positions for ``plane`` of an A/C or B/C table (closed form): the tool's direction in the
     part, Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A) or Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
     cos B), equal to the plane's Z. ``nearest``: each axis at the turn of 360 nearest its position (a tool
     direction under M128), else in (-180, 180] first. When the plane's Z is the C axis' own, C stays (COORD ROT)
-    or, with ``table_rot``, turns the plane's X onto the machine's X (:func:`_table_rot`)."""
+    or, with ``table_rot``, turns the plane's X onto the machine's X (:func:`_table_rot`). Of two solutions the one
+    with the shorter path (TNC7 user's manual 81762x-17, "Tilting solution"), a tie to the positive master angle.
+    A wrapping axis (``ctx.wrapped_axes``) is judged by the turn it really makes: under ``nearest`` the shorter
+    way from its unwrapped position, ending there; else at the angle it shows in [0, 360), ``turn(name, angle)``
+    long (the caller's rule); SEQ takes its angle in (-180, 180]."""
     n = plane[:, 2]
     if len(t.ctx.kinematics.axes) == 1:  # one axis: Rx(A) e_z = (0, -sin A, cos A), Ry(B) e_z = (sin B, 0, cos B)
         ax = t.ctx.kinematics.axes[0]
         if ax.direction not in ("X", "Y") or abs(n["XY".index(ax.direction)]) > 1e-9:
             raise ReferenceError("a plane one axis does not reach")
-        v = _in_limits(ax, math.degrees(math.atan2(-n[1], n[2]) if ax.direction == "X" else math.atan2(n[0], n[2])),
-                       t.extra["ABC".index(ax.name.upper())] if nearest else None)
+        deg = math.degrees(math.atan2(-n[1], n[2]) if ax.direction == "X" else math.atan2(n[0], n[2]))
+        v = _pick(t, ax, deg, nearest, turn)
         if v is None:
             raise ReferenceError("no rotary position within the limits")
-        return {ax.name: v}
+        return {ax.name: v[0]}
     outer, inner = t.ctx.kinematics.axes
     if (outer.direction, inner.direction) not in (("X", "Z"), ("Y", "Z")) or t.ctx.kinematics.kind != "table":
         raise ReferenceError("kinematics other than an A/C or B/C table")
@@ -2807,14 +2811,33 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False,
             rot = math.degrees(math.atan2(n[0] / st, -n[1] / st))
         else:
             rot = math.degrees(math.atan2(n[1] / st, n[0] / st))
-        o, i = (_in_limits(outer, tilt, now[0] if nearest else None),
-                _in_limits(inner, rot, now[1] if nearest else None))
-        if o is not None and i is not None and (seq == 0 or o * seq >= -1e-9):
-            found.append((abs(o - now[0]) + abs(i - now[1]), -o, o, i))
+        o, i = _pick(t, outer, tilt, nearest, turn), _pick(t, inner, rot, nearest, turn)
+        if o is None or i is None:
+            continue
+        master = (tilt + 180.0) % 360.0 - 180.0 if outer.name in t.ctx.wrapped_axes else o[0]
+        if seq == 0 or master * seq >= -1e-9:
+            found.append((o[1] + i[1], -master, o[0], i[0]))
     if not found:
         raise ReferenceError("no rotary positions within the limits")
     _, _, o, i = min(found)
     return {outer.name: o, inner.name: i}
+
+
+def _pick(t: _Tnc, ax, deg: float, nearest: bool, turn: Callable[[str, float], float] | None) -> tuple | None:
+    """(the angle ``ax`` takes for the solution's ``deg``, its travel), or None outside the limits (of a wrapping
+    axis: no turn of 360 of ``deg`` within them)."""
+    now = t.extra["ABC".index(ax.name.upper())]
+    if ax.name in t.ctx.wrapped_axes and (nearest or turn is not None):
+        if _in_limits(ax, deg) is None:
+            return None
+        if nearest:  # the shorter way (Fanuc's shortcut control under TCP, read for M128 too)
+            end = wrapped_end("shortest", deg, now, 0.0)
+            return end, abs(end - now)
+        shown = math.fmod(deg, 360.0) + (360.0 if deg < 0.0 else 0.0)
+        shown = 0.0 if shown > 360.0 - 1e-9 else shown
+        return shown, turn(ax.name, shown)
+    v = _in_limits(ax, deg, now if nearest else None)
+    return None if v is None else (v, abs(v - now))
 
 
 def _table_rot(t: _Tnc, plane: np.ndarray, tilt: float) -> float:
@@ -2909,8 +2932,12 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
         t.tilt, new = None, dict.fromkeys(names, 0.0)
     else:
         machine, t.extra = t.extra, _shown(t)  # solved from the angles a wrapping axis shows
+
+        def turn(name: str, angle: float) -> float:  # how far a wrapping axis turns to the angle it shows
+            i = "abc".index(name)
+            return abs(wrapped_end(_rule(t), angle, machine[i], t.shown[i]) - machine[i])
         try:
-            new = dict(angles) if angles is not None else _solve(t, plane, seq, table_rot=table_rot)
+            new = dict(angles) if angles is not None else _solve(t, plane, seq, table_rot=table_rot, turn=turn)
         finally:
             t.extra = machine
         if t.tilt is None:
@@ -2927,12 +2954,17 @@ def _tilt_plane(t: _Tnc, line: int, plane: np.ndarray | None, *, positioning: st
         ends = {}
         for a in names:  # a wrapping axis reaches its nominal angle by the machine's rule, as an absolute word
             i = "ABC".index(a.upper())
-            rule = "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
-            ends[a] = wrapped_end(rule, new[a], t.extra[i], t.shown[i]) if a in t.ctx.wrapped_axes else new[a]
+            ends[a] = wrapped_end(_rule(t), new[a], t.extra[i], t.shown[i]) if a in t.ctx.wrapped_axes else new[a]
         still = all(abs(t.extra["ABC".index(a.upper())] - ends[a]) < 1e-12 for a in names)
         for a in names:
             t.extra["ABC".index(a.upper())] = ends[a]
         t.emit(line, feed, end, extra=t.extra.copy(), rows="optional" if still else "one")
+
+
+def _rule(t: _Tnc) -> str:
+    """The way an absolute word turns a wrapping axis: shorter under M126, else the machine's, else the
+    difference to the angle shown (TNC 640 user's manual, M126)."""
+    return "shortest" if t.m126 else t.ctx.wrap_direction or "difference"
 
 
 def _plane(t: _Tnc, line: int, up: str) -> None:

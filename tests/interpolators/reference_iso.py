@@ -135,6 +135,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import itertools
 import math
 import re
 
@@ -751,6 +752,7 @@ class _Machine:
         self.tool_xy = np.zeros(2)  # the tool's X Y offsets (LinuxCNC tool table X Y; G43 applies them)
         self.tcp = False  # Fanuc G43.4 / Haas G234 tool centre point control on the machine's tilting table
         self.tcp_vector = False  # Fanuc G43.5: the tool direction I J K instead of rotary words
+        self.tilted: np.ndarray | None = None  # Fanuc G68.2's plane (columns: its X, Y, Z in the work system)
         self.selected = self.loaded = 0
         self.offsets_of: dict[int, int] = {}  # Fagor T<tool>.<offset>
         self.spindle = 0.0  # S [rev/min] (Fanuc rigid tapping: _rigid_tap)
@@ -941,11 +943,11 @@ def _table(m: _Machine, point: np.ndarray, extra: np.ndarray, *, back: bool = Fa
     return q
 
 
-def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
-    """The rotary positions of an A/C or B/C table (or one A or B axis) that make ``tool`` (part coordinates) the
-    spindle's axis, nearest the present ones within the limits. The tool's direction in the part at angles
-    (o, i): Rz(C) Rx(A) e_z = (sin C sin A, -cos C sin A, cos A), Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B,
-    cos B); one axis: (0, -sin A, cos A), (sin B, 0, cos B)."""
+def _angle_pairs(m: _Machine, tool: np.ndarray) -> list[tuple[float, float]]:
+    """The (outer, inner) angles [deg] of an A/C or B/C table (or one A or B axis, inner 0) that make ``tool`` (part
+    coordinates) the spindle's axis; the tool's direction in the part at angles (o, i): Rz(C) Rx(A) e_z = (sin C sin A,
+    -cos C sin A, cos A), Rz(C) Ry(B) e_z = (cos C sin B, sin C sin B, cos B); one axis: (0, -sin A, cos A),
+    (sin B, 0, cos B). A tool along C leaves C where it is."""
     axes = m.ctx.kinematics.axes
     n = tool / np.linalg.norm(tool)
     if any(ax.direction not in ("X", "Y", "Z") for ax in axes) or axes[0].direction == "Z" or (
@@ -953,24 +955,32 @@ def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
         raise ReferenceError("kinematics other than an A/C or B/C table")
     x = axes[0].direction == "X"
     if len(axes) == 1:
-        pairs = [(math.degrees(math.atan2(-n[1], n[2]) if x else math.atan2(n[0], n[2])), 0.0)]
-    else:
-        tilt = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))
-        pairs = []
-        for o in (tilt, -tilt):
-            so = math.sin(math.radians(o))
-            i = m.extra["abc".index(axes[1].name)] if abs(so) < 1e-9 else math.degrees(
-                math.atan2(n[0] / so, -n[1] / so) if x else math.atan2(n[1] / so, n[0] / so))
-            pairs.append((o, i))
+        return [(math.degrees(math.atan2(-n[1], n[2]) if x else math.atan2(n[0], n[2])), 0.0)]
+    tilt = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))
+    pairs = []
+    for o in (tilt, -tilt):
+        so = math.sin(math.radians(o))
+        i = m.extra["abc".index(axes[1].name)] if abs(so) < 1e-9 else math.degrees(
+            math.atan2(n[0] / so, -n[1] / so) if x else math.atan2(n[1] / so, n[0] / so))
+        pairs.append((o, i))
+    return pairs
+
+
+def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
+    """The rotary positions of an A/C or B/C table (or one A or B axis) that make ``tool`` (part coordinates) the
+    spindle's axis, nearest the present ones within the limits (:func:`_angle_pairs`)."""
+    axes = m.ctx.kinematics.axes
+    pairs = _angle_pairs(m, tool)
     now = [m.extra["abc".index(ax.name)] for ax in axes]
     best = None
     for pair in pairs:
         fit = []
         for ax, v in zip(axes, pair, strict=False):
             now_ax = m.extra["abc".index(ax.name)]  # the turn of 360 deg nearest the axis' position (Fanuc 15i)
-            turns = sorted((v + 360.0 * k for k in range(-4, 5)), key=lambda c: abs(c - now_ax))
-            w = next((c for c in turns if ax.limits[0] - 1e-6 <= c <= ax.limits[1] + 1e-6), None)
-            fit.append(w)
+            inside = sorted(turns_within(ax.limits, v), key=lambda c: abs(c - now_ax))
+            if ax.name in m.ctx.wrapped_axes and inside:  # a wrapping axis: the shorter way from wherever it is
+                inside = [wrapped_end("shortest", v, now_ax, 0.0)]  # (its limits hold modulo 360 deg)
+            fit.append(inside[0] if inside else None)
         if None not in fit:
             key = (sum(abs(f - c) for f, c in zip(fit, now, strict=True)), -fit[0])
             best = min(best, (key, fit)) if best is not None else (key, fit)
@@ -979,6 +989,80 @@ def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
     out = m.extra.copy()
     for ax, v in zip(axes, best[1], strict=True):
         out["abc".index(ax.name)] = v
+    return out
+
+
+def turns_within(limits: tuple[float, float], angle: float) -> list[float]:
+    """Every turn of 360 deg of ``angle`` [deg] within ``limits`` (within 1e-6 deg), counted from the lowest."""
+    k = math.ceil((limits[0] - 1e-6 - angle) / 360.0)
+    out = []
+    while angle + 360.0 * k <= limits[1] + 1e-6:
+        out.append(angle + 360.0 * k)
+        k += 1
+    return out
+
+
+def _tilted_plane(m: _Machine, line: int, g: list[int], words: dict) -> None:
+    """Fanuc G68.2 (P0: the Euler angles I, J, K about Z, the turned X, the new Z) and G53.1 (30i B-63942EN/02 5.44
+    "Tilted working plane command"): G53.1 turns the rotary axes at rapid to the output angles of FANUC's tool axis
+    direction control (16i/18i-MB operator's manual, "Angle of rotation axis"): of the computed angles (every turn
+    of 360 deg of both solutions, within the limits) the pair whose master (outer) axis moves least, then the
+    slave, then the master angle nearest a multiple of 360 deg, then the slave's; a wrapping axis at the angle it
+    shows, reached as a machine word by the machine's rule (its move what it turns). Motion in the tilted plane is
+    not modelled (ReferenceError); G69 ends it."""
+    if 690 in g:
+        m.tilted = None
+    if 682 in g:
+        if set(words) - set("xyzijkng") or m.ctx.kinematics is None:
+            raise ReferenceError("G68.2 other than X Y Z I J K (P0) or without kinematics")
+        i, j, k = (words.pop(a, [0.0])[-1] for a in "ijk")
+        for a in "xyz":
+            words.pop(a, None)
+        m.tilted = _euler(i, j, k)
+        g.remove(682)
+    if 531 in g and m.tilted is not None:
+        m.extra = _output_angles(m, _angle_pairs(m, m.tilted[:, 2]))
+        m.emit(line, "rapid", m.pos.copy(), rows="optional")
+        g.remove(531)
+    if m.tilted is not None and any(a in words for a in "xyz"):
+        raise ReferenceError("motion in a G68.2 tilted plane")
+
+
+def _euler(i: float, j: float, k: float) -> np.ndarray:
+    """The plane of G68.2's Euler angles [deg]: turned about Z by I, then about the turned X by J, then about the new
+    Z by K (columns: the plane's X, Y, Z in the work system)."""
+    def rz(a: float) -> np.ndarray:
+        c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
+        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+    c, s = math.cos(math.radians(j)), math.sin(math.radians(j))
+    return rz(i) @ np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]) @ rz(k)
+
+
+def _output_angles(m: _Machine, pairs: list[tuple[float, float]]) -> np.ndarray:
+    """The rotary positions G53.1 turns the axes to (:func:`_tilted_plane`)."""
+    axes = m.ctx.kinematics.axes
+    ranked = []
+    for pair in pairs:
+        options = []
+        for ax, v in zip(axes, pair, strict=False):
+            now = m.extra["abc".index(ax.name)]
+            inside = turns_within(ax.limits, v)
+            if ax.name in m.ctx.wrapped_axes:
+                shown = v % 360.0 if abs(math.remainder(v, 360.0)) > 1e-9 else 0.0
+                options.append([(m.wrapped(shown, now, 0.0), shown)] if inside else [])
+            else:
+                options.append([(c, c) for c in inside])
+        for combo in itertools.product(*options):
+            moves = [round(abs(end - m.extra["abc".index(ax.name)]) * 1e6) for ax, (end, _) in zip(axes, combo)]
+            zero = [round(abs(math.remainder(c, 360.0)) * 1e6) for _, c in combo]
+            master = pair[0] if axes[0].name in m.ctx.wrapped_axes else combo[0][1]
+            ranked.append(((*moves, *zero, -master), [end for end, _ in combo]))
+    if not ranked:
+        raise ReferenceError("a tilted plane the rotary axes do not reach")
+    out = m.extra.copy()
+    for ax, end in zip(axes, min(ranked)[1], strict=False):
+        out["abc".index(ax.name)] = end
     return out
 
 
@@ -1826,6 +1910,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if m.ctx.dialect.name == "fanuc" and m.ctx.decimal_point_input == "increment":
         _least_increments(m, g, words, ln.text)
     _modes(m, g, words, ln.text)
+    if m.ctx.dialect.name in ("fanuc", "haas") and (682 in g or 531 in g or m.tilted is not None):
+        _tilted_plane(m, ln.number, g, words)
     if m.ctx.dialect.name == "fanuc" and (150 in g or 160 in g or m.polar16):
         _fanuc_polar(m, g, words)
     axes = any(a in words for a in "xyz@^abcuvw")  # a block with only A-W words moves (X Y Z stay)

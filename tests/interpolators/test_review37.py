@@ -59,17 +59,18 @@ _KIN = Kinematics(kind="table", axes=(RotaryAxis(name="a", direction="X", limits
                                       RotaryAxis(name="c", direction="Z")))
 
 
-@pytest.mark.parametrize(("wrapped", "c_end"), [(("c",), 450.0), ((), 90.0)])
-def test_g53_1_turns_a_wrapping_axis_the_machine_way(wrapped: tuple[str, ...], c_end: float):
-    """C at 370 (``G91 C370.``), ``G68.2 I90. J30. K0``, ``G53.1``: the plane needs A+30 C+90 (or A-30 C-90, 100
-    deg away). A roll-over C (Fanuc RAB = 0, B-63534EN/02 20.2.1: "the tool moves in the direction in which the
-    final coordinates are closest") turns +80 to 450 (before: -280 to 90, as a linear axis does, which it still
-    does without wrap)."""
+@pytest.mark.parametrize(("wrapped", "a_end", "c_end"), [(("c",), 30.0, 450.0), ((), -30.0, 270.0)])
+def test_g53_1_turns_a_wrapping_axis_the_machine_way(wrapped: tuple[str, ...], a_end: float, c_end: float):
+    """C at 370 (``G91 C370.``), ``G68.2 I90. J30. K0``, ``G53.1``: the plane needs A+30 C+90 or A-30 C-90. A
+    roll-over C (Fanuc RAB = 0, B-63534EN/02 20.2.1: "the tool moves in the direction in which the final coordinates
+    are closest") turns +80 to 450 (before: -280 to 90, as a linear axis does), the other 100 deg away. Without wrap,
+    C within its limits -360..360: 90 is 280 deg away, 270 (= -90) 100 (FANUC G53.1 weighs every turn of 360 deg of
+    a computed angle, the smaller slave moving angle deciding: kin38; before, A+30 C+90)."""
     ctx = MachineContext(dialect=DIALECTS["fanuc"], extra_axes=("a", "c"), wrapped_axes=wrapped, kinematics=_KIN)
     prog = parse_iso("G21 G90\nG0 A0 C0\nG91 G0 C370.\nG90\nG68.2 X0 Y0 Z0 I90. J30. K0\nG53.1\nM30\n",
                      source="t.nc", context=ctx)
     last = prog.blocks[-1]
-    assert float(last.extra_target[0]) == pytest.approx(30.0)
+    assert float(last.extra_target[0]) == pytest.approx(a_end)
     assert float(last.extra_target[2]) == pytest.approx(c_end)
     assert np.allclose(last.target, last.start)  # G53.1 turns the rotary axes only
 
