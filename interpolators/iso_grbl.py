@@ -64,14 +64,14 @@ error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherw
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
 from interpolators.iso_flow import refuse_heidenhain_iso
 from interpolators.iso_words import Word, comment_spans, firmware_dwell_hint
 
-__all__ = ["GrblLines", "system_lines", "unsupported_codes"]
+__all__ = ["GrblLines", "MAX_LINE_NUMBER", "MAX_TOOL_NUMBER", "system_lines", "unsupported_codes", "value_limits"]
 
 #: ``$`` commands that neither move the tool nor change the program's geometry (grbl ``system.c``).
 _PASSIVE = re.compile(r"\$(?:|\$|#|G|I(?:=.*)?|N(?:\d+=.*)?|X|\d+=[-+]?[\d.]+)")
@@ -115,6 +115,35 @@ _GRBL_ERROR = {591: 23, 592: 23, 593: 23}
 _GRBLHAL_ONLY_M = {6: "M6 tool change", 48: "M48 overrides enabled", 49: "M49 overrides disabled",
                    50: "M50 feed override control", 51: "M51 spindle override control",
                    **{m: f"M{m} digital output" for m in (62, 63, 64, 65)}, 66: "M66 wait on input"}
+
+
+#: grbl 1.1 ``gcode.h``: "#define MAX_LINE_NUMBER 10000000" (grblHAL ``gcode.c`` the same) and "#define
+#: MAX_TOOL_NUMBER 255 // Limited by max unsigned 8-bit value" (grblHAL ``config.h``: 2147483647).
+MAX_LINE_NUMBER = 10_000_000
+MAX_TOOL_NUMBER = 255
+
+
+def value_limits(seen: Mapping[str, Word], where: Where) -> list[str]:
+    """Notes for the word values of one block that grbl 1.1 refuses and grblHAL runs: a tool number above
+    :data:`MAX_TOOL_NUMBER` (``gcode.c``: "if (value > MAX_TOOL_NUMBER) { FAIL(STATUS_GCODE_MAX_VALUE_EXCEEDED); }",
+    error 38; grblHAL takes tool numbers to 2147483647 when it has no tool table).
+
+    Raises
+    ------
+    vcnc.GCodeError
+        A line number N above :data:`MAX_LINE_NUMBER` (``gcode.c``: "if (gc_block.values.n > MAX_LINE_NUMBER) {
+        FAIL(STATUS_GCODE_INVALID_LINE_NUMBER); } // [Exceeds max line number]", error 27; grblHAL's the same).
+    """
+    n = seen.get("N")
+    if n is not None and n.value > MAX_LINE_NUMBER:
+        where.fail(f"line number {n.text.strip()} above grbl's {MAX_LINE_NUMBER:,} (gcode.c MAX_LINE_NUMBER: "
+                   "'[Exceeds max line number]', error 27)", column=n.column, text=n.text,
+                   expected=f"N0 .. N{MAX_LINE_NUMBER} (or no N word)")
+    t = seen.get("T")
+    if t is not None and t.value > MAX_TOOL_NUMBER:
+        return [f"T{t.value:g} run as grblHAL runs it (grbl 1.1 refuses a tool number above {MAX_TOOL_NUMBER}: "
+                "MAX_TOOL_NUMBER, error 38)"]
+    return []
 
 
 def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str], where: Where,
