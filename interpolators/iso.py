@@ -627,7 +627,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     seen, gcodes, mcodes = _collect(words, where, notes, st)
     spindle_select(seen, gcodes, mcodes, st, where, notes)
     if st.context.dialect.name == "grbl":
-        for note in [*unsupported_codes(gcodes, seen, where, mcodes), *value_limits(seen, where)]:
+        for note in [*unsupported_codes(gcodes, seen, where, mcodes), *value_limits(gcodes, seen, where)]:
             notes.add(note)
     before, arc3d = len(blocks), st.arc3d_mid is not None
     if "exact stop check" not in gcodes:

@@ -132,3 +132,17 @@ def test_the_reference_refuses_a_peck_depth_of_0_or_less(cycle):
     # looped without end (its pecks never went down)
     with pytest.raises(ReferenceError, match="peck depth"):
         iso_reference(f"G21 G90\nG0 X1. Y1. Z5.\n{cycle}\nG80\nM30\n", _ctx("fanuc"))
+
+
+def test_grbl_refuses_a_g10_l2_rotation():
+    # grbl gcode.c "[G10 L2 R not supported]" (error 20; grblHAL gcode.c the same). Before: run as LinuxCNC's rotation
+    with pytest.raises(GCodeError, match="G10 L2 R"):
+        parse_program("G21 G90\nG10 L2 P1 X1. R45.\nG0 X1.\nM30\n", context=_ctx("grbl"))
+
+
+@pytest.mark.parametrize("block, note", [("G10 L20 P7 X1.", "error 29"), ("G10 L1 P1 Z5.", "[Unsupported L]")])
+def test_grbl_notes_g10_forms_grbl_1_1_refuses(block, note):
+    # grbl settings.h N_COORDINATE_SYSTEM 6 ("[Greater than N sys]", error 29) and G10 L1/L10/L11 ("[Unsupported
+    # L]"); grblHAL runs both (nine systems; a tool table). Before: no note
+    prog = parse_program(f"G21 G90\n{block}\nM30\n", context=_ctx("grbl"))
+    assert any(note in n and "grblHAL" in n for n in prog.notes)
