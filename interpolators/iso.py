@@ -156,7 +156,7 @@ from interpolators.iso_fanuc_nurbs import NurbsCurve, g062_block, unfinished_g06
 from interpolators.iso_fast import PlainMoves
 from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
-from interpolators.iso_grbl import unsupported_codes
+from interpolators.iso_grbl import unsupported_codes, value_limits
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
 from interpolators.iso_mcodes import HAAS_OWN_M, io_words, m_codes, planner_word, spindle_select, user_m_file
 from interpolators.iso_modal_call import ModalCalls
@@ -202,7 +202,7 @@ from interpolators.iso_text import (
     program_name,
 )
 from interpolators.iso_transforms import Frame, mirror_forbids
-from interpolators.iso_words import Word, WordError, fail_words
+from interpolators.iso_words import Word, WordError, fail_words, offset_number
 from interpolators.program import Block, Message, Program, end_at_rest, program_axes
 
 __all__ = ["parse_iso"]
@@ -628,7 +628,7 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     seen, gcodes, mcodes = _collect(words, where, notes, st)
     spindle_select(seen, gcodes, mcodes, st, where, notes)
     if st.context.dialect.name == "grbl":
-        for note in unsupported_codes(gcodes, seen, where, mcodes):
+        for note in [*unsupported_codes(gcodes, seen, where, mcodes), *value_limits(gcodes, seen, where)]:
             notes.add(note)
     before, arc3d = len(blocks), st.arc3d_mid is not None
     m29 = next((w for m, w in mcodes if m == 29), None) if st.context.dialect.name == "fanuc" else None
@@ -649,11 +649,26 @@ def _execute(words: list[Word], st: State, blocks: list[Block], used: set[int], 
     return ended
 
 
+def _sequence_number(seen, where: Where) -> int | None:
+    """The block's N number (None without one, or with a fraction); a negative N is refused under every dialect:
+    rs274ngc reads N as an unsigned integer (interp_read.cc ``read_n_number``: "Bad format unsigned integer"),
+    grbl refuses a negative N ("[Word value cannot be negative]", error 4) and Fanuc numbers blocks 1 to 99999
+    (a sign in a sequence number: our reading, an alarm)."""
+    n = seen.get("N")
+    if n is None:
+        return None
+    if n.value < 0:
+        where.fail(f"negative sequence number {n.text.strip()} (LinuxCNC: \"Bad format unsigned integer\"; grbl: "
+                   "error 4, word value cannot be negative)", column=n.column, text=n.text,
+                   expected="N followed by a whole number >= 0")
+    return int(n.value) if n.value == int(n.value) else None
+
+
 def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: list[Block], used: set[int],
                    where: Where, notes: Notes) -> bool:
     """:func:`_execute` of a block whose words are sorted."""
     seen, st.corner_word = corner_word(seen, st.context.dialect.name, where)
-    number = int(seen["N"].value) if "N" in seen and seen["N"].value == int(seen["N"].value) else None
+    number = _sequence_number(seen, where)
     # order of execution (LinuxCNC G-code overview, "Order of Execution")
     _modes(seen, gcodes, st, where, notes)
     if "polar" in gcodes or st.fanuc_polar:
@@ -743,7 +758,7 @@ def _execute_block(words: list[Word], seen, gcodes, mcodes, st: State, blocks: l
         w = seen["@"] if "@" in seen else seen["^"]
         where.fail(str(exc), column=w.column, text=w.text, expected="a start point away from X0 Y0, or X and Y")
     if "position offset" in gcodes:
-        target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, notes)
+        target = _position_offset(gcodes["position offset"][0], seen, axis_words, target, st, where, notes)
     if now:
         used.add(2)
     motion_block(seen, gcodes, axis_words, arc_words, target, st, blocks, used, where, number)
@@ -794,12 +809,12 @@ def _check_position_offset(entry, seen, st: State, where: Where, other_axes: lis
                    expected=f"{w.text.strip()} X/Y/Z D<n> (or H<n>) on a G00/G01 move, without G41/G42")
 
 
-def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, st: State,
+def _position_offset(key: int, seen, axis_words: list[str], target: np.ndarray, st: State, where: Where,
                      notes: Notes) -> np.ndarray:
     """The end point of a G45-G48 block (:mod:`interpolators.iso_position_offset`): the offset of its D word (the
     tool table's radius) or H word (length)."""
     letter = "D" if "D" in seen else "H"
-    number = int(seen[letter].value)
+    number = offset_number(seen[letter], where, POSITION_OFFSET_CODES[key][0].split()[0])
     tool = st.tool(number)
     if tool is None:
         notes.add(f"{letter}{number} not in the tool table (offset 0)")
@@ -1379,11 +1394,7 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         notes.add("G92 offset")
         return True
     if key in (921, 922):
-        if key == 921:
-            st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
-        st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
-        st.g92_applied = False
-        return not linuxcnc_modal_axis_words(seen, st)
+        return _g92_reset(key, seen, st, where, w)
     if key == 923:
         st.g92, st.g92_extra = st.g92_saved.copy(), st.g92_extra_saved.copy()
         st.g92_applied = True
@@ -1401,6 +1412,37 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
         notes.add(g10(seen, st, where, w))
         return True
     return False
+
+
+def _g92_reset(key: int, seen, st: State, where: Where, w) -> bool:
+    """G92.1 (G92 offset, its saved copy and the local system reset) and G92.2 (the G92 offset suspended); True
+    when the block's axis words have no motion left to make.
+
+    LinuxCNC and grbl take no axis words with them: those move by the modal motion (rs274ngc ``enhance_block``;
+    grbl ``gcode.c``: "If axis words are passed here, they are interpreted as an implicit motion mode"). Fanuc's
+    G92.1 is the workpiece coordinate system preset, ``G92.1 IP 0;``: the axes named are preset, the others keep
+    their shift (Fanuc 0i-MD operator's manual B-64304EN, "Workpiece coordinate system preset"; the page was not in
+    our search index: our reading of its format, whose axis words are written 0; another value is refused); without
+    an axis word, every axis (our reading, as a LinuxCNC post's header ``G92.1`` means it)."""
+    named = [i for i, a in enumerate("XYZ") if a in seen]
+    extra = [i for i, a in enumerate(EXTRA_LETTERS) if a in seen]
+    preset = key == 921 and (named or extra) and st.context.dialect.name not in ("linuxcnc", "grbl")
+    if preset:
+        nonzero = next((seen[a] for a in ("X", "Y", "Z", *EXTRA_LETTERS) if a in seen and seen[a].value != 0), None)
+        if nonzero is not None:
+            where.fail(f"G92.1 {nonzero.text.strip()}: the workpiece coordinate system preset names its axes with 0 "
+                       "(Fanuc: G92.1 IP 0)", column=nonzero.column, text=nonzero.text,
+                       expected=f"G92.1 {nonzero.letter}0 (the axes to preset)")
+        for arrays, axes in (((st.g92, st.g92_saved, st.local), named), ((st.g92_extra, st.g92_extra_saved), extra)):
+            for a in arrays:
+                a[axes] = 0.0
+        st.g92_applied = bool(np.any(st.g92) or np.any(st.g92_extra))
+        return True
+    if key == 921:
+        st.g92_saved, st.g92_extra_saved, st.local = np.zeros(3), np.zeros(6), np.zeros(3)
+    st.g92, st.g92_extra = np.zeros(3), np.zeros(6)
+    st.g92_applied = False
+    return not linuxcnc_modal_axis_words(seen, st)
 
 
 def _g92(seen, axis_words: list[str], st: State, where: Where, w) -> None:

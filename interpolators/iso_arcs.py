@@ -152,7 +152,9 @@ def read_arc(seen, arc_words, target, st: State, where: Where, code: str, mcol: 
                                        tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane,
                                                                       inch=st.inch, rule=rule))
             except ArcWordError as exc:
-                raise ArcWordError(exc.message + _other_centre_mode(st, seen, in_plane, target), exc.expected) from None
+                hint = _other_centre_mode(st, seen, in_plane, target) or _fadal_reversed_centre(st, seen, in_plane,
+                                                                                                target)
+                raise ArcWordError(exc.message + hint, exc.expected) from None
         where.fail(f"{code} arc needs a centre (I/J/K) or a radius (R)", column=mcol, text=mtok, expected="I/J/K or R")
     except ArcWordError as exc:
         w = seen["R"] if has_r else (seen[in_plane[0]] if in_plane else None)
@@ -170,6 +172,29 @@ def _centre(st: State, seen, in_plane: list[str], *, incremental: bool) -> np.nd
         i = "IJK".index(letter)
         center[i] = (st.pos[i] if incremental else off[i]) + seen[letter].value * st.scale
     return center
+
+
+def _fadal_reversed_centre(st: State, seen, in_plane: list[str], target: np.ndarray) -> str:
+    """A hint for a Fadal arc whose end is off its circle: whether I/J/K read as the start minus the centre put both
+    ends on one circle. Siemens NX's Post Builder template for Fadal (``pblib/controller/mill/fadal.def``,
+    ``circular_move_1``: ``I[$mom_prev_pos(0) - $mom_pos_arc_center(0)]``) writes them so; Autodesk's Fusion Fadal
+    post (fadal.cps ``onCircular``: ``iOutput.format(cx - start.x)``, Format 1 and Format 2 alike) and Fanuc write
+    the centre minus the start, which vcnc reads (:mod:`interpolators.iso_fadal`: no Fadal manual text on it was
+    found). "" when the reversed centre does not fit either, or off Fadal."""
+    if not st.fadal or not st.arc_incremental:
+        return ""
+    center = st.pos.copy()
+    for letter in in_plane:
+        i = "IJK".index(letter)
+        center[i] = st.pos[i] - seen[letter].value * st.scale
+    try:
+        arc_from_center(st.pos, target, center, ccw=True, plane=st.plane,
+                        tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch,
+                                                       rule=st.context.dialect.arc_rule))
+    except ArcWordError:
+        return ""
+    return ("; I/J/K as the start minus the centre would fit (NX Post Builder's fadal.def writes them so): vcnc reads "
+            "Fadal's I/J/K as the centre minus the start, as Fanuc's and Fusion's fadal.cps")
 
 
 def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray) -> str:

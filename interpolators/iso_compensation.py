@@ -76,9 +76,10 @@ def _whole_offset_number(code: str, d: Word, where: Where) -> None:
     ``convert_cutter_compensation_on`` (interp_convert.cc) refuses another ("G41 requires D word to be a whole
     number"); Fanuc refuses a decimal point after D (alarm PS0007 "illegal use of decimal point"); Haas, our
     reading, takes D as the register number only. A post that writes the cutter's radius there (Newfangled
-    Solutions' Mach3 wizards: "M6 T7 (TOOL DIA. 3)" then "G41 D1.5") named no register."""
-    if d.value != int(d.value):
-        where.fail(f"{code} D{d.value:g}: the offset number D must be a whole number (LinuxCNC: \"G41 requires D "
+    Solutions' Mach3 wizards: "M6 T7 (TOOL DIA. 3)" then "G41 D1.5") named no register. A negative D is refused
+    alike (rs274: "G41 D-1" gets the same message)."""
+    if d.value != int(d.value) or d.value < 0:
+        where.fail(f"{code} D{d.value:g}: the offset number D must be a whole number >= 0 (LinuxCNC: \"G41 requires D "
                    "word to be a whole number\"; Fanuc: decimal point not allowed after D)", column=d.column,
                    text=d.text, expected=f"{code} D<n>, n a tool or offset number (the tool table gives the radius)")
 

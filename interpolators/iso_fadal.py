@@ -50,6 +50,13 @@ What the dialect reads:
   the block's H names). ``G4 P`` is in milliseconds.
 * ``G10 L02 P1``-``P6`` (fixtures E1-E6) and ``L10 P R0`` (tool length) as Fanuc's; ``L12 P R0`` sets a
   diameter (halved: the tool table keeps radii).
+* Arc centres ``I J K`` are the centre minus the start, as Fanuc's (Format 2) and as Autodesk's Fusion Fadal post
+  writes them in both formats (fadal.cps ``onCircular``: ``iOutput.format(cx - start.x, 0)``, no branch on the
+  ``format`` property). Siemens NX's Post Builder template for Fadal (``pblib/controller/mill/fadal.def``, 1998-2001,
+  ``circular_move_1``) writes the start minus the centre; the Fadal manual's text on it was not found, so this is our
+  reading, and no setting reverses it. Such a program's arcs mostly end off their circle and are refused, with a
+  hint that the reversed centre would fit (:func:`interpolators.iso_arcs.read_arc`); a full circle (end = start)
+  would run mirrored about its start without error.
 * Refused naming them: ``G15`` (YZ circular interpolation with the A axis), ``G17.1``/``G17.2`` (A/B word
   swap), Format 1's ``R1``-``R9`` words, ``G10 L02 P7``-``P48`` and G10's read functions (L13-L15, L100-L109).
 """

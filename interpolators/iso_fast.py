@@ -67,6 +67,7 @@ from interpolators.arcs import (
     radius_arc_tolerance,
 )
 from interpolators.iso_axes import EXTRA_LETTERS
+from interpolators.iso_grbl import MAX_LINE_NUMBER
 from interpolators.iso_motion import move_feed
 from interpolators.program import Block
 from toolpaths.geometry import PLANE_AXES, Line
@@ -250,7 +251,7 @@ class PlainMoves:
                 else:
                     return None
             elif letter == "N":
-                if number is not None:
+                if number is not None or not 0 <= w.value <= MAX_LINE_NUMBER:  # iso refuses N < 0, grbl more
                     return None
                 number = w
             elif letter == "F":

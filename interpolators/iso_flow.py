@@ -316,13 +316,33 @@ class _Frame:
     modal: int | None = None
 
 
+#: The largest Fanuc program number: eight digits (Series 30i/31i/32i-B, "8-digit program number"; older controls
+#: take four, O1-O9999, newer five).
+MAX_FANUC_PROGRAM = 99_999_999
+
+
+def _program_number(fm: re.Match, where: Where) -> None:
+    """Refuse a Fanuc program number out of its range: "program number zero (O0 or O0000) is not allowed" (P. Smid,
+    as quoted at https://en.cncforum.net/t/cnc-program-name-and-number-identification/382: "Programs for older Fanuc
+    controls must be within the range of O1 - O9999 ... Newer controls allow 5-digit program numbers"), nor one of
+    more than eight digits (:data:`MAX_FANUC_PROGRAM`)."""
+    number = int(fm.group(1))
+    if not 1 <= number <= MAX_FANUC_PROGRAM:
+        why = "zero (O0, O0000) is not allowed" if number == 0 else f"above {MAX_FANUC_PROGRAM} (eight digits)"
+        where.fail(f"program number {fm.group(0).strip()}: {why} (Fanuc)", column=fm.start(1) + 1,
+                   text=fm.group(0).strip(), expected=f"O1 .. O{MAX_FANUC_PROGRAM} (O0001: program 1), or no "
+                                                      "program number")
+
+
 class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
     def __init__(self, text: str, source: str | None, *, max_loop_passes: int = MAX_LOOP_PASSES,
                  subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
-                 abbreviations: bool = False, skip_levels: bool = False, tape_forms: bool = True) -> None:
+                 abbreviations: bool = False, skip_levels: bool = False, tape_forms: bool = True,
+                 program_numbers: bool = False) -> None:
         self.source = source
+        self.program_numbers = program_numbers  # Fanuc's range of O numbers: _program_number
         self.skip_levels = skip_levels
         self.tape_forms = tape_forms
         self.subroutine_path = subroutine_path
@@ -431,6 +451,8 @@ class _Program:
                                     "repeat, endrepeat, break or continue")
             fm = _FANUC_PROGRAM.match(code)
             if fm:
+                if self.program_numbers:
+                    _program_number(fm, where)
                 self.fanuc.setdefault(int(fm.group(1)), i)
                 self.code.append(None)
                 continue
@@ -697,7 +719,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
     params = Parameters() if params is None else params
     prog = _Program(text, source, max_loop_passes=max_loop_passes, subroutine_path=subroutine_path,
                     tape_leader=tape_leader, abbreviations=params.fanuc, skip_levels=params.fanuc,
-                    tape_forms=tape_forms)
+                    tape_forms=tape_forms, program_numbers=params.fanuc)
     frames: list[_Frame] = []
     taken: dict[str, bool] = {}
     repeats: dict[int, int] = {}

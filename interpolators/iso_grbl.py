@@ -56,6 +56,10 @@ error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherw
   mode is default. G91.1 does nothing." (grblHAL's ``gcode.c`` alike), so grbl reads I J K as offsets from the
   arc's start whatever the program meant.
 * G61.1 (exact stop mode) is an error naming it (``case 61``: "[G61.1 not supported]").
+* Word values (:func:`value_limits`): a line number above 10,000,000 is an error (error 27), ``G10 L2 .. R`` too
+  (error 20, grblHAL alike); a tool number above 255 (error 38), ``G10 L2``/``L20`` P7-P9 (error 29) and ``G10
+  L1``/``L10``/``L11`` (error 20) run as grblHAL runs them, noted. The axis words of G28.1, G30.1, G92.1 and G4 move
+  by the modal motion, as LinuxCNC's (:func:`interpolators.iso_motion.linuxcnc_modal_axis_words`).
 * A G4 dwell takes its time from P alone: "if (bit_isfalse(value_words,bit(WORD_P))) {
   FAIL(STATUS_GCODE_VALUE_WORD_MISSING); } // [P word missing]" (error 28; an X in the block is an axis word
   of the non-modal command, not a time), so ``G4 X2`` is an error, where the other dialects read X seconds.
@@ -64,14 +68,15 @@ error 20) where vcnc's reader, which reads grbl programs as LinuxCNC does otherw
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import NamedTuple
 
 from interpolators._words import Where, lines_of
 from interpolators.iso_flow import refuse_heidenhain_iso
 from interpolators.iso_words import Word, comment_spans, firmware_dwell_hint
 
-__all__ = ["GrblLines", "system_lines", "unsupported_codes"]
+__all__ = ["GrblLines", "MAX_LINE_NUMBER", "MAX_TOOL_NUMBER", "N_COORDINATE_SYSTEM", "system_lines",
+           "unsupported_codes", "value_limits"]
 
 #: ``$`` commands that neither move the tool nor change the program's geometry (grbl ``system.c``).
 _PASSIVE = re.compile(r"\$(?:|\$|#|G|I(?:=.*)?|N(?:\d+=.*)?|X|\d+=[-+]?[\d.]+)")
@@ -115,6 +120,57 @@ _GRBL_ERROR = {591: 23, 592: 23, 593: 23}
 _GRBLHAL_ONLY_M = {6: "M6 tool change", 48: "M48 overrides enabled", 49: "M49 overrides disabled",
                    50: "M50 feed override control", 51: "M51 spindle override control",
                    **{m: f"M{m} digital output" for m in (62, 63, 64, 65)}, 66: "M66 wait on input"}
+
+
+#: grbl 1.1 ``gcode.h``: "#define MAX_LINE_NUMBER 10000000" (grblHAL ``gcode.c`` the same) and "#define
+#: MAX_TOOL_NUMBER 255 // Limited by max unsigned 8-bit value" (grblHAL ``config.h``: 2147483647).
+MAX_LINE_NUMBER = 10_000_000
+MAX_TOOL_NUMBER = 255
+
+
+#: grbl 1.1 ``settings.h``: "#define N_COORDINATE_SYSTEM 6 // Number of supported work coordinate systems".
+N_COORDINATE_SYSTEM = 6
+
+
+def value_limits(gcodes: Mapping[str, tuple[int, Word]], seen: Mapping[str, Word], where: Where) -> list[str]:
+    """Notes for the word values of one block that grbl 1.1 refuses and grblHAL runs: a tool number above
+    :data:`MAX_TOOL_NUMBER` (``gcode.c``: "if (value > MAX_TOOL_NUMBER) { FAIL(STATUS_GCODE_MAX_VALUE_EXCEEDED); }",
+    error 38; grblHAL takes tool numbers to 2147483647 when it has no tool table), ``G10 L2``/``L20`` with P above
+    :data:`N_COORDINATE_SYSTEM` (G59.1-G59.3: "[Greater than N sys]", error 29; grblHAL has nine) and the tool table
+    entries ``G10 L1``/``L10``/``L11`` ("[Unsupported L]", error 20; grblHAL ``gcode.c`` "[G10 L1, L10, L11 Errors]").
+    ``gcodes`` maps the block's G-code groups to their code (round(10 * G)) and word.
+
+    Raises
+    ------
+    vcnc.GCodeError
+        A line number N above :data:`MAX_LINE_NUMBER` (``gcode.c``: "if (gc_block.values.n > MAX_LINE_NUMBER) {
+        FAIL(STATUS_GCODE_INVALID_LINE_NUMBER); } // [Exceeds max line number]", error 27; grblHAL's the same), and
+        ``G10 L2 .. R`` (a rotation: "[G10 L2 R not supported]", error 20, in grbl and grblHAL).
+    """
+    n = seen.get("N")
+    if n is not None and n.value > MAX_LINE_NUMBER:
+        where.fail(f"line number {n.text.strip()} above grbl's {MAX_LINE_NUMBER:,} (gcode.c MAX_LINE_NUMBER: "
+                   "'[Exceeds max line number]', error 27)", column=n.column, text=n.text,
+                   expected=f"N0 .. N{MAX_LINE_NUMBER} (or no N word)")
+    notes = []
+    t = seen.get("T")
+    if t is not None and t.value > MAX_TOOL_NUMBER:
+        notes.append(f"T{t.value:g} run as grblHAL runs it (grbl 1.1 refuses a tool number above {MAX_TOOL_NUMBER}: "
+                     "MAX_TOOL_NUMBER, error 38)")
+    if any(key == 100 for key, _ in gcodes.values()) and "L" in seen:
+        level, p = seen["L"].value, seen["P"].value if "P" in seen else 0.0
+        if level == 2 and "R" in seen:
+            r = seen["R"]
+            where.fail("G10 L2 R (a rotation of the coordinate system): grbl has none (gcode.c: '[G10 L2 R not "
+                       "supported]', error 20; grblHAL the same)", column=r.column, text=r.text,
+                       expected="G10 L2 P.. X.. Y.. Z.. without R under grbl")
+        if level in (1, 10, 11):
+            notes.append(f"G10 L{level:g} tool table entry run as grblHAL runs it (grbl 1.1 refuses it: "
+                         "'[Unsupported L]', error 20)")
+        elif level in (2, 20) and p > N_COORDINATE_SYSTEM:
+            notes.append(f"G10 L{level:g} P{p:g} run as grblHAL runs it (grbl 1.1 has {N_COORDINATE_SYSTEM} work "
+                         "coordinate systems: '[Greater than N sys]', error 29)")
+    return notes
 
 
 def unsupported_codes(gcodes: dict[str, tuple[int, Word]], letters: Iterable[str], where: Where,

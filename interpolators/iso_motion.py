@@ -573,8 +573,10 @@ def linuxcnc_modal_axis_words(seen, st: State) -> bool:
     interp_check.cc ``enhance_block``: ``mode_zero_covets_axes``; "if there is an axis value in the block and no
     g-code to use it ... set motion_to_be to be the last motion saved"). So ``G28.1 Z3`` (SheetCAM's Mach3
     floating-head posts) stores the position, then moves to Z3 by G0/G1, as do G30.1, G92.1-G92.3 and a dwell
-    ``G4 P..`` (LinuxCNC order of execution: the dwell and the group 0 code before the motion)."""
-    return st.context.dialect.name == "linuxcnc" and any(a in seen for a in ("X", "Y", "Z", *EXTRA_LETTERS))
+    ``G4 P..`` (LinuxCNC order of execution: the dwell and the group 0 code before the motion). grbl does the same
+    (gnea/grbl ``gcode.c``: only G10, G28, G30 and G92 set ``AXIS_COMMAND_NON_MODAL``; for G28.1, G30.1 and G92.1
+    "If axis words are passed here, they are interpreted as an implicit motion mode")."""
+    return st.context.dialect.name in ("linuxcnc", "grbl") and any(a in seen for a in ("X", "Y", "Z", *EXTRA_LETTERS))
 
 
 def dwell_block(gcodes, seen, st: State, blocks, where: Where, number, notes: Notes) -> bool:

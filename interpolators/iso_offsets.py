@@ -81,7 +81,7 @@ from interpolators._words import Where
 from interpolators.context import WORK_OFFSETS, MachineContext, Tool, extended_offset
 from interpolators.iso_axes import EXTRA_LETTERS, refuse_wrapped_offset, word_values
 from interpolators.iso_cycles import CYCLE_AXES
-from interpolators.iso_words import Word, WordError, fail_words
+from interpolators.iso_words import Word, WordError, fail_words, offset_number
 
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
@@ -539,7 +539,7 @@ def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:
         st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
         return
     h = seen.pop("H", None)
-    number, tool = _h_tool(int(h.value) if h is not None else None, st, notes)
+    number, tool = _h_tool(offset_number(h, where, w.text.upper()) if h is not None else None, st, notes)
     st.length_number = number or 0
     length = 0.0 if tool is None else tool.length
     sign = -1.0 if key == 440 else 1.0
@@ -586,7 +586,7 @@ def _additional_length(seen, st: State, where: Where, w: Word, notes: Notes) -> 
                    expected="G43.2 H<tool> or G43.2 X.. Y.. Z.. (no motion), without G41/G42")
     add = np.zeros(3)
     if "H" in seen:
-        _, tool = _h_tool(int(seen.pop("H").value), st, notes)
+        _, tool = _h_tool(offset_number(seen.pop("H"), where, "G43.2"), st, notes)
         if tool is not None:
             add = np.array([tool.offset_x, tool.offset_y, tool.length])
     for i, a in enumerate("XYZ"):

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from interpolators._words import MAX_MAGNITUDE, Where, fence_hint, read_number, token_at
 
 __all__ = ["Word", "WordError", "strip_comments", "comment_spans", "block_comment", "read_words", "plain_words",
-           "WORD_LETTERS", "SPINDLE_SELECT", "fail_words", "foreign_hint", "firmware_dwell_hint"]
+           "WORD_LETTERS", "SPINDLE_SELECT", "fail_words", "foreign_hint", "firmware_dwell_hint", "offset_number"]
 
 
 class WordError(ValueError):
@@ -296,3 +296,18 @@ def fail_words(where: Where, name: str, exc: WordError, seen: dict, word) -> Non
     """Report ``exc`` of the feature ``name`` at the word it names (else at ``word``, the G code)."""
     bad = seen.get(exc.letter, word) if exc.letter else word
     where.fail(f"{name}: {exc}", column=bad.column, text=bad.text, expected=exc.expected)
+
+
+def offset_number(w: Word, where: Where, code: str) -> int:
+    """The value of ``w`` (an ``H`` or ``D`` offset number of ``code``, e.g. ``G43``) as a whole number >= 0. rs274ngc
+    refuses another: "Non integer value for integer" (interp_read.cc ``read_integer_value``, ``G43 H1.5``) and
+    "Requested tool -1 not found in the tool table" (``G43 H-1``); Fanuc refuses a decimal point after H or D (alarm
+    PS0007 "illegal use of decimal point"; a sign there, our reading, likewise)."""
+    if w.value != int(w.value) or w.value < 0:
+        why = ("LinuxCNC: \"Non integer value for integer\"; Fanuc: alarm PS0007, no decimal point after "
+               f"{w.letter}" if w.value != int(w.value) else
+               f"LinuxCNC: \"Requested tool {w.value:g} not found in the tool table\"")
+        where.fail(f"{code} {w.text.strip()}: the offset number {w.letter} must be a whole number >= 0 ({why})",
+                   column=w.column, text=w.text, expected=f"{code} {w.letter}<n>, n = 0, 1, 2, ... (a tool or "
+                                                          "offset number)")
+    return int(w.value)

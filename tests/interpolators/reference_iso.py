@@ -1331,9 +1331,9 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
         if code in (270, 290, 600) and m.ctx.dialect.name in ("fanuc", "haas"):
             _from_reference(m, line, code, words)
             return True
-        if code in (281, 301):  # LinuxCNC: the block's axis words move by the modal motion (enhance_block)
+        if code in (281, 301):  # LinuxCNC, grbl: the block's axis words move by the modal motion (enhance_block)
             m.home[code - 1] = m.pos.copy()
-            return m.ctx.dialect.name != "linuxcnc"
+            return m.ctx.dialect.name not in ("linuxcnc", "grbl")
         if code == 531:
             raise ReferenceError(f"G{code / 10:g}")
         if code == 100:
@@ -1357,6 +1357,14 @@ def _non_modal(m: _Machine, line: int, g: list[int], words: dict) -> bool:
                     m.local[i] = 0.0
             for i, v in m.extra_words(words).items():
                 m.g92_extra[i] = m.extra[i] - m.extra_offsets[m.wcs][i] - v
+            return True
+        if code == 921 and m.ctx.dialect.name not in ("linuxcnc", "grbl") and set(words) & set("xyzabcuvw"):
+            # Fanuc's workpiece coordinate system preset "G92.1 IP 0": the axes named only, no motion
+            for i, a in enumerate("xyz"):
+                if a in words:
+                    m.g92[i] = m.local[i] = 0.0
+            for i in m.extra_words(words):
+                m.g92_extra[i] = 0.0
             return True
         if code in (921, 922):
             m.g92 = np.zeros(3)
@@ -1796,6 +1804,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         if not haas and "q" not in m.sticky:  # every control refuses a peck cycle without its peck depth
             raise ReferenceError(f"G{code} without Q")
         delta = (m.sticky["i"] if haas else m.sticky["q"]) * m.scale
+        if delta <= 0:  # rs274: "Negative or zero q value used" (the reader refuses it under every dialect)
+            raise ReferenceError(f"G{code} with a peck depth <= 0")
         step = PECK_CLEARANCE_IN * 25.4
         depth = r - delta
         # LinuxCNC's loop in doubles: a last peck within rounding of the bottom may be left out. Fanuc and Haas
@@ -1816,6 +1826,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
                 m.pos = m.out[-1].end.copy()
             if haas:  # the next peck is J shorter
                 delta = max(delta - m.sticky.get("j", 0.0) * m.scale, m.sticky.get("k", 0.0) * m.scale)
+                if delta <= 0:  # J shortens the pecks to nothing and no K keeps a least one: no end to the cycle
+                    raise ReferenceError(f"G{code}: pecks shortened to zero (J without K)")
             depth -= delta
     m.move(line, "feed", at(bottom))
     if code in (74, 76, 82, 84, 86, 89):
@@ -1904,8 +1916,10 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     if 40 in g:
         m.out.append(Expected(line=ln.number, kind="dwell", end=m.pos.copy()))
         # G04 X<s> alone: X is the dwell time (Fanuc, Haas); with a motion code ("G4 P.001 G0 X1") X is that
-        # motion's, and under LinuxCNC with P also without one ("G4 P0.5 X3": the modal motion, enhance_block)
-        if not any(c in (0, 10, 20, 30) for c in g) and not ("p" in words and m.ctx.dialect.name == "linuxcnc"):
+        # motion's, and under LinuxCNC and grbl with P also without one ("G4 P0.5 X3": the modal motion,
+        # enhance_block; grbl's implicit motion mode)
+        if not any(c in (0, 10, 20, 30) for c in g) and not ("p" in words and m.ctx.dialect.name in ("linuxcnc",
+                                                                                                      "grbl")):
             words.pop("x", None)
     if m.ctx.dialect.name == "fanuc" and m.ctx.decimal_point_input == "increment":
         _least_increments(m, g, words, ln.text)
