@@ -539,7 +539,8 @@ def _set_length(entry, seen, st: State, where: Where, notes: Notes) -> None:
         st.tool_xy, st.tool_length = np.array(xyz[:2]), xyz[2]
         return
     h = seen.pop("H", None)
-    number, tool = _h_tool(offset_number(h, where, w.text.upper()) if h is not None else None, st, notes)
+    code = f"{'G44' if key == 440 else 'G43'} mode" if w is h else w.text.upper()  # an H alone (h_alone): its mode
+    number, tool = _h_tool(offset_number(h, where, code) if h is not None else None, st, notes)
     st.length_number = number or 0
     length = 0.0 if tool is None else tool.length
     sign = -1.0 if key == 440 else 1.0

@@ -52,3 +52,18 @@ def test_g15_with_an_h_in_g43_mode_is_fanucs_polar_cancel_and_length_change(bloc
     text = f"G21 G90 G0 X0 Y0 Z0\nG43 H1 Z10.\nG16\nG0 X10. Y90.\n{block}\nG0 X1. Y0\nM30\n"
     prog = checked_iso(text, MachineContext(dialect=DIALECTS["fanuc"], tools=TOOLS))
     assert [round(float(v), 6) for v in prog.blocks[-1].target] == [1.0, 0.0, 40.0]
+
+
+@pytest.mark.parametrize(("mode", "h", "why"), [("G43", "H1.5", "no decimal point after H"),
+                                                ("G44", "H-2", "whole number >= 0")])
+def test_a_bad_h_alone_in_g43_mode_is_named_by_its_mode(mode, h, why):
+    """isomisc38 refuses a non-whole or negative H of G43/G44; an H alone in G43/G44 mode (tlen38) is refused
+    alike, the message naming the mode and the word once at line 3, column 1. Before: "H1.5 H1.5: the offset
+    number ..." and "expected H1.5 H<n>" (the H word taken for the G code)."""
+    from interpolators import parse_program
+    from vcnc.errors import GCodeError
+
+    text = f"G21 G90 G0 X0 Y0 Z0\n{mode} H1 Z10.\n{h}\nM30\n"
+    with pytest.raises(GCodeError, match=rf":3:1: {mode} mode {h}: the offset number H .*{why}") as err:
+        parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"], tools=TOOLS))
+    assert f"{h} {h}" not in str(err.value) and f"expected {mode} mode H<n>" in str(err.value)
