@@ -1675,9 +1675,10 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     if code == 87:
         _back_bore(m, line, words, cur, r, bottom, prog)
         return
-    if cur[2] < r - _EPS * max(1.0, abs(r)) and (m.ctx.dialect.name not in ("fanuc", "haas") or m.fadal):
+    if cur[2] < r - _EPS * max(1.0, abs(r)) and m.ctx.dialect.name not in ("fanuc", "haas"):
         # LinuxCNC: below R, straight up to R first; Fanuc/Haas position X Y where the tool is, then rapid to R
-        # (0i-MF "Canned cycle for drilling", operations 1 and 2)
+        # (0i-MF "Canned cycle for drilling", operations 1 and 2); Fadal as Fanuc (no Fadal text on a cycle
+        # started below R is searchable here: the Fadal dialect reads Fanuc's rules where its manual says nothing)
         cur[2] = r
         m.move(line, "rapid", prog(cur))
     xy = cur[:2].copy()

@@ -1,0 +1,41 @@
+"""Canned-cycle details of session 38 (cycles38): Fadal cycles started below R, Fanuc peck rigid tapping, Haas
+G12/G13 without Z, and the messages of Mazak's G05 P2 and Hurco's G75. Each input is hand-written."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks, reader_rows
+from vcnc.commands.interpolate import blocks_table
+
+
+def _ctx(dialect: str) -> MachineContext:
+    return MachineContext(dialect=DIALECTS[dialect])
+
+
+def _targets(text: str, context: MachineContext) -> list[tuple[int, str, list[float]]]:
+    prog = parse_program(text, context=context, source="t.nc")
+    return [(b.line, b.kind, [round(float(v), 6) for v in b.target]) for b in prog.blocks]
+
+
+def _matches(text: str, context: MachineContext) -> str | None:
+    prog = parse_program(text, context=context, source="t.nc")
+    return match_blocks(iso_reference(text, context), reader_rows(*blocks_table(prog))).mismatch
+
+
+FADAL_BELOW_R = "G21 G90 G0 X0 Y0 Z0\nG99 G81 X5. Y0 Z-5. R2. F100.\nG80\nM30\n"
+
+
+def test_fadal_cycle_started_below_r_moves_over_then_up_as_fanuc():
+    # fuzz38's fadal seed 630376, minimal: the tool at Z0, R2.: over to the hole at Z0, then up to R (Fanuc's rule)
+    moves = [m for m in _targets(FADAL_BELOW_R, _ctx("fadal")) if m[0] == 2]
+    assert moves[0] == (2, "rapid", [5.0, 0.0, 0.0])
+    assert moves[1] == (2, "rapid", [5.0, 0.0, 2.0])
+    assert np.allclose(moves[2][2], [5.0, 0.0, -5.0])
+
+
+def test_fadal_cycle_started_below_r_reference_agrees():
+    assert _matches(FADAL_BELOW_R, _ctx("fadal")) is None
