@@ -4,12 +4,14 @@ G12/G13 without Z, and the messages of Mazak's G05 P2 and Hurco's G75. Each inpu
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
 
 
 def _ctx(dialect: str) -> MachineContext:
@@ -39,3 +41,25 @@ def test_fadal_cycle_started_below_r_moves_over_then_up_as_fanuc():
 
 def test_fadal_cycle_started_below_r_reference_agrees():
     assert _matches(FADAL_BELOW_R, _ctx("fadal")) is None
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_g05_p2_is_refused_naming_mazaks_high_speed_machining_mode(dialect):
+    # Keycult's Mazak HCN post: "Enables G5 P2 for this operation"
+    text = "G21 G90 G0 X0 Y0 Z0\nG05 P2\nG1 X1. F100.\nG05 P0\nM30\n"
+    with pytest.raises(GCodeError, match=r"t\.nc:2:.*G05 P2 is Mazak's high-speed machining mode"):
+        parse_program(text, context=_ctx(dialect), source="t.nc")
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas", "linuxcnc"])
+def test_bare_g75_is_refused_naming_hurco_bnc(dialect):
+    # Fusion's hurco.cps with its isnc property off writes "G75" (multi-quadrant arc mode) at the program start
+    text = "G75\nG90 G0 X0 Y0 Z0\nM30\n"
+    with pytest.raises(GCodeError, match=r"t\.nc:1:1: G75 .*Hurco's Basic NC \(BNC\)"):
+        parse_program(text, context=_ctx(dialect), source="t.nc")
+
+
+def test_g75_with_lathe_words_keeps_the_grooving_message():
+    with pytest.raises(GCodeError, match="G75 lathe grooving cycle: not supported") as err:
+        parse_program("G90 G0 X0 Y0 Z0\nG75 R1.\nM30\n", context=_ctx("fanuc"), source="t.nc")
+    assert "Hurco" not in str(err.value)
