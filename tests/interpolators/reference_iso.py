@@ -81,8 +81,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   a program point goes through mirror, scaling, then rotation; an arc in a plane with one axis
   mirrored turns the other way.
   Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
-  pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
-  the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
+  pass (Z, under G91 L times deeper; no Z: at the current Z) a feed down at the centre, for each radius a
+  half circle from the previous one's +X point (the centre first) and the full circle, a feed back to the
+  centre.
   Additional work offsets (Fanuc 0i-MD "Adding workpiece coordinate systems"; Haas "G154"): Fanuc
   ``G54.1 P1``-``P300``, Haas ``G154 P1``-``P99`` and ``G110``-``G129`` (= P1-P20), P omitted = P1,
   select the context's ``"G54.1 P<n>"`` entry; ``G10 L2 P1``-``P6`` (G54-G59) and ``G10 L20 P<n>`` set
@@ -1316,8 +1317,9 @@ def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
     cw = (code == 120) != ((signs[0] < 0) != (signs[1] < 0))
     z = centre[2]
     for _ in range(int(words["l"][-1]) if "l" in words else 1):
-        z = z + words["z"][-1] * s if m.incremental else words["z"][-1] * s
-        m.move(line, "feed", np.array([centre[0], centre[1], z]))
+        if "z" in words:  # no Z: the circles at the current Z (the tool already at depth)
+            z = z + words["z"][-1] * s if m.incremental else words["z"][-1] * s
+        m.move(line, "feed", np.array([centre[0], centre[1], z]), optional=True)
         previous = 0.0
         for r in (r - radius for r in radii):
             end = m.to_machine(np.array([centre[0] + r, centre[1], z]))

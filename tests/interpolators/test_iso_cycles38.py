@@ -63,3 +63,31 @@ def test_g75_with_lathe_words_keeps_the_grooving_message():
     with pytest.raises(GCodeError, match="G75 lathe grooving cycle: not supported") as err:
         parse_program("G90 G0 X0 Y0 Z0\nG75 R1.\nM30\n", context=_ctx("fanuc"), source="t.nc")
     assert "Hurco" not in str(err.value)
+
+
+HAAS_POCKET_AT_DEPTH = "G20 G90 G0 X0 Y0 Z0.1\nG1 Z-0.2 F10.\nG13 I0.5 F20.\nG0 Z1.\nM30\n"
+
+
+def test_haas_g13_without_z_cuts_at_the_current_z():
+    # Haas workbook 96-8000 "Circular pocket milling": single pass "Using I only"; the tool fed to Z-0.2 before
+    moves = [m for m in _targets(HAAS_POCKET_AT_DEPTH, _ctx("haas")) if m[0] == 3]
+    assert {m[1] for m in moves} == {"line", "arc"}
+    assert all(np.isclose(m[2][2], -0.2 * 25.4) for m in moves)
+    assert max(m[2][0] for m in moves) == pytest.approx(0.5 * 25.4)
+
+
+def test_haas_g13_without_z_under_g91_repeats_at_the_current_z():
+    text = "G20 G90 G0 X0 Y0 Z0.1\nG1 Z-0.2 F10.\nG91 G12 I0.5 L2 F20.\nG90 G0 Z1.\nM30\n"
+    moves = [m for m in _targets(text, _ctx("haas")) if m[0] == 3]
+    assert all(np.isclose(m[2][2], -0.2 * 25.4) for m in moves)
+    assert sum(m[1] == "arc" for m in moves) == 4
+    assert _matches(text, _ctx("haas")) is None
+
+
+def test_haas_g13_without_z_reference_agrees():
+    assert _matches(HAAS_POCKET_AT_DEPTH, _ctx("haas")) is None
+
+
+def test_haas_g13_without_i_is_still_refused():
+    with pytest.raises(GCodeError, match="no I word"):
+        parse_program("G20 G90 G0 X0 Y0 Z0.1\nG13 Z-0.2 F20.\nM30\n", context=_ctx("haas"), source="t.nc")
