@@ -1881,6 +1881,8 @@ def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict)
     cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
     if m.rigid and cycle in tapping and not m.spindle > 0:
         raise ReferenceError(f"line {line}: G84/G74 after M29 with S0 (Fanuc alarm PS0200)")
+    if m.rigid and cycle in tapping and "q" in words:  # 0i-F "Peck rigid tapping cycle": PCP, d unknown
+        raise ReferenceError(f"line {line}: G84/G74 Q after M29 (Fanuc peck rigid tapping, not modelled)")
 
 
 def _rigid_tap_after(m: _Machine, line: int, moved: bool) -> None:

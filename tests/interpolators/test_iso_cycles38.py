@@ -8,6 +8,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from tests.interpolators.reference_iso import ReferenceError as IsoReferenceError
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from vcnc.commands.interpolate import blocks_table
@@ -91,3 +92,30 @@ def test_haas_g13_without_z_reference_agrees():
 def test_haas_g13_without_i_is_still_refused():
     with pytest.raises(GCodeError, match="no I word"):
         parse_program("G20 G90 G0 X0 Y0 Z0.1\nG13 Z-0.2 F20.\nM30\n", context=_ctx("haas"), source="t.nc")
+
+
+RIGID_PECK = "G21 G90 G94 G0 X0 Y0 Z10.\nM29 S500\nG84 X5. Y0 Z-10. R2. Q2. F500.\nG80\nM30\n"
+
+
+@pytest.mark.parametrize("code", ["G84", "G74"])
+def test_fanuc_peck_rigid_tap_is_refused_by_name(code):
+    # 0i-F "Peck rigid tapping cycle": Q the depth of each cut, PCP No. 5200#5 and d No. 5213 machine parameters
+    with pytest.raises(GCodeError, match=rf"t\.nc:3:\d+: {code} .*with Q after M29: Fanuc's peck rigid tapping"):
+        parse_program(RIGID_PECK.replace("G84", code), context=_ctx("fanuc"), source="t.nc")
+
+
+def test_fanuc_floating_tap_with_q_notes_the_unused_q():
+    prog = parse_program(RIGID_PECK.replace("M29 S500", "M3 S500"), context=_ctx("fanuc"), source="t.nc")
+    assert any(n.startswith("G84 Q without M29 (Fanuc): the Q is not used") for n in prog.notes)
+    tap = [b for b in prog.blocks if b.line == 3 and b.kind == "line"]
+    assert [round(float(b.target[2]), 6) for b in tap] == [-10.0, 2.0]
+
+
+def test_fanuc_rigid_tap_without_q_still_runs():
+    prog = parse_program(RIGID_PECK.replace(" Q2.", ""), context=_ctx("fanuc"), source="t.nc")
+    assert [round(float(b.target[2]), 6) for b in prog.blocks if b.line == 3 and b.kind == "line"] == [-10.0, 2.0]
+
+
+def test_reference_refuses_the_peck_rigid_tap_too():
+    with pytest.raises(IsoReferenceError, match="peck rigid tapping"):
+        iso_reference(RIGID_PECK, _ctx("fanuc"))
