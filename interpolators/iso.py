@@ -129,6 +129,7 @@ from interpolators.iso_codes import (
     DIALECT_G,
     G_CODES,
     G_UNSUPPORTED,
+    HURCO_BNC_HINT,
     LAST_ONE_VALID,
     LINUXCNC_ALLOCATED_G,
     LINUXCNC_G,
@@ -1010,16 +1011,17 @@ def _fanuc_g08(g8: Word, words: list[Word], where: Where) -> bool:
 
 def _unsupported_g(key: int, words: list[Word], dialect: str) -> str:
     """The error of a G code of :data:`G_UNSUPPORTED`; a bare G70/G71 (no lathe-cycle or pattern word in its
-    block) with :data:`UNITS_HINT`; a G8 with P named as Fanuc's look-ahead (Fanuc 0i-MF "AI advanced preview
-    control", :mod:`interpolators.iso_smoothing`); under ``linuxcnc`` G87/G88 with what LinuxCNC's g-code.adoc
-    says of them (:data:`LINUXCNC_UNDEFINED`)."""
-    if dialect == "linuxcnc" and key in LINUXCNC_UNDEFINED:
-        return f"{G_UNSUPPORTED[key]}: not supported{LINUXCNC_UNDEFINED[key]}"
+    block) with :data:`UNITS_HINT`, a bare G75 with :data:`HURCO_BNC_HINT`; a G8 with P named as Fanuc's
+    look-ahead (Fanuc 0i-MF "AI advanced preview control", :mod:`interpolators.iso_smoothing`); under
+    ``linuxcnc`` G87/G88 with what LinuxCNC's g-code.adoc says of them (:data:`LINUXCNC_UNDEFINED`)."""
     bare = not any(v.letter in "PQUWRIJKL" for v in words)
+    hurco = HURCO_BNC_HINT if key == 750 and bare else ""  # a bare G75: Hurco BNC's arc mode
+    if dialect == "linuxcnc" and key in LINUXCNC_UNDEFINED:
+        return f"{G_UNSUPPORTED[key]}: not supported{LINUXCNC_UNDEFINED[key]}{hurco}"
     if key == 80 and any(v.letter == "P" for v in words):  # LinuxCNC's G8 takes no P; Fanuc's G08 P1 / P0 does
         return (f"{G_UNSUPPORTED[key]}: not supported (G08 P1 / P0 with a P is Fanuc's AI advanced preview "
                 "control, a mill's look-ahead: --dialect fanuc)")
-    return f"{G_UNSUPPORTED[key]}: not supported{UNITS_HINT.get(key, '') if bare else ''}"
+    return f"{G_UNSUPPORTED[key]}: not supported{UNITS_HINT.get(key, '') if bare else ''}{hurco}"
 
 
 def _g70_g71_units(key: int, w: Word, seen, where: Where, notes: Notes) -> None:

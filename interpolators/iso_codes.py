@@ -12,7 +12,8 @@ from interpolators.iso_reference import FANUC_CODES, MILL_CODES, NAMED_CODES
 from interpolators.iso_smoothing import SMOOTHING_CODES
 
 __all__ = ["G_CODES", "LAST_ONE_VALID", "G_UNSUPPORTED", "MILL_G", "NORMAL_DIRECTION", "DIALECT_G", "LINUXCNC_G",
-           "LINUXCNC_UNDEFINED", "PLANE_OF", "PLANE_CODES", "UNITS_HINT", "LINUXCNC_M", "LINUXCNC_ALLOCATED_G"]
+           "LINUXCNC_UNDEFINED", "PLANE_OF", "PLANE_CODES", "UNITS_HINT", "HURCO_BNC_HINT", "LINUXCNC_M",
+           "LINUXCNC_ALLOCATED_G"]
 
 
 #: G codes the reader runs, keyed by round(10 * code): (modal group, name).
@@ -199,6 +200,11 @@ PLANE_CODES = {2: "G17", 1: "G18", 0: "G19"}
 #: What a bare G70/G71 is on the controls that read it as units (interpolators.iso
 #: ``_g70_g71_units``), for the dialects that refuse it (LinuxCNC 2.9 reads G70/G71 as lathe
 #: cycles: rs274 "G7x.x requires a Q word").
+#: A bare G75 (no word of the lathe cycle): Hurco's Basic NC (BNC) multi-quadrant arc mode, which Fusion's hurco.cps
+#: writes at the program start when its ``isnc`` property is off ("multi-quadrant arc interpolation mode").
+HURCO_BNC_HINT = (" (a bare G75 is the multi-quadrant arc mode of Hurco's Basic NC (BNC) programs: vcnc does not read "
+                  "BNC; post for Hurco's ISNC mode, its ISO NC format, and read it with --dialect fanuc)")
+
 UNITS_HINT = {key: f" (a unit code on Siemens, Fagor and Heidenhain ISO controls: {unit} input; write "
                     f"{code}, or read the program with --dialect fanuc)"
                for key, unit, code in ((700, "inch", "G20"), (710, "mm", "G21"))}

@@ -28,7 +28,7 @@ from interpolators.iso_motion import (
     rapid_move,
 )
 from interpolators.iso_offsets import length_in_cycle
-from interpolators.iso_rigid_tap import rigid_tap_speed
+from interpolators.iso_rigid_tap import rigid_tap_peck, rigid_tap_speed
 from interpolators.iso_words import Word, WordError, fail_words
 from interpolators.program import Block
 from toolpaths.geometry import Line
@@ -195,6 +195,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                    expected="G94 before a canned cycle")
     if st.context.dialect.name == "fanuc":
         rigid_tap_speed(st, name, where, mw.column, mw.text)
+        rigid_tap_peck(st, seen.get("Q"), name, where, notes)
     if st.feed is None and st.motion != 0 and st.per_rev:
         per_rev_missing(st, where, name, mw.column, mw.text)
     if st.feed is None and st.motion != 0 and not initial_feed(st, where):

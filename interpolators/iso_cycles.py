@@ -67,6 +67,9 @@ other things or errors):
   (Fanuc 0i "Canned cycle for drilling", repetition K: with K0 the data is stored, no hole drilled, our
   paraphrase; Haas NGC mill manual, bolt-circle example: "L0 on the G81 line will not drill a hole");
   LinuxCNC refuses it (interp_cycles.cc convert_cycle, rs274: "Cannot do zero repeats of cycle").
+* **Fadal** (the ``fadal`` dialect, read with the ``fanuc`` rules, :mod:`interpolators.iso_fadal`): a cycle
+  started below R positions X Y at the current height, then rapids up to R, as Fanuc's. No Fadal manual text on
+  that case is searchable here; the dialect takes Fanuc's rules where Fadal's own words do not differ.
 """
 
 from __future__ import annotations

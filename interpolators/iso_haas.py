@@ -24,7 +24,10 @@ K); ``D`` the tool whose radius the circles are offset by (cutter compensation i
 G12, G41 for G13; D0 or none: the tool centre follows the programmed radii). Our reading of the
 manual's figure for each depth: feed down to Z at the centre, a half circle out to the first circle
 on its +X side, the full circle, for each further radius a half circle out to it and the full circle,
-then a feed straight back to the centre. The half circles turn the same way as the circles, so that
+then a feed straight back to the centre. Without Z the circles run at the current Z (the tool already at depth;
+under G91 an increment of 0): our reading, the manual listing "Z Depth of cut or increment" with the optional K,
+Q and L and no text requiring it, and the Haas workbook (96-8000, June 1999, "Circular pocket milling") naming the
+single pass "Using I only". The half circles turn the same way as the circles, so that
 the tool comes onto each circle along its tangent. In the ``fanuc`` dialect G12/G13 are not supported.
 """
 
@@ -132,11 +135,10 @@ def circular_pocket(ccw: bool, words: dict[str, float], *, centre: tuple[float, 
     Raises
     ------
     WordError
-        No I or Z, K without Q (or Q <= 0), I not between the tool radius and K, a bad L.
+        No I, K without Q (or Q <= 0), I not between the tool radius and K, a bad L.
     """
-    for letter in ("I", "Z"):
-        if letter not in words:
-            raise WordError(f"no {letter} word", letter=None, expected="I<radius> Z<depth> (K, Q, L, D)")
+    if "I" not in words:
+        raise WordError("no I word", letter=None, expected="I<radius> (Z, K, Q, L, D)")
     first = words["I"] * scale
     last = words["K"] * scale if "K" in words else first
     if "K" in words and not words.get("Q", 0.0) > 0:
@@ -156,7 +158,7 @@ def circular_pocket(ccw: bool, words: dict[str, float], *, centre: tuple[float, 
     cx, cy, z = centre
     out: list[PocketMove] = []
     for _ in range(int(loops)):
-        z = z + words["Z"] * scale if incremental else words["Z"] * scale
+        z = z + words.get("Z", 0.0) * scale if incremental else words["Z"] * scale if "Z" in words else z
         out.append(PocketMove(end=(cx, cy, z)))
         inner = 0.0
         for r in (radius - tool_radius for radius in radii):

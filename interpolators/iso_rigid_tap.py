@@ -30,6 +30,15 @@ axis for the G84 (G74: left-handed) that follows. What vcnc reads of it:
   limitations, "S command": "specify an S command again after cancellation of rigid tapping"); an S word given
   since the tap, or in the block that ends it (``G80 S1000 M03``), is the next operation's and kept.
 
+- A Q word in the armed G84/G74 block (``M29 S.. ; G84 .. Q2. ..``) is Fanuc's peck rigid tapping (0i-F / 16i
+  operator's manuals, "Peck rigid tapping cycle (G84 or G74)": "Q_ : Depth of cut for each cutting feed"): with
+  parameter PCP (No. 5200#5) = 0 the high-speed peck (each cut of q, then back by d, parameter No. 5213, the
+  spindle reversed, then on by d + q), with PCP = 1 the peck back to point R each time (d then the clearance
+  above the last depth). The manuals give neither parameter's setting on a machine nor a default for d: the
+  block is refused by name (:func:`rigid_tap_peck`) rather than tapped in one stroke, the Q dropped. A Q in a
+  G84/G74 without M29 (a floating-holder tap; Fanuc's format has no Q there) is noted as not used, since a
+  machine with parameter G84 (No. 5200#0) = 1 taps G84 rigidly and would peck.
+
 The alarm texts and the S and cancel rules are taken from the Fanuc 0i/16i operator's manuals' "Rigid tapping"
 section and alarm lists as we know them; none of those pages is in the texts searchable here (the connection
 manual page above is): our reading where they are not quoted.
@@ -46,7 +55,7 @@ if TYPE_CHECKING:
     from interpolators.iso_words import Word
 
 __all__ = ["RIGID_TAP_NOTE", "arm_rigid_tap", "end_rigid_tap", "m29_in_tapping_cycle", "rigid_tap_moved",
-           "rigid_tap_speed"]
+           "rigid_tap_peck", "rigid_tap_speed"]
 
 #: The note of a program that arms Fanuc's rigid tapping.
 RIGID_TAP_NOTE = "M29 S.. rigid tapping (Fanuc): the G84/G74 that follows turns the spindle itself"
@@ -101,6 +110,24 @@ def rigid_tap_speed(st: State, name: str, where: Where, column: int, text: str) 
                    "illegal S code command)", column=column, text=text,
                    expected="M29 S<spindle speed> > 0 [rev/min] before the G84/G74 (the S of an earlier rigid tap "
                             "is cleared when it ends)")
+
+
+def rigid_tap_peck(st: State, q: Word | None, name: str, where: Where, notes: Notes | None) -> None:
+    """A tapping cycle block with a Q word (``q``; ``st.context.dialect`` fanuc): refused after M29 (peck rigid
+    tapping, whose parameters PCP No. 5200#5 and d No. 5213 vcnc does not know: the module text), noted as not
+    used on a floating-holder tap."""
+    if q is None or st.motion not in _TAPPING:
+        return
+    code = "G74" if st.motion == 740 else "G84"
+    if st.rigid_tap:
+        where.fail(f"{name} with Q after M29: Fanuc's peck rigid tapping (Q the depth of each cut; parameter PCP "
+                   "No. 5200#5 chooses the high-speed peck, back by d = parameter No. 5213, or the peck back to R): "
+                   "not supported, the machine's PCP and d are not known", column=q.column, text=q.text,
+                   expected=f"M29 S.. {code} without Q (one stroke to Z), or the pecks written as {code} blocks of "
+                            "growing depth")
+    if notes is not None:
+        notes.add(f"{code} Q without M29 (Fanuc): the Q is not used, the tap runs in one stroke to Z (Fanuc's "
+                  "floating-holder tap has no Q; a machine tapping G84 rigidly, parameter No. 5200#0, would peck)")
 
 
 def end_rigid_tap(st: State, words: tuple[Word, ...] | list[Word] = ()) -> None:

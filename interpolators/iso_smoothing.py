@@ -20,6 +20,10 @@ is a note, and Haas G187 E also sets the path tolerance as ``G64 P`` does:
 ``G05 P10000 / P0`` Fanuc high-precision contour control (HPCC) on / off.
 =================== ===============================================================================
 
+``G05 P2`` is refused by name: Mazak's high-speed machining mode (Keycult's Mazak HCN post, a fork of
+Fusion's mazak.cps: "Enables G5 P2 for this operation"), a smoothing mode whose path vcnc does not model;
+:data:`G05_OTHERS` says so.
+
 In the ``linuxcnc`` dialect G5 and G5.1 are splines and G8 is lathe radius mode: these keys are
 only read this way in the Fanuc and Haas dialects.
 """
@@ -30,7 +34,7 @@ import dataclasses
 
 from interpolators.iso_words import WordError
 
-__all__ = ["SMOOTHING_CODES", "Smoothing", "smoothing"]
+__all__ = ["G05_OTHERS", "SMOOTHING_CODES", "Smoothing", "smoothing"]
 
 #: Look-ahead codes (round(10 * G) -> name) of the Fanuc and Haas dialects.
 SMOOTHING_CODES: dict[int, str] = {
@@ -59,6 +63,12 @@ class Smoothing:
     consumed: tuple[str, ...]
     tolerance: float | None = None
     reset: bool = False
+
+
+#: The hint of a G05 other than Fanuc's HPCC P10000 / P0 (the module text).
+G05_OTHERS = (" (Fanuc's high-precision contour control: P10000 on, P0 off; G05 P2 is Mazak's high-speed machining "
+              "mode, G05 P0 its cancel: a smoothing mode vcnc does not model; the controls' other G05 functions are "
+              "not supported either)")
 
 
 def _choice(words: dict[str, float], letter: str, allowed: tuple[float, ...], code: str, hint: str = "") -> float:
@@ -97,6 +107,5 @@ def smoothing(key: int, words: dict[str, float]) -> Smoothing:
     if key == 80:
         _choice(words, "P", (0.0, 1.0), "G08")
         return Smoothing(note=name, consumed=("P",))
-    _choice(words, "P", (0.0, 10000.0), "G05",
-            " (P10000 on, P0 off; the control's other G05 functions are not supported)")
+    _choice(words, "P", (0.0, 10000.0), "G05", G05_OTHERS)
     return Smoothing(note=name, consumed=("P",))

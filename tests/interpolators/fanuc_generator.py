@@ -1086,14 +1086,12 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
 
 
 #: The sections of a ``fadal`` program: Fadal reads Haas's cycle words (Fusion's fadal.cps writes ``G83 .. I J K``
-#: and ``G73 .. Q K`` as its Haas post), not Haas's extended offsets, patterns, pockets, macros or M97. Not
-#: ``length_cycle`` yet: after a change to a longer tool within a G99 series the next hole starts below its R, and
-#: there the reference reads Fadal by LinuxCNC's rule (up to R, then over to the hole) and the reader by Fanuc's
-#: (over at the current height, then up to R), as for any Fadal cycle started below R (fuzz38, fadal seed 630376:
-#: which rule a Fadal follows is not settled).
+#: and ``G73 .. Q K`` as its Haas post), not Haas's extended offsets, patterns, pockets, macros or M97.
+#: ``length_cycle`` (a change to a longer tool within a G99 series: the next hole starts below its R) is read by
+#: Fanuc's rule in reader and reference (over at the current height, then up to R; cycles38).
 FADAL_FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", "subprogram", "rotation",
                   "g52", "g92", "g28_g53", "dwell", "g91_arcs", "tool_length", "haas_peck", "haas_g73k",
-                  "length_motion", "depth_passes", "length_block", "length_reference")
+                  "length_motion", "depth_passes", "length_block", "length_reference", "length_cycle")
 
 
 def features(seed: int, dialect: str = "fanuc") -> list[str]:

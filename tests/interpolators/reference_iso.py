@@ -81,8 +81,9 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   a program point goes through mirror, scaling, then rotation; an arc in a plane with one axis
   mirrored turns the other way.
   Haas G12 / G13 circular pocket (the radii I, I + Q, ... up to K less the D tool's radius): per
-  pass (Z, under G91 L times deeper) a feed down at the centre, for each radius a half circle from
-  the previous one's +X point (the centre first) and the full circle, a feed back to the centre.
+  pass (Z, under G91 L times deeper; no Z: at the current Z) a feed down at the centre, for each radius a
+  half circle from the previous one's +X point (the centre first) and the full circle, a feed back to the
+  centre.
   Additional work offsets (Fanuc 0i-MD "Adding workpiece coordinate systems"; Haas "G154"): Fanuc
   ``G54.1 P1``-``P300``, Haas ``G154 P1``-``P99`` and ``G110``-``G129`` (= P1-P20), P omitted = P1,
   select the context's ``"G54.1 P<n>"`` entry; ``G10 L2 P1``-``P6`` (G54-G59) and ``G10 L20 P<n>`` set
@@ -1409,8 +1410,9 @@ def _pocket(m: _Machine, line: int, code: int, words: dict) -> None:
     cw = (code == 120) != ((signs[0] < 0) != (signs[1] < 0))
     z = centre[2]
     for _ in range(int(words["l"][-1]) if "l" in words else 1):
-        z = z + words["z"][-1] * s if m.incremental else words["z"][-1] * s
-        m.move(line, "feed", np.array([centre[0], centre[1], z]))
+        if "z" in words:  # no Z: the circles at the current Z (the tool already at depth)
+            z = z + words["z"][-1] * s if m.incremental else words["z"][-1] * s
+        m.move(line, "feed", np.array([centre[0], centre[1], z]), optional=True)
         previous = 0.0
         for r in (r - radius for r in radii):
             end = m.to_machine(np.array([centre[0] + r, centre[1], z]))
@@ -1770,9 +1772,10 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
     if code == 87:
         _back_bore(m, line, words, cur, r, bottom, prog)
         return
-    if cur[2] < r - _EPS * max(1.0, abs(r)) and (m.ctx.dialect.name not in ("fanuc", "haas") or m.fadal):
+    if cur[2] < r - _EPS * max(1.0, abs(r)) and m.ctx.dialect.name not in ("fanuc", "haas"):
         # LinuxCNC: below R, straight up to R first; Fanuc/Haas position X Y where the tool is, then rapid to R
-        # (0i-MF "Canned cycle for drilling", operations 1 and 2)
+        # (0i-MF "Canned cycle for drilling", operations 1 and 2); Fadal as Fanuc (no Fadal text on a cycle
+        # started below R is searchable here: the Fadal dialect reads Fanuc's rules where its manual says nothing)
         cur[2] = r
         m.move(line, "rapid", prog(cur))
     xy = cur[:2].copy()
@@ -1981,6 +1984,8 @@ def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict)
     cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
     if m.rigid and cycle in tapping and not m.spindle > 0:
         raise ReferenceError(f"line {line}: G84/G74 after M29 with S0 (Fanuc alarm PS0200)")
+    if m.rigid and cycle in tapping and "q" in words:  # 0i-F "Peck rigid tapping cycle": PCP, d unknown
+        raise ReferenceError(f"line {line}: G84/G74 Q after M29 (Fanuc peck rigid tapping, not modelled)")
 
 
 def _rigid_tap_after(m: _Machine, line: int, moved: bool) -> None:

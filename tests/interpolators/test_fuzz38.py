@@ -27,7 +27,7 @@ from vcnc.commands.interpolate import blocks_table
 #: The sections fuzz38 added, a form each writes and the dialects that draw them.
 SECTIONS = {"length_block": ("G0 G43 H", ("fanuc", "haas", "fadal")),
             "length_reference": ("G91 G28 Z0.", ("fanuc", "haas", "fadal")),
-            "length_cycle": ("G43 H", ("fanuc", "haas")),
+            "length_cycle": ("G43 H", ("fanuc", "haas", "fadal")),
             "rigid_tap_end": ("M29 S", ("fanuc",)),
             "arc3d": (".4 X", ("fanuc",))}
 
