@@ -334,6 +334,27 @@ def _program_number(fm: re.Match, where: Where) -> None:
                                                       "program number")
 
 
+def _refuse_percent_line(s: str, code: str, where: Where, *, first: bool) -> NoReturn:
+    """Refuse a line ``s`` (its ``code``) that begins with '%' and holds more, naming what it likely is: a file of
+    mixed line ends, a Fanuc tape's first line, a program name after '%' on the file's ``first`` line, a CNCjs
+    macro line."""
+    _refuse_foreign_header(s, where)
+    mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
+    if not mixed and re.match(r"%[ \t]*[Oo]\d", s):  # "%O1200(TOKARKA)": a Fanuc tape's first line
+        mixed = (" (a Fanuc tape's first line, whose text after the '%' a Fanuc control skips: "
+                 "--dialect fanuc reads it)")
+    elif not mixed and re.fullmatch(r"%[A-Za-z_]\w*", s) and first:
+        # the file's first line: FreeCAD's UCCNC post (uccnc_post.py) starts with "%" + the program
+        # name, "%prog1"; a Fanuc control skips a tape's leader up to its end of block
+        mixed = (" (a program name after the '%', as FreeCAD's UC-CNC post writes '%prog1': --dialect "
+                 "fanuc skips it as a tape's leader; or a CNCjs macro line: --dialect grbl)")
+    elif not mixed and re.match(r"%[ \t]*[A-Za-z_]", s):  # iso_grbl: CNCjs's "%wait", "%x0=posx"
+        mixed = (" (a macro line of the CNCjs sender, which evaluates it and streams the rest to "
+                 "grbl: --dialect grbl reads the file as CNCjs streams it)")
+    where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
+               expected="'%' alone")
+
+
 class _Program:
     """The lines of a program, classified, with the O-word structure indexed."""
 
@@ -401,21 +422,7 @@ class _Program:
             if s.upper().startswith("&F="):
                 _refuse_folder_line(s, where)
             if s.startswith("%"):
-                _refuse_foreign_header(s, where)
-                mixed = " (the line holds bare CRs: its file mixes CR and LF line ends)" if "\r" in s else ""
-                if not mixed and re.match(r"%[ \t]*[Oo]\d", s):  # "%O1200(TOKARKA)": a Fanuc tape's first line
-                    mixed = (" (a Fanuc tape's first line, whose text after the '%' a Fanuc control skips: "
-                             "--dialect fanuc reads it)")
-                elif not mixed and re.fullmatch(r"%[A-Za-z_]\w*", s) and not any(self.code):
-                    # the file's first line: FreeCAD's UCCNC post (uccnc_post.py) starts with "%" + the program
-                    # name, "%prog1"; a Fanuc control skips a tape's leader up to its end of block
-                    mixed = (" (a program name after the '%', as FreeCAD's UC-CNC post writes '%prog1': --dialect "
-                             "fanuc skips it as a tape's leader; or a CNCjs macro line: --dialect grbl)")
-                elif not mixed and re.match(r"%[ \t]*[A-Za-z_]", s):  # iso_grbl: CNCjs's "%wait", "%x0=posx"
-                    mixed = (" (a macro line of the CNCjs sender, which evaluates it and streams the rest to "
-                             "grbl: --dialect grbl reads the file as CNCjs streams it)")
-                where.fail(f"'%' must stand alone on its line{mixed}", column=code.index("%") + 1, text=s,
-                           expected="'%' alone")
+                _refuse_percent_line(s, code, where, first=not any(self.code))
             if s.startswith("/"):
                 code = _block_delete(code, where, levels=self.skip_levels)
             elif "/" in code:
