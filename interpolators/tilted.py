@@ -352,7 +352,11 @@ class Kinematics:
         one when the tilted tool axis lies in the plane of both axes, none when the axes cannot reach it;
         angles in (-180, 180]. When the tilted tool axis is the inner axis' own, any inner angle does:
         the inner angle is NaN (:meth:`choose` keeps the axis where it is; the plane's turn about the tool
-        axis is then a turn of the coordinates, iTNC 530's COORD ROT). Limits are not applied here. A single
+        axis is then a turn of the coordinates, iTNC 530's COORD ROT; TNC7 user's manual 81762x-17, "free rotary
+        axis": "the rotary axis has no effect on the tool angle of inclination because the rotary axis and the tool
+        axis are parallel in the tilting situation"). The manual states no tolerance: parallel here is within
+        1e-9 rad, and so is one solution (a tool axis 5e-5 deg off the inner axis has two, each with its own inner
+        angle; before session 38 it was one, with an inner angle of 0). Limits are not applied here. A single
         axis reaches only the tool axes square to it: one solution (inner angle 0), or none.
         """
         outer, inner = self.axes[0], self.axes[-1]
@@ -364,17 +368,23 @@ class Kinematics:
                 return []
             return [Solution(outer=_wrap(_angle_between(ez, n, uo)), inner=0.0)]
         # v = the tool axis after the outer turn: uo.v = uo.ez, ui.v = ui.n (Paden-Kahan subproblem 2)
+        # rest = 1 - alpha^2 - beta^2 from the tool axis' part square to the inner axis (|side|^2 = 1 - beta^2 without
+        # the cancellation of 1 - beta^2 near the pole, where beta^2 = 1 - 1e-13 kept only 3 digits of rest)
         alpha, beta = float(uo @ ez), float(ui @ n)
-        rest = 1.0 - alpha * alpha - beta * beta
+        side = n - beta * ui
+        rest = float(side @ side) - alpha * alpha
         if rest < -1e-9:
             return []
-        gammas = (0.0,) if rest < 1e-12 else (math.sqrt(rest), -math.sqrt(rest))
+        # one solution when g is below the same _PARALLEL that makes the tool axis the inner axis' own (then the
+        # inner angle is free): with alpha = 0, g = |side|, so the two thresholds agree (a tilt of 5e-5 deg is two
+        # solutions of an inner angle, not one of a free angle)
+        g = math.sqrt(max(rest, 0.0))
+        gammas = (0.0,) if g < _PARALLEL else (g, -g)
         out = []
         for g in gammas:
             v = alpha * uo + beta * ui + g * np.cross(uo, ui)
             to = _angle_between(ez, v, uo)
-            side = n - (ui @ n) * ui
-            ti = math.nan if np.linalg.norm(side) < 1e-9 else _angle_between(v, n, ui)
+            ti = math.nan if np.linalg.norm(side) < _PARALLEL else _angle_between(v, n, ui)
             out.append(Solution(outer=_wrap(to), inner=_wrap(ti)))
         return out
 
@@ -383,7 +393,8 @@ class Kinematics:
                order: str = "sum") -> Solution:
         """The solution the control takes: within the limits, the outer (master) axis' angle of the sign
         ``sequence`` (+1 SEQ+/SYM+, -1 SEQ-/SYM-), else (0) the one nearest ``current`` [deg] (the sum of
-        both axes' travel; a tie goes to the positive master angle). When the tilted tool axis is the
+        both axes' travel; sums equal within :data:`ANGLE_TOLERANCE` tie, and a tie goes to the positive master
+        angle). When the tilted tool axis is the
         inner axis' own, the inner axis stays (COORD ROT) or, with ``table_rot``, turns so that the tilted X
         runs along the machine's X (iTNC 530 user's manual, "Selecting the type of transformation": "TABLE
         ROT specifies that the PLANE function should position the rotary table to the defined tilting
@@ -451,6 +462,9 @@ class Kinematics:
             raise TiltError(f"the rotary axes {', '.join(n.upper() for n in self.names)} cannot tilt the part to "
                             f"this plane{sign} {outer.name.upper()} within their limits {limits} deg",
                             "a working plane the machine's rotary axes reach")
+        if order == "sum":  # travels equal within ANGLE_TOLERANCE tie (99.99999999999999 against 100 deg)
+            least = min(f[0] for f in found)
+            found = [(0, *f[1:]) for f in found if f[0] <= least + ANGLE_TOLERANCE]
         return min(found, key=lambda f: f[:-1])[-1]
 
     def _square_inner(self, plane: np.ndarray, outer: float) -> float:

@@ -2783,7 +2783,8 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False, table
     cos B), equal to the plane's Z. ``nearest``: each axis at the turn of 360 nearest its position (a tool
     direction under M128), else in (-180, 180] first. When the plane's Z is the C axis' own, C stays (COORD ROT)
     or, with ``table_rot``, turns the plane's X onto the machine's X (:func:`_table_rot`). Of two solutions the one
-    with the shorter path (TNC7 user's manual 81762x-17, "Tilting solution"), a tie to the positive master angle.
+    with the shorter path (TNC7 user's manual 81762x-17, "Tilting solution"), a tie (within 1e-6 deg) to the positive
+    master angle.
     A wrapping axis (``ctx.wrapped_axes``) is judged by the turn it really makes: under ``nearest`` the shorter
     way from its unwrapped position, ending there; else at the angle it shows in [0, 360), ``turn(name, angle)``
     long (the caller's rule); SEQ takes its angle in (-180, 180]."""
@@ -2802,7 +2803,7 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False, table
         raise ReferenceError("kinematics other than an A/C or B/C table")
     now = (t.extra["ABC".index(outer.name.upper())], t.extra["ABC".index(inner.name.upper())])
     found = []
-    b = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))
+    b = math.degrees(math.atan2(math.hypot(n[0], n[1]), n[2]))  # (acos(n_z) keeps 3 digits of a tilt of 1e-6 rad)
     for tilt in {b, -b}:
         st = math.sin(math.radians(tilt))
         if abs(st) < 1e-9:
@@ -2819,7 +2820,8 @@ def _solve(t: _Tnc, plane: np.ndarray, seq: int, *, nearest: bool = False, table
             found.append((o[1] + i[1], -master, o[0], i[0]))
     if not found:
         raise ReferenceError("no rotary positions within the limits")
-    _, _, o, i = min(found)
+    least = min(f[0] for f in found)  # paths equal within 1e-6 deg tie (99.99999999999999 against 100)
+    _, o, i = min(f[1:] for f in found if f[0] <= least + 1e-6)
     return {outer.name: o, inner.name: i}
 
 

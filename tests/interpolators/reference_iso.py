@@ -957,7 +957,7 @@ def _angle_pairs(m: _Machine, tool: np.ndarray) -> list[tuple[float, float]]:
     x = axes[0].direction == "X"
     if len(axes) == 1:
         return [(math.degrees(math.atan2(-n[1], n[2]) if x else math.atan2(n[0], n[2])), 0.0)]
-    tilt = math.degrees(math.acos(max(-1.0, min(1.0, n[2]))))
+    tilt = math.degrees(math.atan2(math.hypot(n[0], n[1]), n[2]))  # (acos(n_z) loses a tilt of 1e-6 rad)
     pairs = []
     for o in (tilt, -tilt):
         so = math.sin(math.radians(o))
@@ -973,7 +973,7 @@ def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
     axes = m.ctx.kinematics.axes
     pairs = _angle_pairs(m, tool)
     now = [m.extra["abc".index(ax.name)] for ax in axes]
-    best = None
+    found = []
     for pair in pairs:
         fit = []
         for ax, v in zip(axes, pair, strict=False):
@@ -983,12 +983,13 @@ def _tool_angles(m: _Machine, tool: np.ndarray) -> np.ndarray:
                 inside = [wrapped_end("shortest", v, now_ax, 0.0)]  # (its limits hold modulo 360 deg)
             fit.append(inside[0] if inside else None)
         if None not in fit:
-            key = (sum(abs(f - c) for f, c in zip(fit, now, strict=True)), -fit[0])
-            best = min(best, (key, fit)) if best is not None else (key, fit)
-    if best is None:
+            found.append((sum(abs(f - c) for f, c in zip(fit, now, strict=True)), -fit[0], fit))
+    if not found:
         raise ReferenceError("a tool direction the rotary axes do not reach")
+    least = min(f[0] for f in found)  # travels equal within 1e-6 deg tie: the positive master angle
+    best = min((f for f in found if f[0] <= least + 1e-6), key=lambda f: f[1])
     out = m.extra.copy()
-    for ax, v in zip(axes, best[1], strict=True):
+    for ax, v in zip(axes, best[2], strict=True):
         out["abc".index(ax.name)] = v
     return out
 
