@@ -10,9 +10,7 @@ import pytest
 from interpolators.context import MachineContext, Tool
 from interpolators.heidenhain import parse_heidenhain
 from interpolators.tilted import Kinematics, RotaryAxis, Solution
-from tests.interpolators.reference_heidenhain import heidenhain_reference
-from tests.interpolators.reference_match import match_blocks, reader_rows
-from vcnc.commands.interpolate import blocks_table
+from tests.interpolators.reference_heidenhain import checked_program
 from vcnc.errors import GCodeError
 
 CTX = MachineContext(work_offsets={"G54": (0.0, 0.0, 0.0)}, tools={1: Tool(number=1, length=10.0, radius=3.0)})
@@ -25,12 +23,7 @@ TNC5X = MachineContext(extra_axes=("b", "c"), kinematics=BC, tools={1: Tool(numb
 
 def checked(body: str, context: MachineContext = CTX):
     """The reader's program of ``body`` in a BEGIN/END PGM frame, every block checked against the reference."""
-    text = "0 BEGIN PGM 1001 MM\n" + body + "END PGM 1001 MM\n"
-    prog = parse_heidenhain(text, source="t.h", context=context)
-    match = match_blocks(heidenhain_reference(text, context), reader_rows(*blocks_table(prog)))
-    assert match.mismatch is None, match.mismatch
-    assert match.exact + match.within == len(prog.blocks)
-    return prog
+    return checked_program("0 BEGIN PGM 1001 MM\n" + body + "END PGM 1001 MM\n", context, exact=False)
 
 
 def machine(kin: Kinematics, part, angles: Solution) -> np.ndarray:
