@@ -187,14 +187,22 @@ def _fadal_reversed_centre(st: State, seen, in_plane: list[str], target: np.ndar
     for letter in in_plane:
         i = "IJK".index(letter)
         center[i] = st.pos[i] - seen[letter].value * st.scale
+    if not _centre_fits(st, target, center):
+        return ""
+    return ("; I/J/K as the start minus the centre would fit (NX Post Builder's fadal.def writes them so): vcnc reads "
+            "Fadal's I/J/K as the centre minus the start, as Fanuc's and Fusion's fadal.cps")
+
+
+def _centre_fits(st: State, target: np.ndarray, center: np.ndarray) -> bool:
+    """Whether an arc from the current point to ``target`` about ``center`` has both ends on one circle within the
+    dialect's arc tolerance (for the hints of an arc refused as written)."""
     try:
         arc_from_center(st.pos, target, center, ccw=True, plane=st.plane,
                         tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch,
                                                        rule=st.context.dialect.arc_rule))
     except ArcWordError:
-        return ""
-    return ("; I/J/K as the start minus the centre would fit (NX Post Builder's fadal.def writes them so): vcnc reads "
-            "Fadal's I/J/K as the centre minus the start, as Fanuc's and Fusion's fadal.cps")
+        return False
+    return True
 
 
 def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray) -> str:
@@ -209,11 +217,7 @@ def _other_centre_mode(st: State, seen, in_plane: list[str], target: np.ndarray)
     if np.allclose(here[plane], st.pos[plane]) or (st.arc_incremental and len(in_plane) < 2):
         return ""
     center = _centre(st, seen, in_plane, incremental=not st.arc_incremental)
-    try:
-        arc_from_center(st.pos, target, center, ccw=True, plane=st.plane,
-                        tolerance=center_arc_tolerance(st.pos, target, center, plane=st.plane, inch=st.inch,
-                                                       rule=st.context.dialect.arc_rule))
-    except ArcWordError:
+    if not _centre_fits(st, target, center):
         return ""
     if st.arc_incremental and st.context.dialect.name == "grbl":  # interpolators.iso_grbl: no G90.1 there
         return "; I/J/K as absolute centre coordinates would fit: a program for a control with LinuxCNC's G90.1, " \
