@@ -1202,11 +1202,22 @@ def stribeck_static_ratios(model: AugmentedAxisModel) -> tuple[float, float]:
 
 def no_stribeck_curve(ratios: tuple[float, float]) -> str | None:
     """Why a Stribeck term with static / Coulomb friction ``ratios`` (:func:`stribeck_static_ratios`, moving + and
-    moving -) is no Stribeck curve, or None: either ratio below :data:`_MIN_STATIC_RATIO` (or not a number)."""
-    if min(ratios) >= _MIN_STATIC_RATIO:
-        return None
-    return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below {_MIN_STATIC_RATIO}: "
-            "no Stribeck curve")
+    moving -) is no Stribeck curve, or None: either ratio below :data:`_MIN_STATIC_RATIO` (or not a number), or a
+    finite one above :data:`_MAX_STATIC_RATIO`.
+
+    A ratio far above the 1.3-2 of real guideways is a stick imitated: ballscrew-ppc's Coulomb friction holds the
+    stopped mass for up to 12 ms at its reversals (its static level is its Coulomb level), which the reduced
+    model's Coulomb term, switched on the sign of its velocity, cannot do, and the refit found ``v_s`` 0.035 mm/s
+    with static / Coulomb 6.1 and inf (``benchmarks/ident_fuzz.py`` seed 21 case 30, no effect added). An infinite
+    ratio (a direction whose Coulomb level does not resist motion, as under a load larger than the friction) is
+    left to the lower bound."""
+    if not min(ratios) >= _MIN_STATIC_RATIO:
+        return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} are below "
+                f"{_MIN_STATIC_RATIO}: no Stribeck curve")
+    if any(math.isfinite(r) and r > _MAX_STATIC_RATIO for r in ratios):
+        return (f"its static / Coulomb friction ratios {ratios[0]:.3g}, {ratios[1]:.3g} exceed "
+                f"{_MAX_STATIC_RATIO}: a stick at standstill, no Stribeck curve")
+    return None
 
 
 def _worse_on_the_record(before: ReducedAxisModel, after: AugmentedAxisModel, data: Data,
@@ -1574,6 +1585,9 @@ _MAX_MODE_DAMPING = 1.0 / math.sqrt(2.0)
 
 #: static / Coulomb friction below which a Stribeck term is no Stribeck curve [-] (:func:`stribeck_static_ratios`)
 _MIN_STATIC_RATIO = 0.9
+#: static / Coulomb friction above which a Stribeck term is no Stribeck curve [-]: twice the 1.3-2 of lubricated
+#: guideways and ball screws (Armstrong-Helouvry, Dupont, Canudas de Wit, Automatica 30(7), 1994)
+_MAX_STATIC_RATIO = 4.0
 
 #: explained share of the residual's variance above which a state "explains" it [-] (time: slow
 #: trends and the residual's own correlation explain some of any residual, hence the higher bar)

@@ -39,3 +39,17 @@ def test_a_stribeck_term_whose_static_friction_falls_below_coulomb_is_no_stribec
     ratios = stribeck_static_ratios(_model(FrictionStribeck(velocity=0.3, excess_positive=excesses[0],
                                                             excess_negative=excesses[1])))
     assert no_stribeck_curve(ratios) == why
+
+
+@pytest.mark.parametrize(("excesses", "d1", "why"), [
+    ((3.0 * 538.0, -3.0 * 359.0), -359.0, None),  # static four times Coulomb both ways: the largest accepted
+    ((5.12 * 538.0, -359.0), -359.0,
+     "its static / Coulomb friction ratios 6.12, 2 exceed 4.0: a stick at standstill, no Stribeck curve"),
+    ((538.0, -359.0), 0.0, None),  # no Coulomb level moving -: an infinite ratio, left to the lower bound
+])
+def test_a_stribeck_term_far_above_its_coulomb_level_is_no_stribeck_curve(excesses, d1, why):
+    # ident_fuzz seed 21 case 30 (ballscrew-ppc, no effect added) refitted v_s 0.035 mm/s with static / Coulomb
+    # 6.12 moving + (diagnosis.no_stribeck_curve): the stick of its Coulomb friction at reversals imitated
+    m = augment(ReducedAxisModel(parameters={**PARAMS, "d1": d1}, sample_time=1e-3),
+                [FrictionStribeck(velocity=0.035, excess_positive=excesses[0], excess_negative=excesses[1])])
+    assert no_stribeck_curve(stribeck_static_ratios(m)) == why
