@@ -1097,8 +1097,9 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     _lathe_program(seen, gcodes, st, where)
     if "spindle mode" in gcodes:
         notes.add("G96/G97 spindle mode")
+    alone = h_alone(gcodes, seen, st)  # Fanuc/Haas: "H2" alone in G43 mode is G43 H2 (interpolators.iso_offsets)
     if gcodes.get("polar", (0,))[0] == 150 and "H" in seen and "length compensation" not in gcodes \
-            and h_alone(gcodes, seen, st) is None:  # in G43/G44 mode "G15 H2" is Fanuc's: the H changes the length
+            and alone is None:  # in G43/G44 mode "G15 H2" is Fanuc's: the H changes the length
         # Okuma OSP (OSP-E100M/P300M programming manuals, G15 "work coordinate system selection", modal; Fusion's
         # okuma.cps writes "G15 H<work offset>" then "G56 Z.. H<n>" for the tool length and "G71 Z.." for the
         # cycles' return level): read as Fanuc's polar cancel, the offsets would be lost without a word
@@ -1120,7 +1121,6 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
     scale = st.scale
     if "cutter compensation" in gcodes:
         cutter_compensation(gcodes["cutter compensation"], seen, st, blocks, where, notes)
-    alone = h_alone(gcodes, seen, st)  # Fanuc/Haas: "H2" alone in G43 mode is G43 H2 (interpolators.iso_offsets)
     if alone is not None:
         gcodes["length compensation"] = alone
     if "length compensation" in gcodes:
