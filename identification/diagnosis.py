@@ -42,11 +42,11 @@ Procedure (forward selection judged on held-out data)
    adds no fitted parameter to it, a whole-sample delay, by the folds as they stand:
    :func:`beats_the_model_without`); any other effect must itself carry the refit's gain (the refitted model
    without it predicts worse by as much: :func:`_idle_effect`). A mode must lie below the record's Nyquist
-   frequency 1/(2T) (:func:`_unphysical_mode`). Steps 2-4 repeat (at most ``max_effects`` times) until no
-   proposal passes.
+   frequency 1/(2T), by at least its decay rate (:func:`_unphysical_mode`). Steps 2-4 repeat (at most
+   ``max_effects`` times) until no proposal passes.
 5. **Check backward.** The final model faces every accepted effect again: one no longer physical (a mode above
-   the Nyquist frequency or damped beyond 1/sqrt(2), a Stribeck term without its static excess) or no longer
-   needed (the final model refitted without it predicts the held-out folds within ``min_gain``, a mode no longer
+   or too near the Nyquist frequency or damped beyond 1/sqrt(2), a Stribeck term without its static excess) or no
+   longer needed (the final model refitted without it predicts the held-out folds within ``min_gain``, a mode no longer
    coherent with the motion) is dropped, the model refitted without it, and the last round's record says so
    under ``dropped`` (:func:`_backward_check`; the report's ``dropped:`` lines). These refits too keep the
    Coulomb mean where the whole record puts it (:func:`_judged_at_rest`): the final model's mean is the rests'.
@@ -1048,14 +1048,41 @@ def _unphysical_mode(e, T: float) -> str | None:
     presence of noise", Proc. IRE 37(1), 1949, Theorem 1). A mode fitted above it is a lag the refit borrowed:
     ident_fuzz seed 21 case 52 with a one-sample delay only (fadal-pid/y, T = 1 ms) accepted a mode of damping 0.33
     in round 1, and the joint refit with the delay of round 2 moved it to 2744 Hz (damping 0.55), above the 500 Hz
-    Nyquist frequency."""
+    Nyquist frequency.
+
+    Below it, the record must still tell the mode from the Nyquist alternation. Sampled every T, a mode of
+    frequency f and decay rate sigma = 2 pi zeta f rings as x_n = e^(-sigma n T) cos(2 pi f n T + phi) =
+    (-1)^n e^(-sigma n T) cos(2 pi (f_N - f) n T - phi), f_N = 1/(2T): the samples alternate under an envelope
+    that beats at f_N - f. Without that beat they are a discrete pole on the negative real axis, z = -e^(-sigma T),
+    which no continuous-time pole gives (e^(sT) is never negative for a real s): an artefact of the sampling, not a
+    mode. A record resolves two frequencies only when it lasts at least the inverse of their distance (the
+    resolution 1/duration of a Fourier analysis; Harris, "On the use of windows for harmonic analysis with the
+    discrete Fourier transform", Proc. IEEE 66(1), 1978), and the ringing lasts 1/sigma: f is told
+    from f_N only when f_N - f >= sigma, i.e. f <= f_N / (1 + 2 pi zeta) (:func:`resolved_below_nyquist`).
+    ident_fuzz seed 61 case 27 (fadal-smc/x, Coulomb friction and no mode, T = 2 ms) named 225 Hz at damping 0.045
+    (0.9 f_N; its beat period 40 ms against a 16 ms ringing), held out 0.58 -> 0.32 um; logged every 1 ms the same
+    motion named 435 Hz (0.87 f_N), cut at its end 197 Hz at damping 0.18: a frequency that follows the sampling is
+    the reduced model's friction at reversals, not a mode. The truth's modes of that benchmark (30-120 Hz, damping
+    0.02-0.1) lie in this band in 4 cases of 85 below Nyquist (seeds 1-191 step 10), each missed before already."""
     nyquist = 0.5 / T
     if e.frequency >= nyquist:
         return (f"its frequency {e.frequency:.4g} Hz lies above the record's Nyquist frequency 1/(2T) = "
                 f"{nyquist:.4g} Hz, which a sampled record cannot show")
     if e.damping >= _MAX_MODE_DAMPING:
         return f"its damping {e.damping:.3g} is >= 1/sqrt(2): a mode without a resonant peak"
+    if not resolved_below_nyquist(e.frequency, e.damping, T):
+        sigma = 2.0 * math.pi * e.damping * e.frequency
+        return (f"its frequency {e.frequency:.4g} Hz (damping {e.damping:.3g}) lies {nyquist - e.frequency:.4g} Hz "
+                f"below the record's Nyquist frequency {nyquist:.4g} Hz, less than its decay rate "
+                f"{sigma:.4g} 1/s: its ringing dies before the record can tell it from the Nyquist alternation")
     return None
+
+
+def resolved_below_nyquist(frequency: float, damping: float, T: float) -> bool:
+    """Whether a record sampled every ``T`` [s] tells a mode of ``frequency`` [Hz] and ``damping`` [-] from its
+    Nyquist frequency f_N = 1/(2T): f_N - f >= 2 pi zeta f, the distance at least the mode's decay rate (its ringing
+    lasts a beat of the sampled alternation; :func:`_unphysical_mode`)."""
+    return 0.5 / T - frequency >= 2.0 * math.pi * damping * frequency
 
 
 def _unphysical(model: AugmentedAxisModel, name: str, data: Data) -> str | None:
