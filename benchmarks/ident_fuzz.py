@@ -18,7 +18,7 @@ commanded and measured positions only and checks:
   measured position by more than 3 times the noise floor (+0.2 um), and together they leave the reduced model
   an error 1.5 times (+0.3 um) that of the same record identified without them (what the reduced model absorbs
   of an effect, e.g. most of a one-sample delay, is no failure; nor is a mode at or above the record's Nyquist
-  frequency). Each shown effect is named (``missed``), first
+  frequency, or below it by less than its decay rate). Each shown effect is named (``missed``), first
   when it is twice the other's size (``not_first``), the held-out error falls (``no_gain``), and a parameter
   with a known truth is within its tolerance (``parameter``: periods 5 %, backlash width 30 %, drift rate 25 %)
   unless the model reports it as not pinned by the record (``EffectRecord.unpinned``: a period the travel covers
@@ -55,6 +55,7 @@ import toolpaths  # noqa: E402
 import vcnc  # noqa: E402
 from drives.effects import EFFECT_NAMES  # noqa: E402
 from identification import identify  # noqa: E402
+from identification.diagnosis import resolved_below_nyquist  # noqa: E402
 from vcnc.core.errors import IdentificationError, MachineError, SimulationError  # noqa: E402
 
 MACHINES = ("fadal-pid", "fadal-ppi", "fadal-smc", "ballscrew-ppc", "ballscrew-zpetc", "chevalier-pdf", "emps")
@@ -251,14 +252,16 @@ def shown_effects(case: dict, model, visible: dict, floor: float, clean_rms: flo
     the same record without them (what the reduced model absorbs of an effect, e.g. of a delay, is no effect).
     A mode at or above the record's Nyquist frequency 1/(2T) is none: the record cannot show its frequency
     (Shannon 1949; the diagnosis refuses such a mode, ``diagnosis._unphysical_mode``), e.g. seed 31 case 28, a 90 Hz
-    mode logged every 8 ms (62.5 Hz)."""
+    mode logged every 8 ms (62.5 Hz); nor is one below it by less than its decay rate 2 pi zeta f, whose ringing dies
+    before the record tells it from the Nyquist alternation (``diagnosis.resolved_below_nyquist``; ident39), e.g.
+    seed 51 case 6, 94.1 Hz at damping 0.093 logged every 4 ms (125 Hz)."""
     if clean_rms is None:
         return {}
     reduced = model.validation.get("identification_rms_before_um", model.fit.get("rms_um"))
     if not reduced > 1.5 * clean_rms + 0.3:
         return {}
     mode = case["effects"].get("resonance")
-    aliased = mode is not None and mode["frequency_hz"] >= 0.5 / model.sample_time
+    aliased = mode is not None and not resolved_below_nyquist(mode["frequency_hz"], mode["damping"], model.sample_time)
     return {e: v for e, v in visible.items() if v > 3.0 * floor + 0.2 and not (e == "resonance" and aliased)}
 
 

@@ -1015,7 +1015,10 @@ def _choose(tried: list[tuple], ctx: SearchContext, data: Data, plan, active: np
             record["resonance_motion_coherence"] = coh
             record["resonance_damping"] = e_new.damping
             record["resonance_frequency_hz"] = e_new.frequency
-            ok = coh >= _MIN_MODE_COHERENCE and _unphysical_mode(e_new, data.T) is None
+            why = _unphysical_mode(e_new, data.T)
+            if why is not None:
+                record.setdefault("unphysical", {})[c.effect.NAME] = why
+            ok = coh >= _MIN_MODE_COHERENCE and why is None
         if ok and c.effect.NAME == "friction_stribeck":
             ratios = stribeck_static_ratios(j.model)
             record["stribeck_static_ratios"] = list(ratios)
@@ -1063,7 +1066,8 @@ def _unphysical_mode(e, T: float) -> str | None:
     (0.9 f_N; its beat period 40 ms against a 16 ms ringing), held out 0.58 -> 0.32 um; logged every 1 ms the same
     motion named 435 Hz (0.87 f_N), cut at its end 197 Hz at damping 0.18: a frequency that follows the sampling is
     the reduced model's friction at reversals, not a mode. The truth's modes of that benchmark (30-120 Hz, damping
-    0.02-0.1) lie in this band in 4 cases of 85 below Nyquist (seeds 1-191 step 10), each missed before already."""
+    0.02-0.1) lie in this band in 4 cases of 85 below Nyquist (seeds 1-191 step 10): 2 missed before already, 2
+    refused or skipped for other reasons."""
     nyquist = 0.5 / T
     if e.frequency >= nyquist:
         return (f"its frequency {e.frequency:.4g} Hz lies above the record's Nyquist frequency 1/(2T) = "
@@ -1082,7 +1086,7 @@ def resolved_below_nyquist(frequency: float, damping: float, T: float) -> bool:
     """Whether a record sampled every ``T`` [s] tells a mode of ``frequency`` [Hz] and ``damping`` [-] from its
     Nyquist frequency f_N = 1/(2T): f_N - f >= 2 pi zeta f, the distance at least the mode's decay rate (its ringing
     lasts a beat of the sampled alternation; :func:`_unphysical_mode`)."""
-    return 0.5 / T - frequency >= 2.0 * math.pi * damping * frequency
+    return frequency < 0.5 / T and 0.5 / T - frequency >= 2.0 * math.pi * damping * frequency
 
 
 def _unphysical(model: AugmentedAxisModel, name: str, data: Data) -> str | None:
@@ -1748,7 +1752,9 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
     load, 2.13 -> 1.13 um pooled, fold 4 0.60 -> 0.79 um, while it was refitted from one start only: from the
     current loop's, :func:`refit_candidate`, it is kept, 2.12 -> 0.68 um, fold 4 0.58 -> 0.56 um) or by the
     whole record (:func:`_worse_on_the_record`; a
-    SINUMERIK trace's position-periodic load, held out 7.27 -> 5.06 um, 3.4 -> 223 um over all samples). A report
+    SINUMERIK trace's position-periodic load, held out 7.27 -> 5.06 um, 3.4 -> 223 um over all samples), or as no
+    physical effect of its name (the round's ``unphysical`` reasons: a mode too near the Nyquist frequency,
+    :func:`_unphysical_mode`). A report
     that said no effect lowers the held-out error hid that one did, and why it is not in the model (our reading)."""
     lines = []
     for r in validation.get("rounds") or []:
@@ -1770,6 +1776,10 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
             lines.append(f"refused: {name} {gain}raises the RMS over all the record's samples {before:.4g} -> "
                          f"{after:.4g} {unit}: it moves the model where the axis rests (the idle stretches the "
                          "held-out folds trim)")
+        for name, why in (r.get("unphysical") or {}).items():
+            held = (r.get("refitted") or {}).get(name, {}).get("validation_rms_um")
+            if held is not None and was and held < was:
+                lines.append(f"refused: {name} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but {why}")
     return lines
 
 
