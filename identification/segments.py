@@ -153,11 +153,6 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     tol = max(10.0 * mad, SETTLED_SHARE * float(np.max(np.abs(e - med))))
     still = dxr <= REST_STEP_SHARE * big
     still[0] |= starts_from_standstill(xr)  # a move setting off at the first sample started at rest
-    # an axis that stands at the first sample where it is commanded rests there, whatever the reference's first
-    # steps: a moving axis moves between samples (ident_fuzz seed 21 case 30, ballscrew-ppc at 2 ms, its reference
-    # stepping 2.5, 2.5, 4 um from 0, the axis held by its Coulomb friction: cut at 0.178 s, simulated from rest
-    # where the integral action held the friction, the fit took a 6,500 mm/s^2 load, 4.81 um held out)
-    still[0] |= bool(dx[0] <= REST_STEP_SHARE * big and abs(e[0]) <= tol)
     # at rest: the tracking error at the record's rest value; at the first sample also none at all
     # (a loop that rests 1 um off at the end of its record, by friction, started where it was commanded;
     # later, an error crossing 0 at a reversal is no rest)
