@@ -39,7 +39,7 @@ def prepared_text(text: str, source: str | None, dialect: str, notes: Notes) -> 
         notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
     wrapped = False
     if dialect == "linuxcnc":
-        text, wrapped = _until_closing_percent(text, notes)
+        text, wrapped = _until_closing_percent(_until_program_end(text, notes), notes)
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     return text, homing, wrapped
@@ -116,6 +116,49 @@ _OWORD_LINE = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[
                          r"(IF|WHILE|DO|REPEAT|SUB|ENDSUB|BREAK|CONTINUE)\b", re.M | re.I)
 #: The keywords of :data:`_OWORD_LINE` that open a block or bound a body (the duplicate-label check).
 _OPENING_KEYWORDS = ("if", "while", "do", "repeat", "sub", "endsub")
+
+
+#: An M2 or M30 word (program end) in a line's code, comments taken out.
+_PROGRAM_END = re.compile(r"(?<![A-Z_<#\d.])M[ \t]*0*(?:2|30)(?![\d.])", re.I)
+#: An O-word line's label and keyword (the nesting of sub, if, while, do and repeat blocks).
+_OWORD_KEYWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
+                            r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT)\b", re.I)
+#: A Fanuc-style program number alone on its line (``O1``), which LinuxCNC 2.9's M98 calls.
+_FANUC_PROGRAM_LINE = re.compile(r"^\s*O\s*\d+\s*$", re.I)
+#: The comments of a line: ``( ... )`` and a ``;`` comment to its end.
+_LINE_COMMENTS = re.compile(r"\([^)\n]*\)|;.*")
+
+
+def _until_program_end(text: str, notes: Notes) -> str:
+    """The text with the lines after the main program's end blanked (line numbers stay), but for subroutine
+    definitions: LinuxCNC ends the program at an M2 or M30 outside any O-word block ("Lines of a file that occur
+    after the end of a program are not to be executed. The interpreter does not even read them", overview.adoc
+    'Format of a Program'), so text there that is no G-code (a footer of a post, the rest of a file that was
+    written over) is never refused; a subroutine defined after it is still found by a call before it (rs274
+    2.9.0~pre1 runs ``o100 call`` / ``M2`` / ``o100 sub`` ... ``o100 endsub``, and skips a line ``foo bar )``
+    between them), and from a Fanuc-style ``O1`` .. ``M99`` subprogram on (M98, tests/interp/m98m99 of LinuxCNC
+    2.9) the text is read as it is."""
+    lines = text.split("\n")
+    stack: list[tuple[str, str]] = []
+    ended = dropped = False
+    for i, raw in enumerate(lines):
+        m = _OWORD_KEYWORD.match(raw)
+        label, keyword = (m.group(1).lower(), m.group(2).lower()) if m else ("", "")
+        if ended and not stack and _FANUC_PROGRAM_LINE.match(_LINE_COMMENTS.sub("", raw)):
+            break  # a Fanuc-style O<number> .. M99 subprogram (LinuxCNC 2.9 M98): read on, as before
+        if ended and not stack and keyword != "sub":
+            dropped = dropped or bool(_LINE_COMMENTS.sub("", raw).strip(" \t\r%"))
+            lines[i] = ""
+            continue
+        if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
+            stack.append((label, keyword))
+        elif keyword in ("endsub", "endif", "endwhile", "endrepeat", "while") and stack:
+            stack.pop()
+        elif not m and not stack and _PROGRAM_END.search(_LINE_COMMENTS.sub("", raw)):
+            ended = True
+    if dropped:
+        notes.add("lines after M2/M30 not read (LinuxCNC ends the program there)")
+    return "\n".join(lines)
 
 
 def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
