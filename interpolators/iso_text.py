@@ -119,10 +119,13 @@ _OPENING_KEYWORDS = ("if", "while", "do", "repeat", "sub", "endsub")
 
 
 #: An M2 or M30 word (program end) in a line's code, comments taken out.
-_PROGRAM_END = re.compile(r"(?<![A-Z_<#\d.])M[ \t]*0*(?:2|30)(?![\d.])", re.I)
+_PROGRAM_END = re.compile(r"[Mm][ \t]*0*(?:2|30)(?![\d.])")
+#: What may not stand right before the M of :data:`_PROGRAM_END` (a word of a name, ``#<m2>``), checked after the
+#: search: a look-behind in the pattern makes it three times slower on a long CAM program.
+_BEFORE_NO_END = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_<#")
 #: An O-word line's label and keyword (the nesting of sub, if, while, do and repeat blocks).
 _OWORD_KEYWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
-                            r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT)\b", re.I)
+                            r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT)\b", re.I | re.M)
 #: A Fanuc-style program number alone on its line (``O1``), which LinuxCNC 2.9's M98 calls.
 _FANUC_PROGRAM_LINE = re.compile(r"^\s*O\s*\d+\s*$", re.I)
 #: The comments of a line: ``( ... )`` and a ``;`` comment to its end.
@@ -137,28 +140,49 @@ def _until_program_end(text: str, notes: Notes) -> str:
     written over) is never refused; a subroutine defined after it is still found by a call before it (rs274
     2.9.0~pre1 runs ``o100 call`` / ``M2`` / ``o100 sub`` ... ``o100 endsub``, and skips a line ``foo bar )``
     between them), and from a Fanuc-style ``O1`` .. ``M99`` subprogram on (M98, tests/interp/m98m99 of LinuxCNC
-    2.9) the text is read as it is."""
-    lines = text.split("\n")
+    2.9) the text is read as it is. The lines before the first M2/M30 are scanned for O-words only."""
+    first = _program_end(text)
+    if first is None:
+        return text
+    at = text.rfind("\n", 0, first.start()) + 1
+    lines = text[at:].split("\n")
+    if not any(_LINE_COMMENTS.sub("", raw).strip(" \t\r%") for raw in lines[1:]):
+        return text  # nothing after it (most programs): no need to follow the O-words before it
     stack: list[tuple[str, str]] = []
+    for m in _OWORD_KEYWORD.finditer(text, 0, at):
+        _nest(stack, m.group(1).lower(), m.group(2).lower())
     ended = dropped = False
     for i, raw in enumerate(lines):
+        code = _LINE_COMMENTS.sub("", raw)
         m = _OWORD_KEYWORD.match(raw)
-        label, keyword = (m.group(1).lower(), m.group(2).lower()) if m else ("", "")
-        if ended and not stack and _FANUC_PROGRAM_LINE.match(_LINE_COMMENTS.sub("", raw)):
+        if ended and not stack and _FANUC_PROGRAM_LINE.match(code):
             break  # a Fanuc-style O<number> .. M99 subprogram (LinuxCNC 2.9 M98): read on, as before
-        if ended and not stack and keyword != "sub":
-            dropped = dropped or bool(_LINE_COMMENTS.sub("", raw).strip(" \t\r%"))
+        if ended and not stack and not (m and m.group(2).lower() == "sub"):
+            dropped = dropped or bool(code.strip(" \t\r%"))
             lines[i] = ""
-            continue
-        if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
-            stack.append((label, keyword))
-        elif keyword in ("endsub", "endif", "endwhile", "endrepeat", "while") and stack:
-            stack.pop()
-        elif not m and not stack and _PROGRAM_END.search(_LINE_COMMENTS.sub("", raw)):
+        elif m:
+            _nest(stack, m.group(1).lower(), m.group(2).lower())
+        elif not stack and _program_end(code):
             ended = True
-    if dropped:
-        notes.add("lines after M2/M30 not read (LinuxCNC ends the program there)")
-    return "\n".join(lines)
+    if not dropped:
+        return text
+    notes.add("lines after M2/M30 not read (LinuxCNC ends the program there)")
+    return text[:at] + "\n".join(lines)
+
+
+def _program_end(text: str) -> re.Match | None:
+    """The first M2 or M30 word of the text (:data:`_PROGRAM_END`), or None."""
+    return next((m for m in _PROGRAM_END.finditer(text) if not m.start() or text[m.start() - 1] not in
+                 _BEFORE_NO_END), None)
+
+
+def _nest(stack: list[tuple[str, str]], label: str, keyword: str) -> None:
+    """Follow an O-word line (its label and keyword) into or out of the sub, if, while, do and repeat blocks:
+    a ``while`` after a ``do`` of its label closes that loop."""
+    if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
+        stack.append((label, keyword))
+    elif keyword in ("endsub", "endif", "endwhile", "endrepeat", "while") and stack:
+        stack.pop()
 
 
 def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
