@@ -46,3 +46,36 @@ def test_an_m2_inside_an_o_word_block_does_not_end_the_text():
     assert [b.target[0] for b in prog.blocks] == pytest.approx([1.0, 3.0])
     with pytest.raises(GCodeError, match=r":5:5: "):
         parse_program("G21\no100 if [0]\nM2\no100 endif\nfoo )\nM2\n", context=LINUXCNC)
+
+
+#: LinuxCNC's predefined named parameters of the modal state, read by configs' subroutines (NativeCAM's
+#: shcs_size.ngc "#<_metric>", lead_out.ngc "#<_ccomp>", Probe Basic's backup_status.ngc "#<_retract_old_z>",
+#: probe-screen's _psng_modal_save.ngc "#<_absolute>"), with the values rs274 2.9.0~pre1 prints for them
+#: ("(DEBUG, #<_plane>)" after "G21 G0 X0": 170, ...; after G20 G98 G55 G90.1 G1 F3 S1200 T5: 10, 0, 550, ...).
+NAMED_STATE = ("G21 G0 X0\n#1 = #<_motion_mode>\n#2 = #<_plane>\n#3 = #<_ccomp>\n#4 = #<_metric>\n"
+               "#5 = #<_absolute>\n#6 = #<_units_per_minute>\n#7 = #<_coord_system>\n#8 = #<_retract_r_plane>\n"
+               "#9 = #<_ijk_absolute_mode>\n#10 = #<_tool_offset>\n"
+               "G20 G98 G55 G90.1 S1200 T5 G1 X0 F3\n#11 = #<_motion_mode>\n#12 = #<_imperial>\n"
+               "#13 = #<_coord_system>\n#14 = #<_retract_old_z>\n#15 = #<_ijk_absolute_mode>\n#16 = #<_feed>\n"
+               "#17 = #<_rpm>\n#18 = #<_selected_tool>\n#19 = #<_incremental>\n"
+               "G21 G18 G59.2\n#20 = #<_plane>\n#21 = #<_coord_system>\n"
+               "G0 X[#1 + #2 + #3 + #4 + #5 + #6 + #7 + #8 + #9 + #10] Y[#11 + #12 + #13 + #14 + #15 + #16 + #17 + #18 "
+               "+ #19] Z[#20 + #21]\nM2\n")
+
+
+def test_the_predefined_named_parameters_of_the_modal_state():
+    # overview.adoc "Predefined Named Parameters", interp_namedparams.cc lookup_named_param. Before: "named parameter
+    # #<_motion_mode> is read before it is set"
+    prog = parse_program(NAMED_STATE, context=LINUXCNC)
+    x = 0 + 170 + 400 + 1 + 1 + 1 + 540 + 1 + 0 + 0  # G0, G17, G40, mm, G90, G94, G54, G99 (power-on), G91.1, none
+    y = 10 + 1 + 550 + 1 + 1 + 3 + 1200 + 5 + 0  # in inch: G1, G55, G98, G90.1, F3, S1200, T5, G90
+    assert prog.blocks[-1].target.tolist() == pytest.approx([x, y, 180 + 592])
+    with pytest.raises(GCodeError, match=r"named parameter #<_metric> is read-only"):
+        parse_program("G21\n#<_metric> = 5\nM2\n", context=LINUXCNC)
+
+
+def test_the_call_level_counts_the_o_word_calls():
+    # interp_namedparams.cc NP_CALL_LEVEL: 0 in the main program, 1 in a subroutine it calls
+    text = "G21\no100 sub\nG0 X[#<_call_level> + 1]\no100 endsub\nG0 Y[#<_call_level> + 1]\no100 call\nM2\n"
+    prog = parse_program(text, context=LINUXCNC)
+    assert prog.blocks[-1].target.tolist() == pytest.approx([2.0, 1.0, 0.0])
