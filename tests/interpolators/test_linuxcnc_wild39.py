@@ -79,3 +79,14 @@ def test_the_call_level_counts_the_o_word_calls():
     text = "G21\no100 sub\nG0 X[#<_call_level> + 1]\no100 endsub\nG0 Y[#<_call_level> + 1]\no100 call\nM2\n"
     prog = parse_program(text, context=LINUXCNC)
     assert prog.blocks[-1].target.tolist() == pytest.approx([2.0, 1.0, 0.0])
+
+
+@pytest.mark.parametrize("level", [1, 10, 11])
+def test_a_tool_table_entry_for_tool_0_is_refused(level):
+    # Probe Basic's lathe touch-off subroutines write "G10 L1 P #5400 X[..]" (5400 = the tool in the spindle), which
+    # is 0 before any tool change; LinuxCNC refuses it (interp_check.cc: "P value out of range with G10 L1" for
+    # P < 1, rs274 2.9.0~pre1 so). Before: vcnc ran it
+    with pytest.raises(GCodeError, match=rf":2:\d+: G10 L{level} P0: no tool 0 in the tool table"):
+        parse_program(f"G21\nG10 L{level} P#5400 Z1\nG0 X1\nM2\n", context=LINUXCNC)
+    prog = parse_program(f"G21\nG10 L{level} P1 Z1\nG0 X1\nM2\n", context=LINUXCNC)
+    assert prog.blocks[-1].target[0] == pytest.approx(1.0)
