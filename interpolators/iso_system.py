@@ -115,7 +115,8 @@ if TYPE_CHECKING:
     from interpolators.iso_modal_call import ModalCalls
     from interpolators.iso_transforms import Frame
 
-__all__ = ["ReaderState", "system_parameter", "set_system_parameter", "named_state_parameter", "POSITION_PARAMETERS"]
+__all__ = ["ReaderState", "system_parameter", "set_system_parameter", "named_state_parameter",
+           "set_reference_parameter", "POSITION_PARAMETERS"]
 
 #: Fanuc/Haas parts counters: machined parts, required parts.
 PARTS_COUNTERS = (3901, 3902)
@@ -416,6 +417,34 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
     else:
         found = offset_parameter(n, st.context.dialect.name)
     return found if found is not None and found[1] < 6 else None
+
+
+def set_reference_parameter(n: int, value: float | None, st: ReaderState) -> bool:
+    """LinuxCNC ``#n = value`` on the G28 (``#5161``-``#5169``) or G30 (``#5181``-``#5189``) position, X Y Z A B C U V W
+    in machine coordinates: the next G28 / G30 goes there (numbered parameters below #5400 are the program's to
+    write; interp_convert.cc ``convert_home`` reads them, ``USER_TO_PROGRAM_LEN``: in the machine's unit; a
+    tool-change subroutine saves and restores the G30 position so: ``#5181 = #<_G30_oldX>``). True when ``#n`` is
+    one of them."""
+    if not (5161 <= n <= 5169 or 5181 <= n <= 5189):
+        return False
+    j = n - (5161 if n < 5180 else 5181)
+    v = 0.0 if value is None else float(value)
+    if j < 3:
+        point = st.home if n < 5180 else st.reference2
+        point = np.zeros(3) if point is None else point.copy()
+        point[j] = v * _stored(st)
+        if n < 5180:
+            st.home = point
+        else:
+            st.reference2 = point
+    else:
+        extra = (st.home_extra if n < 5180 else st.reference2_extra).copy()
+        extra[j - 3] = v if j < 6 else v * _stored(st)
+        if n < 5180:
+            st.home_extra = extra
+        else:
+            st.reference2_extra = extra
+    return True
 
 
 def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:

@@ -5,6 +5,7 @@ written for these tests after those programs."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
@@ -90,3 +91,14 @@ def test_a_tool_table_entry_for_tool_0_is_refused(level):
         parse_program(f"G21\nG10 L{level} P#5400 Z1\nG0 X1\nM2\n", context=LINUXCNC)
     prog = parse_program(f"G21\nG10 L{level} P1 Z1\nG0 X1\nM2\n", context=LINUXCNC)
     assert prog.blocks[-1].target[0] == pytest.approx(1.0)
+
+
+def test_the_g28_and_g30_positions_may_be_written():
+    # a tool-change subroutine (sttts/linuxcnc-configs toolchange_touch_off.ngc) moves the G30 position and puts it
+    # back: "#5181 = #<_G30_oldX>"; LinuxCNC's G28/G30 read #5161-#5169 / #5181-#5189 (interp_convert.cc
+    # convert_home), rs274 2.9.0~pre1 runs this program to the same points. Before: "parameter #5181 is read-only"
+    text = ("G21 G0 X1 Y2 Z3\nG30.1\n#<_ox> = #5181\n#5181 = 10.5\n#5182 = [#5182 - 3]\n#5163 = 7\nG30\nG0 X0\n"
+            "G28\n#5181 = #<_ox>\nG30 Z9\nG30\nM2\n")
+    ends = [b.target for b in parse_program(text, context=LINUXCNC).blocks]
+    want = [[1, 2, 3], [10.5, -1, 3], [0, -1, 3], [0, 0, 7], [0, 0, 9], [0, 0, 3], [1, -1, 3]]
+    assert np.allclose(ends, want)
