@@ -499,7 +499,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         finish_compensation(st, blocks, source)
-    expression_notes(text, params, dialect.name, notes)
+    expression_notes(text, params, dialect.name, notes, called=external)
     unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
     unfinished_g062(st, Where(source, st.g062.line if st.g062 is not None else 0, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import collections
 import re
+from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -254,11 +255,18 @@ def _grbl_lines(text: str, source: str | None, notes: Notes) -> tuple[str, list[
     return grbl.text, list(grbl.homing)
 
 
-def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) -> None:
-    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only), and macro B
-    brackets that join comparisons (``iso_params`` reads them comparisons first)."""
+def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes,
+                     called: Iterable[str | None] = ()) -> None:
+    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only; a label reused
+    in a subroutine file of ``called``, the files the run called, too), and macro B brackets that join comparisons
+    (``iso_params`` reads them comparisons first)."""
     if dialect == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
+        for name in sorted(f for f in called if f is not None):
+            try:
+                _duplicate_labels(_OWORD_LINE.finditer(Path(name).read_text(encoding="latin-1")), notes)
+            except OSError:  # read a moment ago by the run: gone since, nothing to note
+                continue
     for line, n in params.plain_alarms:  # Fanuc 0i-MF / Haas macros: #3000 alarm, #3006 stop with a message
         what = "raises macro alarm n there and stops" if n == 3000 else "stops there with its message"
         notes.add(f"#{n} set at line {line} as a plain parameter (a Fanuc or Haas control {what}: --dialect fanuc "
@@ -305,16 +313,12 @@ def _loop_notes(owords: list[tuple[str, str]], notes: Notes) -> None:
             loops[label] = keyword
 
 
-def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
-    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
-    a '(' inside, and parameter assignments with an operation outside [ ]
-    (:func:`interpolators.iso_params.read_line`)."""
-    if _MACRO_B_STATEMENT.search(text):
-        notes.add("Fanuc/Haas custom macro B statements (IF, WHILE .. DO, GOTO, END) run as Fanuc runs them "
-                  "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
+def _duplicate_labels(matches, notes: Notes) -> list[tuple[str, str]]:
+    """Note each O-word label that opens two if, while or repeat blocks in one program or subroutine body (its
+    :data:`_OWORD_LINE` ``matches``); the labels and keywords of the O-word lines, in order."""
     opened: collections.Counter = collections.Counter()
     body, doing = "", set()  # doing: the labels of do loops open, whose while closes them
-    owords = [(m.group(1).lower().replace(" ", ""), m.group(2).lower()) for m in _OWORD_LINE.finditer(text)]
+    owords = [(m.group(1).lower().replace(" ", ""), m.group(2).lower()) for m in matches]
     for label, keyword in owords:
         if keyword not in _OPENING_KEYWORDS:
             continue
@@ -331,6 +335,17 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
             notes.add(f"O-word label o{label} opens {count} {keyword} blocks in one program or subroutine, each run in "
                       "its place (LinuxCNC refuses the second when it runs: \"duplicate O-word label\"; FluidNC "
                       "reuses labels)")
+    return owords
+
+
+def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
+    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
+    a '(' inside, and parameter assignments with an operation outside [ ]
+    (:func:`interpolators.iso_params.read_line`)."""
+    if _MACRO_B_STATEMENT.search(text):
+        notes.add("Fanuc/Haas custom macro B statements (IF, WHILE .. DO, GOTO, END) run as Fanuc runs them "
+                  "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
+    owords = _duplicate_labels(_OWORD_LINE.finditer(text), notes)
     _loop_notes(owords, notes)
     if any(_in_code(text, m.start()) for m in _M97.finditer(text)):
         notes.add("M97 local subprogram calls run as Haas runs them (LinuxCNC refuses them: \"Unknown m code used\"; "

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from interpolators import parse_program
+from interpolators import load_program, parse_program
 from interpolators.context import DIALECTS, MachineContext
 from vcnc.errors import GCodeError
 
@@ -102,3 +102,15 @@ def test_the_g28_and_g30_positions_may_be_written():
     ends = [b.target for b in parse_program(text, context=LINUXCNC).blocks]
     want = [[1, 2, 3], [10.5, -1, 3], [0, -1, 3], [0, 0, 7], [0, 0, 9], [0, 0, 3], [1, -1, 3]]
     assert np.allclose(ends, want)
+
+
+def test_a_label_reused_in_a_subroutine_file_is_noted(tmp_path):
+    # NativeCAM's lib/utilities/isect_line_arc.ngc opens "o10 if" twice in its body (the second inside another if):
+    # rs274 refuses the second when it runs ("28: duplicate O-word label - already defined in line 10"), vcnc runs
+    # both and notes it, as it notes it in the main file. Before: no note for a called file
+    (tmp_path / "s.ngc").write_text("o<s> sub\no10 if [1]\nG0 X1\no10 endif\no20 if [1]\n  o10 if [1]\n  G0 X2\n"
+                                    "  o10 endif\no20 endif\no<s> endsub\nM2\n")
+    (tmp_path / "main.ngc").write_text("G21\no<s> call\nM2\n")
+    prog = load_program(tmp_path / "main.ngc", context=LINUXCNC)
+    assert [b.target[0] for b in prog.blocks] == pytest.approx([1.0, 2.0])
+    assert any(n.startswith("O-word label o10 opens 2 if blocks") for n in prog.notes)
