@@ -129,6 +129,8 @@ _OWORD_KEYWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d
                             r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT)\b", re.I | re.M)
 #: A Fanuc-style program number alone on its line (``O1``), which LinuxCNC 2.9's M98 calls.
 _FANUC_PROGRAM_LINE = re.compile(r"^\s*O\s*\d+\s*$", re.I)
+#: An M97 or M98 call of a subprogram, which a Haas or Fanuc program keeps after its M30.
+_LOCAL_CALL = re.compile(r"(?<![A-Za-z_<#])M[ \t]*0*9[78](?![\d.])", re.I)
 #: The comments of a line: ``( ... )`` and a ``;`` comment to its end.
 _LINE_COMMENTS = re.compile(r"\([^)\n]*\)|;.*")
 
@@ -149,6 +151,8 @@ def _until_program_end(text: str, notes: Notes) -> str:
     lines = text[at:].split("\n")
     if not any(_LINE_COMMENTS.sub("", raw).strip(" \t\r%") for raw in lines[1:]):
         return text  # nothing after it (most programs): no need to follow the O-words before it
+    if _LOCAL_CALL.search(text, 0, at):
+        return text  # M97/M98 subprograms after the end (run as Haas and Fanuc run them, noted): read as before
     stack: list[tuple[str, str]] = []
     for m in _OWORD_KEYWORD.finditer(text, 0, at):
         _nest(stack, m.group(1).lower(), m.group(2).lower())
