@@ -33,6 +33,11 @@ take the tool before it in rs274. A tool length offset in force at G20/G21 is re
 set in mm as inch (or back) at the next G43.2, G53 or change of offset under G91. The generated programs
 (``--generate``) avoid these three. After an M66 wait (L1-L4) rs274 reads ``#5399`` as 0 (saicanon.cc: no inputs),
 where vcnc takes the awaited level (1 after L1/L3): a program that moves by ``#5399`` differs there.
+One difference is the interpreter's own, so LinuxCNC's too: a G20 or G21 inside a canned-cycle series leaves the
+initial level (OLD_Z) a number in the old units (interp_cycles.cc keeps ``cycle_il`` in program units, which
+interp_convert.cc ``convert_length_units`` does not scale as it scales the current point and the offsets), so
+``G21 G0 Z10`` / ``G98 G81 X1 Z-5 R2`` / ``G20 X0.1`` retracts to 10 inch (254 mm); vcnc keeps the level where the
+series began, the "original Z position" of g-code.adoc 'Retract Mode' (10 mm, under R2 in inch: R, 50.8 mm).
 
 Usage: ``python benchmarks/linuxcnc_diff.py [--list] [--files-from LIST] [PROGRAM|DIRECTORY ...]``
 (a directory: its ``.ngc .nc .gcode .tap`` files, recursively), or with generated programs instead

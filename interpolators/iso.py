@@ -190,7 +190,12 @@ from interpolators.iso_position_offset import POSITION_OFFSET_CODES, offset_trav
 from interpolators.iso_reference import FANUC_CODES
 from interpolators.iso_rigid_tap import end_rigid_tap, m29_in_tapping_cycle, rigid_tap_moved
 from interpolators.iso_smoothing import SMOOTHING_CODES, smoothing
-from interpolators.iso_system import set_system_parameter, system_parameter
+from interpolators.iso_system import (
+    named_state_parameter,
+    set_reference_parameter,
+    set_system_parameter,
+    system_parameter,
+)
 from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
 from interpolators.iso_text import (
     closing_notes,
@@ -443,7 +448,9 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
                         fanuc=dialect.name == "fanuc",
-                        set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else None)
+                        set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
+                        (lambda n, v: set_reference_parameter(n, v, st)) if dialect.name == "linuxcnc" else None,
+                        named_state=(lambda k: named_state_parameter(k, st)) if dialect.name == "linuxcnc" else None)
     messages: list[Message] = []
     on_comment = functools.partial(note_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
@@ -492,7 +499,7 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
         corner_not_followed(st.corner, None, "the program ends")
     if st.comp_start is not None:
         finish_compensation(st, blocks, source)
-    expression_notes(text, params, dialect.name, notes)
+    expression_notes(text, params, dialect.name, notes, called=external)
     unfinished_arc3d(st, Where(source, st.arc3d_line, ""))
     unfinished_g062(st, Where(source, st.g062.line if st.g062 is not None else 0, ""))
     closing_notes(st, blocks, dialect, notes, reading="fadal" if fadal else dialect.name)

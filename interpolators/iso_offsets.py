@@ -711,6 +711,9 @@ def _g10_tool(level: int, seen, st: State, where: Where, w: Word) -> None:
     if p_word is None or p_word.value != int(p_word.value) or p_word.value < 0:
         where.fail(f"G10 L{level}: the tool number P is missing or not a whole number >= 0", column=w.column,
                    text=w.text, expected=f"G10 L{level} P<tool> X.. Y.. Z.. R..")
+    if p_word.value < 1:  # interp_check.cc check_g_codes: "P value out of range with G10 L%d" (p_int < 1)
+        where.fail(f"G10 L{level} P0: no tool 0 in the tool table (LinuxCNC: 'P value out of range with G10 "
+                   f"L{level}')", column=p_word.column, text=p_word.text, expected=f"G10 L{level} P<tool> with P >= 1")
     if not any(k in seen for k in ("X", "Y", "Z", "R")):
         where.fail(f"G10 L{level} without offsets has no effect (LinuxCNC refuses it)", column=w.column, text=w.text,
                    expected=f"G10 L{level} P<tool> with X, Y, Z and/or R")

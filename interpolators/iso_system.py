@@ -115,7 +115,8 @@ if TYPE_CHECKING:
     from interpolators.iso_modal_call import ModalCalls
     from interpolators.iso_transforms import Frame
 
-__all__ = ["ReaderState", "system_parameter", "set_system_parameter", "POSITION_PARAMETERS"]
+__all__ = ["ReaderState", "system_parameter", "set_system_parameter", "named_state_parameter",
+           "set_reference_parameter", "POSITION_PARAMETERS"]
 
 #: Fanuc/Haas parts counters: machined parts, required parts.
 PARTS_COUNTERS = (3901, 3902)
@@ -182,6 +183,9 @@ class ReaderState(Protocol):
     input_result: float | None  # LinuxCNC #5399 (iso_mcodes, M66)
     input_unknown: str
     tcp: int  # tool centre point control in force (iso_tcp), 0 off
+    arc_incremental: bool
+    tool_selected: int | None
+    tool_xy: np.ndarray
 
     @property
     def scale(self) -> float: ...
@@ -373,6 +377,38 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     return None, ""
 
 
+def named_state_parameter(key: str, st: ReaderState) -> float | None:
+    """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state, or None when it is not one
+    vcnc models (the spindle, coolant and override states, pockets: the caller reports it).
+
+    overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode
+    and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none; ``_plane`` 170), ``_ccomp`` 400/410/420,
+    1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time`` ``_units_per_minute``
+    ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force), ``_retract_r_plane`` (G99) and
+    ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 .. G59.3, ``_feed`` (F in program
+    units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any), ``_spindle_rpm_mode`` 1 (G97: vcnc has no
+    G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and ``_remap_level`` 0 (no remaps); rs274
+    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)"."""
+    wcs = WORK_OFFSETS.index(st.wcs) + 1 if st.wcs in WORK_OFFSETS else 0
+    values = {
+        "_motion_mode": 800.0 if st.motion is None else float(st.motion),
+        "_plane": {2: 170.0, 1: 180.0, 0: 190.0}[st.plane],
+        "_ccomp": 400.0 if st.comp_side is None else float(st.comp_code[1:3]) * 10.0,
+        "_metric": float(not st.inch), "_imperial": float(st.inch),
+        "_absolute": float(not st.incremental), "_incremental": float(st.incremental),
+        "_inverse_time": float(st.inverse_time), "_units_per_rev": float(st.per_rev),
+        "_units_per_minute": float(not st.inverse_time and not st.per_rev),
+        "_ijk_absolute_mode": float(not st.arc_incremental),
+        "_tool_offset": float(bool(st.tool_length) or bool(np.any(st.tool_xy))),
+        "_retract_r_plane": float(st.retract_r), "_retract_old_z": float(not st.retract_r),
+        "_coord_system": float(530 + 10 * wcs if wcs < 7 else 584 + wcs) if wcs else None,
+        "_feed": 0.0 if st.feed is None else st.feed * 60.0 / st.scale, "_rpm": abs(st.spindle_speed),
+        "_selected_tool": float(st.tool_selected or 0), "_spindle_rpm_mode": 1.0, "_spindle_css_mode": 0.0,
+        "_lathe_radius_mode": 1.0, "_lathe_diameter_mode": 0.0, "_remap_level": 0.0,
+    }
+    return values.get(key)
+
+
 def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
     """The work offset and axis index (0-5: X Y Z A B C) a Fanuc/Haas offset variable ``#n`` names."""
     k, j = divmod(n - 5221, 20)
@@ -381,6 +417,34 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
     else:
         found = offset_parameter(n, st.context.dialect.name)
     return found if found is not None and found[1] < 6 else None
+
+
+def set_reference_parameter(n: int, value: float | None, st: ReaderState) -> bool:
+    """LinuxCNC ``#n = value`` on the G28 (``#5161``-``#5169``) or G30 (``#5181``-``#5189``) position, X Y Z A B C U V W
+    in machine coordinates: the next G28 / G30 goes there (numbered parameters below #5400 are the program's to
+    write; interp_convert.cc ``convert_home`` reads them, ``USER_TO_PROGRAM_LEN``: in the machine's unit; a
+    tool-change subroutine saves and restores the G30 position so: ``#5181 = #<_G30_oldX>``). True when ``#n`` is
+    one of them."""
+    if not (5161 <= n <= 5169 or 5181 <= n <= 5189):
+        return False
+    j = n - (5161 if n < 5180 else 5181)
+    v = 0.0 if value is None else float(value)
+    if j < 3:
+        point = st.home if n < 5180 else st.reference2
+        point = np.zeros(3) if point is None else point.copy()
+        point[j] = v * _stored(st)
+        if n < 5180:
+            st.home = point
+        else:
+            st.reference2 = point
+    else:
+        extra = (st.home_extra if n < 5180 else st.reference2_extra).copy()
+        extra[j - 3] = v if j < 6 else v * _stored(st)
+        if n < 5180:
+            st.home_extra = extra
+        else:
+            st.reference2_extra = extra
+    return True
 
 
 def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:

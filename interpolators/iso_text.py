@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import collections
 import re
+from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -39,7 +40,7 @@ def prepared_text(text: str, source: str | None, dialect: str, notes: Notes) -> 
         notes.add("CNCSimulator Pro $-command and #region lines not run (simulator directives, not G-code)")
     wrapped = False
     if dialect == "linuxcnc":
-        text, wrapped = _until_closing_percent(text, notes)
+        text, wrapped = _until_closing_percent(_until_program_end(text, notes), notes)
     if _OUTPUT_COMMAND.search(text):
         notes.add("POPEN/DPRNT/BPRNT/PCLOS external output not sent")
     return text, homing, wrapped
@@ -118,6 +119,77 @@ _OWORD_LINE = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[
 _OPENING_KEYWORDS = ("if", "while", "do", "repeat", "sub", "endsub")
 
 
+#: An M2 or M30 word (program end) in a line's code, comments taken out.
+_PROGRAM_END = re.compile(r"[Mm][ \t]*0*(?:2|30)(?![\d.])")
+#: What may not stand right before the M of :data:`_PROGRAM_END` (a word of a name, ``#<m2>``), checked after the
+#: search: a look-behind in the pattern makes it three times slower on a long CAM program.
+_BEFORE_NO_END = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_<#")
+#: An O-word line's label and keyword (the nesting of sub, if, while, do and repeat blocks).
+_OWORD_KEYWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
+                            r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT)\b", re.I | re.M)
+#: A Fanuc-style program number alone on its line (``O1``), which LinuxCNC 2.9's M98 calls.
+_FANUC_PROGRAM_LINE = re.compile(r"^\s*O\s*\d+\s*$", re.I)
+#: An M97 or M98 call of a subprogram, which a Haas or Fanuc program keeps after its M30.
+_LOCAL_CALL = re.compile(r"(?<![A-Za-z_<#])M[ \t]*0*9[78](?![\d.])", re.I)
+#: The comments of a line: ``( ... )`` and a ``;`` comment to its end.
+_LINE_COMMENTS = re.compile(r"\([^)\n]*\)|;.*")
+
+
+def _until_program_end(text: str, notes: Notes) -> str:
+    """The text with the lines after the main program's end blanked (line numbers stay), but for subroutine
+    definitions: LinuxCNC ends the program at an M2 or M30 outside any O-word block ("Lines of a file that occur
+    after the end of a program are not to be executed. The interpreter does not even read them", overview.adoc
+    'Format of a Program'), so text there that is no G-code (a footer of a post, the rest of a file that was
+    written over) is never refused; a subroutine defined after it is still found by a call before it (rs274
+    2.9.0~pre1 runs ``o100 call`` / ``M2`` / ``o100 sub`` ... ``o100 endsub``, and skips a line ``foo bar )``
+    between them), and from a Fanuc-style ``O1`` .. ``M99`` subprogram on (M98, tests/interp/m98m99 of LinuxCNC
+    2.9) the text is read as it is. The lines before the first M2/M30 are scanned for O-words only."""
+    first = _program_end(text)
+    if first is None:
+        return text
+    at = text.rfind("\n", 0, first.start()) + 1
+    lines = text[at:].split("\n")
+    if not any(_LINE_COMMENTS.sub("", raw).strip(" \t\r%") for raw in lines[1:]):
+        return text  # nothing after it (most programs): no need to follow the O-words before it
+    if _LOCAL_CALL.search(text, 0, at):
+        return text  # M97/M98 subprograms after the end (run as Haas and Fanuc run them, noted): read as before
+    stack: list[tuple[str, str]] = []
+    for m in _OWORD_KEYWORD.finditer(text, 0, at):
+        _nest(stack, m.group(1).lower(), m.group(2).lower())
+    ended = dropped = False
+    for i, raw in enumerate(lines):
+        code = _LINE_COMMENTS.sub("", raw)
+        m = _OWORD_KEYWORD.match(raw)
+        if ended and not stack and _FANUC_PROGRAM_LINE.match(code):
+            break  # a Fanuc-style O<number> .. M99 subprogram (LinuxCNC 2.9 M98): read on, as before
+        if ended and not stack and not (m and m.group(2).lower() == "sub"):
+            dropped = dropped or bool(code.strip(" \t\r%"))
+            lines[i] = ""
+        elif m:
+            _nest(stack, m.group(1).lower(), m.group(2).lower())
+        elif not stack and _program_end(code):
+            ended = True
+    if not dropped:
+        return text
+    notes.add("lines after M2/M30 not read (LinuxCNC ends the program there)")
+    return text[:at] + "\n".join(lines)
+
+
+def _program_end(text: str) -> re.Match | None:
+    """The first M2 or M30 word of the text (:data:`_PROGRAM_END`), or None."""
+    return next((m for m in _PROGRAM_END.finditer(text) if not m.start() or text[m.start() - 1] not in
+                 _BEFORE_NO_END), None)
+
+
+def _nest(stack: list[tuple[str, str]], label: str, keyword: str) -> None:
+    """Follow an O-word line (its label and keyword) into or out of the sub, if, while, do and repeat blocks:
+    a ``while`` after a ``do`` of its label closes that loop."""
+    if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
+        stack.append((label, keyword))
+    elif keyword in ("endsub", "endif", "endwhile", "endrepeat", "while") and stack:
+        stack.pop()
+
+
 def _until_closing_percent(text: str, notes: Notes) -> tuple[str, bool]:
     """The text up to the second ``%`` line of a file whose first non-blank line is ``%`` (later lines blank, so
     that line numbers stay): LinuxCNC ends the program there (interp_read.cc read_text: INTERP_ENDFILE at a ``%``
@@ -187,11 +259,18 @@ def _grbl_lines(text: str, source: str | None, notes: Notes) -> tuple[str, list[
     return grbl.text, list(grbl.homing)
 
 
-def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes) -> None:
-    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only), and macro B
-    brackets that join comparisons (``iso_params`` reads them comparisons first)."""
+def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes,
+                     called: Iterable[str | None] = ()) -> None:
+    """Notes of how the program's expressions were read: what LinuxCNC refuses (``linuxcnc`` only; a label reused
+    in a subroutine file of ``called``, the files the run called, too), and macro B brackets that join comparisons
+    (``iso_params`` reads them comparisons first)."""
     if dialect == "linuxcnc":
         _linuxcnc_refusals(text, params, notes)
+        for name in sorted(f for f in called if f is not None):
+            try:
+                _duplicate_labels(_OWORD_LINE.finditer(Path(name).read_text(encoding="latin-1")), notes)
+            except OSError:  # read a moment ago by the run: gone since, nothing to note
+                continue
     for line, n in params.plain_alarms:  # Fanuc 0i-MF / Haas macros: #3000 alarm, #3006 stop with a message
         what = "raises macro alarm n there and stops" if n == 3000 else "stops there with its message"
         notes.add(f"#{n} set at line {line} as a plain parameter (a Fanuc or Haas control {what}: --dialect fanuc "
@@ -238,16 +317,12 @@ def _loop_notes(owords: list[tuple[str, str]], notes: Notes) -> None:
             loops[label] = keyword
 
 
-def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
-    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
-    a '(' inside, and parameter assignments with an operation outside [ ]
-    (:func:`interpolators.iso_params.read_line`)."""
-    if _MACRO_B_STATEMENT.search(text):
-        notes.add("Fanuc/Haas custom macro B statements (IF, WHILE .. DO, GOTO, END) run as Fanuc runs them "
-                  "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
+def _duplicate_labels(matches, notes: Notes) -> list[tuple[str, str]]:
+    """Note each O-word label that opens two if, while or repeat blocks in one program or subroutine body (its
+    :data:`_OWORD_LINE` ``matches``); the labels and keywords of the O-word lines, in order."""
     opened: collections.Counter = collections.Counter()
     body, doing = "", set()  # doing: the labels of do loops open, whose while closes them
-    owords = [(m.group(1).lower().replace(" ", ""), m.group(2).lower()) for m in _OWORD_LINE.finditer(text)]
+    owords = [(m.group(1).lower().replace(" ", ""), m.group(2).lower()) for m in matches]
     for label, keyword in owords:
         if keyword not in _OPENING_KEYWORDS:
             continue
@@ -264,6 +339,17 @@ def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
             notes.add(f"O-word label o{label} opens {count} {keyword} blocks in one program or subroutine, each run in "
                       "its place (LinuxCNC refuses the second when it runs: \"duplicate O-word label\"; FluidNC "
                       "reuses labels)")
+    return owords
+
+
+def _linuxcnc_refusals(text: str, params: Parameters, notes: Notes) -> None:
+    """Notes of what the ``linuxcnc`` dialect read although LinuxCNC refuses it: macro B statements, comments with
+    a '(' inside, and parameter assignments with an operation outside [ ]
+    (:func:`interpolators.iso_params.read_line`)."""
+    if _MACRO_B_STATEMENT.search(text):
+        notes.add("Fanuc/Haas custom macro B statements (IF, WHILE .. DO, GOTO, END) run as Fanuc runs them "
+                  "(LinuxCNC refuses them: its flow control is O-words; --dialect fanuc or haas)")
+    owords = _duplicate_labels(_OWORD_LINE.finditer(text), notes)
     _loop_notes(owords, notes)
     if any(_in_code(text, m.start()) for m in _M97.finditer(text)):
         notes.add("M97 local subprogram calls run as Haas runs them (LinuxCNC refuses them: \"Unknown m code used\"; "
