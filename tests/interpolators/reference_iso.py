@@ -1833,6 +1833,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
                 if delta <= 0:  # J shortens the pecks to nothing and no K keeps a least one: no end to the cycle
                     raise ReferenceError(f"G{code}: pecks shortened to zero (J without K)")
             depth -= delta
+    if code in (74, 84) and m.rigid and "q" in m.sticky and m.ctx.dialect.peck_tapping is not None:
+        _peck_tap(m, line, r, bottom, at)
     m.move(line, "feed", at(bottom))
     if code in (74, 76, 82, 84, 86, 89):
         m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
@@ -1855,6 +1857,24 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         m.move(line, "feed", at(clear))
     else:
         m.move(line, "rapid", at(clear))
+
+
+def _peck_tap(m: _Machine, line: int, r: float, bottom: float, at) -> None:
+    """Fanuc peck rigid tapping (16i-TA/TB A-78549E 3.4 "Peck rigid tapping cycle": Q each cut, PCP No. 5200#5, d
+    No. 5213 "cutting start distance"), every move synchronised, so at the tapping feed: PCP = 0 ("high-speed") cuts
+    Q, backs off d, cuts d + Q; PCP = 1 ("standard") cuts Q, goes back to R, comes in to d short of the depth already
+    tapped. The cut that reaches the bottom is the caller's; a retract never rises above R."""
+    q = m.sticky["q"] * m.scale
+    if not q > 0:
+        raise ReferenceError(f"line {line}: peck rigid tap with Q <= 0")
+    d = m.ctx.dialect.peck_tapping_d
+    tapped = r
+    while tapped - q > bottom + _EPS * max(1.0, abs(bottom)):  # Fanuc's decimal pecks: none at the bottom itself
+        tapped -= q
+        m.move(line, "feed", at(tapped))
+        if m.ctx.dialect.peck_tapping == "standard":
+            m.move(line, "feed", at(r))
+        m.move(line, "feed", at(min(r, tapped + d)), optional=True)
 
 
 def _shift(m: _Machine) -> np.ndarray:
@@ -1985,8 +2005,10 @@ def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict)
     cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
     if m.rigid and cycle in tapping and not m.spindle > 0:
         raise ReferenceError(f"line {line}: G84/G74 after M29 with S0 (Fanuc alarm PS0200)")
-    if m.rigid and cycle in tapping and "q" in words:  # 0i-F "Peck rigid tapping cycle": PCP, d unknown
-        raise ReferenceError(f"line {line}: G84/G74 Q after M29 (Fanuc peck rigid tapping, not modelled)")
+    series_q = m.cycle_clear is not None and "q" in m.sticky  # Q is modal hole data until G80
+    if m.rigid and cycle in tapping and ("q" in words or series_q) and m.ctx.dialect.peck_tapping is None:
+        # 0i-F "Peck rigid tapping cycle": PCP (No. 5200#5) and d (No. 5213) are the machine's, not stated
+        raise ReferenceError(f"line {line}: G84/G74 Q after M29 (Fanuc peck rigid tapping, PCP and d not stated)")
 
 
 def _rigid_tap_after(m: _Machine, line: int, moved: bool) -> None:
