@@ -559,8 +559,9 @@ class MachineContext:
     def with_dialect(self, name: str) -> MachineContext:
         """This context read as the control ``name`` of :data:`DIALECTS` reads (``--dialect``): that dialect's
         rules, keeping this context's own settings (default units, path mode and tolerance, subroutine and
-        user M paths, initial feed: a machine file's ``[program]``; the tool length rule ``length_offset_motion``
-        where it differs from its dialect's default, as a machine file sets it)."""
+        user M paths, initial feed, the peck rigid tapping settings: a machine file's ``[program]``; the tool
+        length rule ``length_offset_motion`` where it differs from its dialect's default, as a machine file sets
+        it)."""
         if name not in DIALECTS:
             raise InputError(f"unknown dialect {name!r}: expected one of {', '.join(DIALECTS)}")
         old = self.dialect
@@ -570,7 +571,8 @@ class MachineContext:
         return dataclasses.replace(self, dialect=dataclasses.replace(
             DIALECTS[name], default_units=old.default_units, continuous_path=old.continuous_path,
             tolerance=old.tolerance, subroutine_path=old.subroutine_path, user_m_path=old.user_m_path,
-            initial_feed=old.initial_feed, length_offset_motion=motion))
+            initial_feed=old.initial_feed, length_offset_motion=motion, peck_tapping=old.peck_tapping,
+            peck_tapping_d=old.peck_tapping_d))
 
 
 #: The context of a machine that states none: it changes nothing (a three-axis machine: X, Y, Z).

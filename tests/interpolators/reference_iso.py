@@ -1072,10 +1072,13 @@ def _tcp_move(m: _Machine, line: int, words: dict) -> None:
     """G0 / G1 under G43.4 / G234 (Fanuc 30i "Tool center point control for 5-axis machining" A-79348E 1.1: X Y Z
     the tool tip in the workpiece system fixed on the table; Haas "G234 TCPC"): the programmed point where the
     table at the block's rotary positions carries it; a block whose rotary axes turn is the reader's chords,
-    the last one's end checked."""
+    the last one's end checked. A length change the axes have not travelled (Fanuc TOS = 0: ``G43.4 H2`` after ``G43
+    H1 Z5.``, a new H in G43.4 mode) leaves the programmed tip where it was, the block travelling it (our reading)."""
     length = np.array([0.0, 0.0, m.tool_length])
+    carried = length - np.array([0.0, 0.0, m.length_change])  # the length the axes hold now
     here = m.pos
-    m.pos = _table(m, here - length, m.extra, back=True) + length  # where the tip is on the part
+    m.pos = _table(m, here - carried, m.extra, back=True) + length  # where the tip is on the part
+    m.length_change = 0.0
     prog = m.target(words)
     m.pos = here
     extra = m.extra_end(words)
@@ -1115,12 +1118,14 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     before = m.tool_length
-    if m.ctx.dialect.name in ("fanuc", "haas") and "h" in words and m.length_mode in (430, 440) and not m.tcp and not \
+    if m.ctx.dialect.name in ("fanuc", "haas") and "h" in words and (m.length_mode in (430, 440) or m.tcp) and not \
             any(c in (430, 431, 432, 434, 435, 440, 490, 2340, *_POSITION_OFFSET) for c in g):
         # an H word alone in G43/G44 mode changes the offset to H's, the direction staying (SZGH-CNC1000MDb "G43,
         # G44": "the offset value changes to the new tool length offset value"; Milltronics PL-551: "The new H offset
-        # will automatically take effect in either the G43 or G44 mode"): as G43 H / G44 H
-        g.append(m.length_mode)
+        # will automatically take effect in either the G43 or G44 mode"): as G43 H / G44 H; in G43.4 / G43.5 / G234
+        # mode as that code's H (our reading)
+        tcp_code = (2340 if m.ctx.dialect.name == "haas" else 435 if m.tcp_vector else 434) if m.tcp else None
+        g.append(tcp_code or m.length_mode)
     for code in g:
         if code in (430, 431, 432, 440, 490):
             m.tcp = False
