@@ -1601,6 +1601,11 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if m.tcp and m.motion in (0, 10):
         _tcp_move(m, line, words)
         return
+    rotated = m.g68 is not None and m.g68[0] != {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+    if m.ctx.dialect.name == "fanuc" and rotated and (m.motion in (20, 30) or m.comp_radius is not None):
+        # Fanuc 0i-A B-63503EN-1/01 alarm 144: "The coordinate rotation plane and arc or cutter compensation C plane
+        # must be the same"
+        raise ReferenceError(f"line {line}: an arc or G41/G42 outside the G68 plane (Fanuc alarm 144)")
     # the unnamed axes under the offset travelled: they differ under a rotation that turns Z into X or Y (G18/G19 G68)
     end = m.to_machine(m.target(words, untravelled=m.length_change))
     end[2] -= 0.0 if "z" in words and not m.incremental else m.length_change
@@ -1730,6 +1735,9 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         return out
 
     code = m.motion // 10
+    turned = np.where(m.mirror, -1.0, 1.0) * m.factors
+    if turned[axes[2]] < 0:  # our reading: a drilling axis turned over would drill from R away from the part
+        raise ReferenceError(f"line {line}: canned cycle with its drilling axis mirrored")
     if m.cycle_clear is None and m.ctx.dialect.name != "linuxcnc":
         m.sticky = {}  # Fanuc/Haas: G80 clears the hole data; LinuxCNC keeps its cycle_p, cycle_q, cycle_cc
     if code == 81 and m.ctx.dialect.name == "fanuc" and (m.sticky.get("fagor") or m.cycle_clear is None

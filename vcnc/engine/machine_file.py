@@ -37,7 +37,8 @@ Layout::
     wrap_direction = "sign"       # optional: absolute moves of the wrap = true axes: sign (LinuxCNC; Fanuc RAB=1) |
                                   #   shortest (Fanuc RAB=0; TNC M126) | difference (TNC); unset: the control's own
     peck_tapping = "high-speed"   # optional, fanuc: M29 .. G84 Q (peck rigid tapping): high-speed (PCP=0, back by d)
-    peck_tapping_d = 1.0          #   | standard (PCP=1, back to R, in to d above the cut); d [mm], No. 5213; unset: refused
+    peck_tapping_d = 1.0          #   | standard (PCP=1, back to R, in to d above the cut); d [mm], No. 5213; unset:
+                                  #   such a block is refused (set both or neither)
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300", Fadal E7 .. E48
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
