@@ -33,7 +33,10 @@ __all__ = ["Tool", "TouchProbe", "Dialect", "MachineContext", "DIALECTS", "WORK_
            "INTERPOLATION_CONTEXT",
            "read_tool_table", "read_tnc_tool_table", "read_datum_table", "tnc_table_rows", "EXTENDED_OFFSETS",
            "extended_offset", "work_offset_code",
-           "FADAL_FIXTURES", "TOOL_OFFSET_MEMORIES"]
+           "FADAL_FIXTURES", "TOOL_OFFSET_MEMORIES", "PECK_TAPPING"]
+
+#: Fanuc peck rigid tapping cycles (:attr:`Dialect.peck_tapping`; parameter PCP, No. 5200#5 = 0 / 1).
+PECK_TAPPING: tuple[str, ...] = ("high-speed", "standard")
 
 #: Fanuc tool compensation memory types (:attr:`MachineContext.tool_offset_memory`).
 TOOL_OFFSET_MEMORIES: tuple[str, ...] = ("A", "B", "C")
@@ -332,6 +335,22 @@ class Dialect:
         feed rate is that in which the tangential feed rate in the alpha and beta cartesian coordinate system is
         commanded by F"; "G91 G01 X20.0 C40.0 F300.0 ; This changes the unit of the C axis from 40.0 deg to 40mm
         with metric input", so the block takes sqrt(20^2 + 40^2) / 300 = 0.14907 min).
+    peck_tapping : {"high-speed", "standard"} or None
+        Fanuc's peck rigid tapping cycle, which an ``M29 S.. / G84 (G74) .. Q..`` block runs (Q the depth of each
+        cut): the machine's parameter PCP (No. 5200#5). ``"high-speed"`` (PCP = 0, the high-speed peck tapping
+        cycle): each cut of Q, then back by :attr:`peck_tapping_d` (the spindle reversed), then on by d + Q;
+        ``"standard"`` (PCP = 1, the peck tapping cycle): each cut of Q, then back to point R, then in to d above
+        the depth cut (d the "cutting start distance") and on by Q, every move at the tapping feed (the spindle
+        synchronised with the axis). FANUC Series 16i/18i/21i-TA/TB additional manual A-78549E, 3.4 "Peck rigid
+        tapping cycle" (http://www.cncmanuals.com/fanuc/700/fanuc-series-16i-18i-21i-additional-manual/page/11):
+        "Q_ : Depth of cut for each cutting feed", PCP (No. 5200#5), "d = Cutting start distance", the figure of
+        the operations; the 0i-F / 30i mill operator's manuals' "Peck rigid tapping cycle (G84 or G74)" name the
+        same parameters (their pages are not in our search index). None (the default): the machine does not say,
+        and such a block is refused by name (:func:`interpolators.iso_rigid_tap.rigid_tap_peck`), the manuals
+        giving no default for PCP or d. Only the ``fanuc`` dialect reads it.
+    peck_tapping_d : float or None
+        d [mm] of the peck rigid tapping cycle, parameter No. 5213 (the retraction of the high-speed peck, the
+        clearance above the depth cut of the standard one): >= 0, set with :attr:`peck_tapping`.
     """
 
     name: str = "linuxcnc"
@@ -348,8 +367,18 @@ class Dialect:
     feed_mode_clears_feed: bool = True
     length_offset_motion: bool = False
     fanuc_feed: bool = False
+    peck_tapping: str | None = None
+    peck_tapping_d: float | None = None
 
     def __post_init__(self) -> None:
+        if self.peck_tapping is not None and self.peck_tapping not in PECK_TAPPING:
+            raise InputError(f"dialect {self.name}: peck_tapping must be one of {', '.join(PECK_TAPPING)}, "
+                             f"got {self.peck_tapping!r}")
+        if (self.peck_tapping is None) != (self.peck_tapping_d is None):
+            raise InputError(f"dialect {self.name}: peck_tapping (Fanuc PCP, No. 5200#5) and peck_tapping_d (d, "
+                             "No. 5213) are set together")
+        if self.peck_tapping_d is not None and not (math.isfinite(self.peck_tapping_d) and self.peck_tapping_d >= 0):
+            raise InputError(f"dialect {self.name}: peck_tapping_d must be >= 0 [mm], got {self.peck_tapping_d!r}")
         if self.initial_feed is not None and not (math.isfinite(self.initial_feed) and self.initial_feed > 0):
             raise InputError(f"dialect {self.name}: initial_feed must be > 0 [mm/min], got {self.initial_feed!r}")
         if self.arc_rule not in ARC_RULES:
@@ -530,8 +559,9 @@ class MachineContext:
     def with_dialect(self, name: str) -> MachineContext:
         """This context read as the control ``name`` of :data:`DIALECTS` reads (``--dialect``): that dialect's
         rules, keeping this context's own settings (default units, path mode and tolerance, subroutine and
-        user M paths, initial feed: a machine file's ``[program]``; the tool length rule ``length_offset_motion``
-        where it differs from its dialect's default, as a machine file sets it)."""
+        user M paths, initial feed, the peck rigid tapping settings: a machine file's ``[program]``; the tool
+        length rule ``length_offset_motion`` where it differs from its dialect's default, as a machine file sets
+        it)."""
         if name not in DIALECTS:
             raise InputError(f"unknown dialect {name!r}: expected one of {', '.join(DIALECTS)}")
         old = self.dialect
@@ -541,7 +571,8 @@ class MachineContext:
         return dataclasses.replace(self, dialect=dataclasses.replace(
             DIALECTS[name], default_units=old.default_units, continuous_path=old.continuous_path,
             tolerance=old.tolerance, subroutine_path=old.subroutine_path, user_m_path=old.user_m_path,
-            initial_feed=old.initial_feed, length_offset_motion=motion))
+            initial_feed=old.initial_feed, length_offset_motion=motion, peck_tapping=old.peck_tapping,
+            peck_tapping_d=old.peck_tapping_d))
 
 
 #: The context of a machine that states none: it changes nothing (a three-axis machine: X, Y, Z).

@@ -29,12 +29,28 @@ if TYPE_CHECKING:
 
     from interpolators.iso import State
 
-__all__ = ["off_plane", "arc_turns", "read_arc", "rotated_arc_chords"]
+__all__ = ["off_plane", "arc_turns", "read_arc", "rotated_arc_chords", "rotation_plane_alarm"]
 
 
 def off_plane(st: State) -> bool:
     """True when a G68 rotation turns the arc plane out of the axis planes (a rotation in another plane)."""
     return st.frame is not None and st.frame.rotation is not None and st.frame.rotation.plane != st.plane
+
+
+def rotation_plane_alarm(st: State, where: Where, column: int, text: str, what: str) -> None:
+    """``what`` (an arc, cutter compensation) in a plane other than the G68 rotation's (:func:`off_plane`) is Fanuc's
+    alarm 144 "ILLEGAL PLANE SELECTED: The coordinate rotation plane and arc or cutter compensation C plane must be
+    the same" (FANUC Series 0i-MODEL A connection manual (function) B-63503EN-1/01, 11 "Coordinate system rotation",
+    http://cncmanuals.com/fanuc/49/series-0i-model-a-connection-manual-function/page/618): refused under ``fanuc``.
+    A plane code in G68 mode is taken, only the arc or compensation in the other plane is refused; Haas (no Haas text
+    found) and LinuxCNC's G10 R run such an arc as chords (:func:`rotated_arc_chords`)."""
+    if st.context.dialect.name != "fanuc" or not off_plane(st):
+        return
+    planes = {2: "G17", 1: "G18", 0: "G19"}
+    where.fail(f"{what} in {planes[st.plane]} while G68 rotates the {planes[st.frame.rotation.plane]} plane: Fanuc "
+               "refuses it (alarm 144 illegal plane selected: the coordinate rotation plane and arc or cutter "
+               "compensation C plane must be the same)", column=column, text=text,
+               expected=f"{planes[st.frame.rotation.plane]} for arcs and G41/G42 under this G68, or G69 first")
 
 
 def rotated_arc_chords(seen, arc_words, target, st: State, blocks, where: Where, common: dict, code: str,

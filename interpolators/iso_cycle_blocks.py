@@ -193,9 +193,10 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
+    peck_tap = None
     if st.context.dialect.name == "fanuc":
         rigid_tap_speed(st, name, where, mw.column, mw.text)
-        rigid_tap_peck(st, seen.get("Q"), name, where, notes)
+        peck_tap = rigid_tap_peck(st, seen.get("Q"), name, where, notes)
     if st.feed is None and st.motion != 0 and st.per_rev:
         per_rev_missing(st, where, name, mw.column, mw.text)
     if st.feed is None and st.motion != 0 and not initial_feed(st, where):
@@ -226,7 +227,7 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
                             haas=st.context.dialect.name == "haas" or st.fadal and code in (73, 83),
-                            fanuc_rules=st.context.dialect.name in ("fanuc", "haas"))
+                            fanuc_rules=st.context.dialect.name in ("fanuc", "haas"), peck_tap=peck_tap)
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)
     framed_initial(st, to_program=False)

@@ -157,7 +157,7 @@ CYCLE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
                 scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
                 tap_out_to_r: bool = False, plane: int = 2, haas: bool = False,
-                fanuc_rules: bool = False) -> list[HoleMove]:
+                fanuc_rules: bool = False, peck_tap: tuple[str, float] | None = None) -> list[HoleMove]:
     """The moves of one canned-cycle block, in any plane: in G18 (ZX) the holes are drilled along Y
     (Z X position them, Y is the bottom, R a Y level), in G19 (YZ) along X (LinuxCNC "Canned Cycles":
     "the cycle is performed in the plane selected"). The cycle runs on the axes permuted to X Y Z.
@@ -194,6 +194,10 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     fanuc_rules : bool
         Fanuc/Haas rather than LinuxCNC: a series whose first block has no R drills from the initial level,
         and zero repeats (L0, K0) drill no hole, where LinuxCNC refuses both.
+    peck_tap : (str, float) or None
+        A G84/G74 with a Q in force runs Fanuc's peck rigid tapping (:func:`_tap_pecks`): the kind
+        (``"high-speed"`` or ``"standard"``, :attr:`interpolators.context.Dialect.peck_tapping`) and d [mm];
+        None: the tap runs in one stroke, a Q unused.
 
     Raises
     ------
@@ -204,7 +208,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if axes == (0, 1, 2):
         return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
                          retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r,
-                         haas=haas, fanuc_rules=fanuc_rules)
+                         haas=haas, fanuc_rules=fanuc_rules, peck_tap=peck_tap)
     if "@" in words or "^" in words:
         raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
                          letter="@" if "@" in words else "^", expected="G17 for polar words")
@@ -214,7 +218,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     try:
         moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
                           incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
-                          tap_out_to_r=tap_out_to_r, haas=haas, fanuc_rules=fanuc_rules)
+                          tap_out_to_r=tap_out_to_r, haas=haas, fanuc_rules=fanuc_rules, peck_tap=peck_tap)
     except CycleError as exc:
         exc.letter = letters.get(exc.letter, exc.letter)
         raise
@@ -224,7 +228,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
 
 def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
               scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
-              tap_out_to_r: bool, haas: bool, fanuc_rules: bool) -> list[HoleMove]:
+              tap_out_to_r: bool, haas: bool, fanuc_rules: bool,
+              peck_tap: tuple[str, float] | None = None) -> list[HoleMove]:
     """:func:`cycle_moves` in the XY plane (drilling along Z)."""
     if cycle.initial is None:
         cycle.initial = float(pos[2])
@@ -250,7 +255,11 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
     # LinuxCNC's loop runs in program units: a Q that divides R - Z makes the pecks its rounding makes
     r_p = (cycle.initial - offset[2]) / scale + cycle.r if incremental else cycle.r
     bottom_p = r_p + cycle.z if incremental else cycle.z
-    levels = _peck_depths(cycle, r_p, bottom_p, haas=haas, decimal=fanuc_rules) if g in (73, 83) else []
+    tap_pecks = peck_tap is not None and g in (74, 84) and cycle.q is not None
+    if tap_pecks and not cycle.q > 0:
+        raise CycleError("peck depth Q of the peck rigid tap must be > 0", letter="Q" if "Q" in words else None,
+                         expected="Q > 0 (the depth of each cut)")
+    levels = _peck_depths(cycle, r_p, bottom_p, haas=haas, decimal=fanuc_rules) if g in (73, 83) or tap_pecks else []
     depths = [d * scale + offset[2] for d in levels]
     pecks = len(depths) + 1
     if repeats * (pecks + 3) > MAX_CYCLE_MOVES:  # L99999999 or Q0.0000001 would run for hours, filling the memory
@@ -289,7 +298,9 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
             go("rapid", x, y, clear)
         go("rapid", x, y, r)
         cleared = r  # the depth of the last return to R (Haas G73 with K and Q)
-        for depth in depths:
+        for z in _tap_pecks(depths, r, peck_tap) if tap_pecks else ():
+            go("line", x, y, z, feed)
+        for depth in depths if not tap_pecks else ():
             go("line", x, y, depth, feed)
             full = g == 83 or clear_every > 0 and cleared - depth >= clear_every - 1e-9 * max(1.0, abs(depth))
             go("rapid", x, y, r if full else depth + delta)
@@ -310,6 +321,21 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
         elif g in (74, 84, 85, 89):
             go("line", x, y, r, feed)
         go("rapid", x, y, clear)
+    return out
+
+
+def _tap_pecks(depths: list[float], r: float, peck_tap: tuple[str, float]) -> list[float]:
+    """The levels [mm, machine] a peck rigid tap (G84/G74, Fanuc) feeds to before its last cut to the bottom, each
+    move at the tapping feed: after each cut to a ``depths`` level, back by d (``"high-speed"``, PCP = 0) or back to
+    ``r`` and in again to d above the level cut (``"standard"``, PCP = 1: d the cutting start distance); never above
+    R (our reading where d exceeds a cut). :attr:`interpolators.context.Dialect.peck_tapping` cites the manual."""
+    kind, d = peck_tap
+    out: list[float] = []
+    for depth in depths:
+        out.append(depth)
+        if kind == "standard":
+            out.append(r)
+        out.append(min(depth + d, r))
     return out
 
 

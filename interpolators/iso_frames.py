@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from interpolators._words import Where
+from interpolators.iso_arcs import rotation_plane_alarm
 from interpolators.iso_axes import EXTRA_LETTERS, reference_turns, wrapped_reference
 from interpolators.iso_codes import DIALECT_G, G_CODES, MILL_G
 from interpolators.iso_cycles import CYCLE_AXES, UNSCALED_Q_CYCLES
@@ -39,6 +40,9 @@ def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) 
         or any(st.frame.mirror) and st.motion in (760, 870, 770))) or (
         st.frame is None and st.motion in (50, 51, 330, 331))
     polar_ok = st.frame is None and st.motion in (0, 10, 20, 30)
+    _drilling_axis_mirrored(st, where, words)
+    if st.comp_start is not None:
+        rotation_plane_alarm(st, where, words[0].column, words[0].text, "cutter compensation (G41/G42)")
     what = ("polar coordinates @ ^" if polar and not polar_ok else G_CODES[st.motion][1] if st.motion is not None
             and st.motion >= 50 and st.motion not in (800,) and not cycle_ok else None)
     if what is not None:
@@ -47,6 +51,24 @@ def check_rotated(st: State, polar: list[str], where: Where, words: list[Word]) 
             "G51.1 mirror image" if st.frame.rotation is None else f"G68 R {st.frame.rotation.angle:g}"
         where.fail(f"{what} in a rotated coordinate system ({how}): not supported",
                    column=w.column, text=w.text, expected="G0-G3, or G10 L2 R0 / G69")
+
+
+def _drilling_axis_mirrored(st: State, where: Where, words: list[Word]) -> None:
+    """A canned cycle whose drilling axis a frame turns over (``G51.1 Z0`` in G17, a negative G51 K, or P, factor, a
+    G101 Z) is refused: its R and bottom would be mirrored, the hole drilled from R away from the part. Our reading:
+    the Fanuc 0i / 16i manuals' "Programmable mirror image" and "Scaling" name no such case (their canned-cycle notes
+    are on Q, d and the G76/G87 shift), and Haas's G101 names none; LinuxCNC has no mirror."""
+    if st.frame is None or st.motion is None or st.motion < 730 or st.motion == 800:
+        return
+    axis = CYCLE_AXES[st.plane][2]
+    if st.frame.mirror[axis] == (st.frame.factors[axis] < 0):
+        return
+    letter = "XYZ"[axis]
+    w = next((g for g in words if g.letter == "G" and round(g.value * 10) == st.motion), words[0])
+    where.fail(f"{G_CODES[st.motion][1]} with its drilling axis {letter} mirrored (G51.1 {letter} or a negative G51 "
+               "scale on it): not supported (the hole would be drilled from R away from the part)", column=w.column,
+               text=w.text, expected=f"the mirror or scaling on the plane's axes only, or G50.1 {letter}0 / G50 before "
+                                     "the cycle")
 
 
 def g68(seen, st: State, where: Where, w: Word, notes: Notes) -> None:

@@ -15,7 +15,7 @@ import numpy as np
 
 from interpolators._words import Where
 from interpolators.iso_arc3d import ARC3D_CODES, arc3d_block
-from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords
+from interpolators.iso_arcs import arc_turns, off_plane, read_arc, rotated_arc_chords, rotation_plane_alarm
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target, wrapped_target
 from interpolators.iso_codes import G_CODES, PLANE_CODES
 from interpolators.iso_corners import finish_corner, start_corner
@@ -200,7 +200,8 @@ def motion_block(seen, gcodes, axis_words, arc_words, target, st: State, blocks,
                     segment=seg, **common)
     else:
         if st.rotation and st.plane != 2 or off_plane(st):
-            # a G18/G19 arc of a system rotated about Z lies in no axis plane
+            # a G18/G19 arc of a system rotated about Z lies in no axis plane (Fanuc: alarm 144)
+            rotation_plane_alarm(st, where, mcol, mtok, f"{code} arc")
             if rot is not None:
                 w = seen[next(k for k in EXTRA_LETTERS if k in seen)]
                 where.fail(f"{code} arc with axis word {w.letter} in a rotated coordinate system (G10 L2 R): "

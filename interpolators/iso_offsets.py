@@ -402,9 +402,11 @@ def length_compensation(entry, seen, st: State, where: Where, notes: Notes) -> N
 
 
 def h_alone(gcodes, seen, st: State) -> tuple[int, Word] | None:
-    """The G43/G44 entry an H word alone stands for under ``fanuc`` and ``haas``: in G43 or G44 mode (not tool centre
-    point control) a block with an H word and no group 08 code changes the offset to H's, as ``G43 H..`` / ``G44
-    H..`` would, the direction staying; H0 makes it 0. None for any other block (a G45-G48 block reads its H itself).
+    """The group 08 entry an H word alone stands for under ``fanuc`` and ``haas``: in G43 or G44 mode a block with an
+    H word and no group 08 code changes the offset to H's, as ``G43 H..`` / ``G44 H..`` would, the direction staying;
+    H0 makes it 0; under tool centre point control (G43.4, G43.5, G234) it is that code's ``H..``, the new length
+    travelled by the next TCP block (:func:`interpolators.iso_tcp.tip_point`; our reading, no Fanuc text on a new H in
+    G43.4 mode being at hand). None for any other block (a G45-G48 block reads its H itself).
 
     No Fanuc text is at hand; Fanuc-compatible controls word it: "When the tool length offset value is changed due
     to a change of offset number, the offset value changes to the new tool length offset value, the new tool length
@@ -414,10 +416,10 @@ def h_alone(gcodes, seen, st: State) -> tuple[int, Word] | None:
     automatically take effect in either the G43 or G44 mode, whichever is active at the time" (Milltronics
     PL-551 system information, "Tool length offset (G43, G44, G49)"). Fanuc and Haas read so is our reading; the
     change then moves as a G43's does (:func:`length_moves_now`, :func:`length_travel`, :func:`length_in_cycle`)."""
-    if st.context.dialect.name not in ("fanuc", "haas") or "H" not in seen or st.tcp \
-            or "length compensation" in gcodes or "position offset" in gcodes or st.length_code not in (43.0, 44.0):
+    if st.context.dialect.name not in ("fanuc", "haas") or "H" not in seen or "length compensation" in gcodes \
+            or "position offset" in gcodes or not st.tcp and st.length_code not in (43.0, 44.0):
         return None
-    return (430 if st.length_code == 43.0 else 440), seen["H"]
+    return (st.tcp or (430 if st.length_code == 43.0 else 440)), seen["H"]
 
 
 def length_travel(target: np.ndarray, axis_words: list[str], st: State, *, now: bool = False) -> np.ndarray:

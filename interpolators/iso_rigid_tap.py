@@ -30,14 +30,19 @@ axis for the G84 (G74: left-handed) that follows. What vcnc reads of it:
   limitations, "S command": "specify an S command again after cancellation of rigid tapping"); an S word given
   since the tap, or in the block that ends it (``G80 S1000 M03``), is the next operation's and kept.
 
-- A Q word in the armed G84/G74 block (``M29 S.. ; G84 .. Q2. ..``) is Fanuc's peck rigid tapping (0i-F / 16i
-  operator's manuals, "Peck rigid tapping cycle (G84 or G74)": "Q_ : Depth of cut for each cutting feed"): with
-  parameter PCP (No. 5200#5) = 0 the high-speed peck (each cut of q, then back by d, parameter No. 5213, the
-  spindle reversed, then on by d + q), with PCP = 1 the peck back to point R each time (d then the clearance
-  above the last depth). The manuals give neither parameter's setting on a machine nor a default for d: the
-  block is refused by name (:func:`rigid_tap_peck`) rather than tapped in one stroke, the Q dropped. A Q in a
-  G84/G74 without M29 (a floating-holder tap; Fanuc's format has no Q there) is noted as not used, since a
-  machine with parameter G84 (No. 5200#0) = 1 taps G84 rigidly and would peck.
+- A Q in force in an armed G84/G74 (the block's, or the series' sticky Q: Fanuc keeps Q as modal cycle data) is
+  Fanuc's peck rigid tapping (16i-TA/TB A-78549E 3.4 and the 0i-F / 16i mill operator's manuals, "Peck rigid
+  tapping cycle (G84 or G74)": "Q_ : Depth of cut for each cutting feed"): with parameter PCP (No. 5200#5) = 0 the
+  high-speed peck (each cut of q, then back by d, parameter No. 5213, the spindle reversed, then on by d + q), with
+  PCP = 1 the peck back to point R each time (d then the cutting start distance above the last depth). The machine
+  states both in its file (``[program] peck_tapping``, ``peck_tapping_d``:
+  :attr:`interpolators.context.Dialect.peck_tapping`), and the cycle pecks so (:func:`rigid_tap_peck`, the moves
+  :func:`interpolators.iso_cycles.cycle_moves`); every move in the hole is at the tapping feed (our reading: the
+  retraction override, parameter No. 5211, is not modelled). A machine that states neither is refused by name,
+  the manuals giving no default for PCP or d, rather than tapped in one stroke with the Q dropped; so is a peck
+  rigid tap under G51 scaling (our reading: Q and d stay unscaled there, as the 0i's "Scaling" says of G73/G83's
+  Q and d). A Q in a G84/G74 without M29 (a floating-holder tap; Fanuc's format has no Q there) is noted as not
+  used, since a machine with parameter G84 (No. 5200#0) = 1 taps G84 rigidly and would peck.
 
 The alarm texts and the S and cancel rules are taken from the Fanuc 0i/16i operator's manuals' "Rigid tapping"
 section and alarm lists as we know them; none of those pages is in the texts searchable here (the connection
@@ -112,22 +117,34 @@ def rigid_tap_speed(st: State, name: str, where: Where, column: int, text: str) 
                             "is cleared when it ends)")
 
 
-def rigid_tap_peck(st: State, q: Word | None, name: str, where: Where, notes: Notes | None) -> None:
-    """A tapping cycle block with a Q word (``q``; ``st.context.dialect`` fanuc): refused after M29 (peck rigid
-    tapping, whose parameters PCP No. 5200#5 and d No. 5213 vcnc does not know: the module text), noted as not
-    used on a floating-holder tap."""
-    if q is None or st.motion not in _TAPPING:
-        return
+def rigid_tap_peck(st: State, q: Word | None, name: str, where: Where,
+                   notes: Notes | None) -> tuple[str, float] | None:
+    """A tapping cycle block (``st.context.dialect`` fanuc; ``q`` its Q word): after M29 with a Q in force (the
+    block's or the series'), the machine's peck rigid tapping, ``(kind, d [mm])`` of
+    :attr:`interpolators.context.Dialect.peck_tapping`; refused where the machine file does not state it or under
+    G51 scaling; None otherwise. A Q without M29 is noted as not used (the module text)."""
+    if st.motion not in _TAPPING:
+        return None
     code = "G74" if st.motion == 740 else "G84"
-    if st.rigid_tap:
-        where.fail(f"{name} with Q after M29: Fanuc's peck rigid tapping (Q the depth of each cut; parameter PCP "
-                   "No. 5200#5 chooses the high-speed peck, back by d = parameter No. 5213, or the peck back to R): "
-                   "not supported, the machine's PCP and d are not known", column=q.column, text=q.text,
-                   expected=f"M29 S.. {code} without Q (one stroke to Z), or the pecks written as {code} blocks of "
-                            "growing depth")
-    if notes is not None:
+    if st.rigid_tap and (q is not None or st.cycle.q is not None):
+        dialect = st.context.dialect
+        column, text = (q.column, q.text) if q is not None else (1, where.text)
+        if dialect.peck_tapping is None:
+            where.fail(f"{name} with Q after M29: Fanuc's peck rigid tapping (Q the depth of each cut; parameter PCP "
+                       "No. 5200#5 chooses the high-speed peck, back by d = parameter No. 5213, or the peck back to "
+                       "R): the machine file states neither PCP nor d, and the manuals give no default",
+                       column=column, text=text,
+                       expected=f"[program] peck_tapping = \"high-speed\" | \"standard\" and peck_tapping_d = <d "
+                                f"mm> in the machine file, or {code} without Q (G80 clears a Q of the series)")
+        if st.frame is not None and st.frame.scaled:
+            where.fail(f"{name} with Q after M29 (peck rigid tapping) under G51 scaling: not supported (Q and d "
+                       "stay unscaled, our reading of Fanuc's scaling of G73/G83)", column=column, text=text,
+                       expected="G50 before the peck rigid tap")
+        return dialect.peck_tapping, dialect.peck_tapping_d
+    if q is not None and notes is not None:
         notes.add(f"{code} Q without M29 (Fanuc): the Q is not used, the tap runs in one stroke to Z (Fanuc's "
                   "floating-holder tap has no Q; a machine tapping G84 rigidly, parameter No. 5200#0, would peck)")
+    return None
 
 
 def end_rigid_tap(st: State, words: tuple[Word, ...] | list[Word] = ()) -> None:

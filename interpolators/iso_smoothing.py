@@ -21,8 +21,10 @@ is a note, and Haas G187 E also sets the path tolerance as ``G64 P`` does:
 =================== ===============================================================================
 
 ``G05 P2`` is refused by name: Mazak's high-speed machining mode (Keycult's Mazak HCN post, a fork of
-Fusion's mazak.cps: "Enables G5 P2 for this operation"), a smoothing mode whose path vcnc does not model;
-:data:`G05_OTHERS` says so.
+Fusion's mazak.cps: "Enables G5 P2 for this operation"; its README: "high speed smoothing, high speed machining"),
+a smoothing mode whose path vcnc does not model; :data:`G05_OTHERS` says so. Session 39 looked for Mazak's own
+text (the docs, pages and code corpora: the Mazatrol/EIA programming manuals) to accept it as G05 P10000 is
+accepted, with a note, and found none; only posts and third-party tables name it, so it stays refused.
 
 In the ``linuxcnc`` dialect G5 and G5.1 are splines and G8 is lathe radius mode: these keys are
 only read this way in the Fanuc and Haas dialects.

@@ -36,7 +36,7 @@ from interpolators._words import Where
 from interpolators.iso_axes import EXTRA_LETTERS, extra_target, wrapped_target
 from interpolators.iso_motion import block_target, initial_feed
 from interpolators.program import Block
-from interpolators.tcp import ChordsError, block_time, part_point, tcp_chords, tool_vector_extra
+from interpolators.tcp import ChordsError, block_time, machine_point, part_point, tcp_chords, tool_vector_extra
 from interpolators.tilted import TiltError
 from toolpaths.geometry import Line
 
@@ -56,10 +56,15 @@ _EXPECTED = ("G43.4 H.. (--dialect fanuc) or G234 H.. (--dialect haas) on a mach
 def tip_point(st: State) -> np.ndarray:
     """Where the program's current point is, in machine coordinates at rotary 0 (tool length along Z included):
     under TCP the tool tip on the part (:func:`interpolators.tcp.part_point`), else the machine position. What
-    the program's X Y Z are measured from: a block's start, G92's current position."""
+    the program's X Y Z are measured from: a block's start, G92's current position. A tool length change not yet
+    travelled (``st.length_pending``: ``G43.4 H2`` after ``G43 H1 Z5.``, or a new H in G43.4 mode, under Fanuc's
+    TOS = 0) leaves the programmed point where it was: the tip is found with the length the axes carry, the point
+    counted with the new one, and the next TCP block travels the change (:func:`tcp_block`; our reading, as a G43's
+    change travels at the next move, :func:`interpolators.iso_offsets.length_travel`)."""
     if not st.tcp:
         return st.pos
-    return part_point(st.context.kinematics, st.extra, st.pos, st.tool_length)
+    travelled = part_point(st.context.kinematics, st.extra, st.pos, st.tool_length - st.length_pending)
+    return travelled + np.array([0.0, 0.0, st.length_pending])
 
 
 def tcp_switch(entry: tuple[int, object], st: State, where: Where, notes: Notes) -> None:
@@ -148,6 +153,10 @@ def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: S
     _refuse(seen, gcodes, axis_words, st, where)
     kin = st.context.kinematics
     start = tip_point(st)
+    # a length change not yet travelled travels in the block's first chord: the chords are found from the start with
+    # the new length, the first leaving the axes where they are
+    begin = machine_point(kin, st.extra, start, st.tool_length) if st.length_pending else st.pos
+    st.length_pending = 0.0
     here, st.pos = st.pos, start  # the program's X Y Z are the tip's on the part: the end from its start there
     try:
         end = block_target(seen, axis_words, st, machine=False)
@@ -171,7 +180,7 @@ def tcp_block(seen, gcodes, axis_words: list[str], other_words: list[str], st: S
                 block_time(start, end, turn, feed=st.feed, rotary_feed=st.feed_rotary))
     try:
         chords = tcp_chords(kin, start=start, end=end, start_extra=st.extra, end_extra=st.extra + turn,
-                            length=st.tool_length, tolerance=st.tolerance, duration=duration, position=st.pos,
+                            length=st.tool_length, tolerance=st.tolerance, duration=duration, position=begin,
                             feed=np.inf if rapid else 0.0 if st.inverse_time else st.feed)
     except ChordsError as exc:
         where.fail(f"G0{1 - rapid} under tool centre point control: {exc}", column=1, text=where.text,

@@ -1072,10 +1072,13 @@ def _tcp_move(m: _Machine, line: int, words: dict) -> None:
     """G0 / G1 under G43.4 / G234 (Fanuc 30i "Tool center point control for 5-axis machining" A-79348E 1.1: X Y Z
     the tool tip in the workpiece system fixed on the table; Haas "G234 TCPC"): the programmed point where the
     table at the block's rotary positions carries it; a block whose rotary axes turn is the reader's chords,
-    the last one's end checked."""
+    the last one's end checked. A length change the axes have not travelled (Fanuc TOS = 0: ``G43.4 H2`` after ``G43
+    H1 Z5.``, a new H in G43.4 mode) leaves the programmed tip where it was, the block travelling it (our reading)."""
     length = np.array([0.0, 0.0, m.tool_length])
+    carried = length - np.array([0.0, 0.0, m.length_change])  # the length the axes hold now
     here = m.pos
-    m.pos = _table(m, here - length, m.extra, back=True) + length  # where the tip is on the part
+    m.pos = _table(m, here - carried, m.extra, back=True) + length  # where the tip is on the part
+    m.length_change = 0.0
     prog = m.target(words)
     m.pos = here
     extra = m.extra_end(words)
@@ -1115,12 +1118,14 @@ def _modes(m: _Machine, g: list[int], words: dict, text: str = "") -> None:
         elif code in (411, 421):
             raise ReferenceError("G41.1/G42.1 dynamic compensation")
     before = m.tool_length
-    if m.ctx.dialect.name in ("fanuc", "haas") and "h" in words and m.length_mode in (430, 440) and not m.tcp and not \
+    if m.ctx.dialect.name in ("fanuc", "haas") and "h" in words and (m.length_mode in (430, 440) or m.tcp) and not \
             any(c in (430, 431, 432, 434, 435, 440, 490, 2340, *_POSITION_OFFSET) for c in g):
         # an H word alone in G43/G44 mode changes the offset to H's, the direction staying (SZGH-CNC1000MDb "G43,
         # G44": "the offset value changes to the new tool length offset value"; Milltronics PL-551: "The new H offset
-        # will automatically take effect in either the G43 or G44 mode"): as G43 H / G44 H
-        g.append(m.length_mode)
+        # will automatically take effect in either the G43 or G44 mode"): as G43 H / G44 H; in G43.4 / G43.5 / G234
+        # mode as that code's H (our reading)
+        tcp_code = (2340 if m.ctx.dialect.name == "haas" else 435 if m.tcp_vector else 434) if m.tcp else None
+        g.append(tcp_code or m.length_mode)
     for code in g:
         if code in (430, 431, 432, 440, 490):
             m.tcp = False
@@ -1596,6 +1601,11 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
     if m.tcp and m.motion in (0, 10):
         _tcp_move(m, line, words)
         return
+    rotated = m.g68 is not None and m.g68[0] != {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
+    if m.ctx.dialect.name == "fanuc" and rotated and (m.motion in (20, 30) or m.comp_radius is not None):
+        # Fanuc 0i-A B-63503EN-1/01 alarm 144: "The coordinate rotation plane and arc or cutter compensation C plane
+        # must be the same"
+        raise ReferenceError(f"line {line}: an arc or G41/G42 outside the G68 plane (Fanuc alarm 144)")
     # the unnamed axes under the offset travelled: they differ under a rotation that turns Z into X or Y (G18/G19 G68)
     end = m.to_machine(m.target(words, untravelled=m.length_change))
     end[2] -= 0.0 if "z" in words and not m.incremental else m.length_change
@@ -1725,6 +1735,9 @@ def _cycle(m: _Machine, line: int, words: dict) -> None:
         return out
 
     code = m.motion // 10
+    turned = np.where(m.mirror, -1.0, 1.0) * m.factors
+    if turned[axes[2]] < 0:  # our reading: a drilling axis turned over would drill from R away from the part
+        raise ReferenceError(f"line {line}: canned cycle with its drilling axis mirrored")
     if m.cycle_clear is None and m.ctx.dialect.name != "linuxcnc":
         m.sticky = {}  # Fanuc/Haas: G80 clears the hole data; LinuxCNC keeps its cycle_p, cycle_q, cycle_cc
     if code == 81 and m.ctx.dialect.name == "fanuc" and (m.sticky.get("fagor") or m.cycle_clear is None
@@ -1833,6 +1846,8 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
                 if delta <= 0:  # J shortens the pecks to nothing and no K keeps a least one: no end to the cycle
                     raise ReferenceError(f"G{code}: pecks shortened to zero (J without K)")
             depth -= delta
+    if code in (74, 84) and m.rigid and "q" in m.sticky and m.ctx.dialect.peck_tapping is not None:
+        _peck_tap(m, line, r, bottom, at)
     m.move(line, "feed", at(bottom))
     if code in (74, 76, 82, 84, 86, 89):
         m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
@@ -1855,6 +1870,24 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         m.move(line, "feed", at(clear))
     else:
         m.move(line, "rapid", at(clear))
+
+
+def _peck_tap(m: _Machine, line: int, r: float, bottom: float, at) -> None:
+    """Fanuc peck rigid tapping (16i-TA/TB A-78549E 3.4 "Peck rigid tapping cycle": Q each cut, PCP No. 5200#5, d
+    No. 5213 "cutting start distance"), every move synchronised, so at the tapping feed: PCP = 0 ("high-speed") cuts
+    Q, backs off d, cuts d + Q; PCP = 1 ("standard") cuts Q, goes back to R, comes in to d short of the depth already
+    tapped. The cut that reaches the bottom is the caller's; a retract never rises above R."""
+    q = m.sticky["q"] * m.scale
+    if not q > 0:
+        raise ReferenceError(f"line {line}: peck rigid tap with Q <= 0")
+    d = m.ctx.dialect.peck_tapping_d
+    tapped = r
+    while tapped - q > bottom + _EPS * max(1.0, abs(bottom)):  # Fanuc's decimal pecks: none at the bottom itself
+        tapped -= q
+        m.move(line, "feed", at(tapped))
+        if m.ctx.dialect.peck_tapping == "standard":
+            m.move(line, "feed", at(r))
+        m.move(line, "feed", at(min(r, tapped + d)), optional=True)
 
 
 def _shift(m: _Machine) -> np.ndarray:
@@ -1985,8 +2018,10 @@ def _rigid_tap(m: _Machine, line: int, g: list[int], mc: list[int], words: dict)
     cycle = next((c for c in reversed(g) if c == 800 or c // 10 in _CYCLES + _MILL_CYCLES), m.motion)
     if m.rigid and cycle in tapping and not m.spindle > 0:
         raise ReferenceError(f"line {line}: G84/G74 after M29 with S0 (Fanuc alarm PS0200)")
-    if m.rigid and cycle in tapping and "q" in words:  # 0i-F "Peck rigid tapping cycle": PCP, d unknown
-        raise ReferenceError(f"line {line}: G84/G74 Q after M29 (Fanuc peck rigid tapping, not modelled)")
+    series_q = m.cycle_clear is not None and "q" in m.sticky  # Q is modal hole data until G80
+    if m.rigid and cycle in tapping and ("q" in words or series_q) and m.ctx.dialect.peck_tapping is None:
+        # 0i-F "Peck rigid tapping cycle": PCP (No. 5200#5) and d (No. 5213) are the machine's, not stated
+        raise ReferenceError(f"line {line}: G84/G74 Q after M29 (Fanuc peck rigid tapping, PCP and d not stated)")
 
 
 def _rigid_tap_after(m: _Machine, line: int, moved: bool) -> None:

@@ -232,16 +232,20 @@ def test_g43_4_plain_moves_on_turned_axes_and_the_fast_path():
     text = "G21 G90 G54\nG0 A-30. C90.\nG43.4 H1\nG1 X10. Y0 Z0 F300.\nG1 Y10.\nG1 Y10. A-30.\nG49\nM30\n"
     prog = iso(text)
     at = Solution(-30.0, 90.0)
-    assert prog.blocks[-3].target == pytest.approx(machine(AC, [20.0, 5.0, 0.0], at))
-    assert prog.blocks[-2].target == pytest.approx(machine(AC, [20.0, 15.0, 0.0], at))
+    line = {b.line: b for b in prog.blocks}
+    assert line[4].target == pytest.approx(machine(AC, [20.0, 5.0, 0.0], at))
+    assert line[5].target == pytest.approx(machine(AC, [20.0, 15.0, 0.0], at))
     # a block that moves nothing: one block where it is, at the programmed feed (5 mm/s)
-    assert prog.blocks[-1].target.tolist() == prog.blocks[-2].target.tolist() and prog.blocks[-1].feed == 5.0
+    assert line[6].target.tolist() == line[5].target.tolist() and line[6].feed == 5.0
+    # G49 (Fanuc TOS = 0, a G01 block) takes the 20 mm tool length off along Z (isoleft39: the length G43.4 H1 set
+    # travelled in line 4, so its cancel travels too)
+    assert line[7].target == pytest.approx(line[6].target - [0.0, 0.0, LENGTH])
     slow = parse_iso(text, source="t.nc", context=FANUC, shortcuts=False)
     assert [b.target.tolist() for b in slow.blocks] == [b.target.tolist() for b in prog.blocks]
 
 
 def test_g43_4_turn_about_the_tip_and_g93_inverse_time():
-    prog = iso("G21 G90 G54\nG43.4 H1 X10. Y0 Z0\nG1 A20. C-30. F3600.\nG93 G1 X0 A0 C0 F2.\nG94 G49\nM30\n")
+    prog = iso("G21 G90 G54\nG43.4 H1 X10. Y0 Z0\nG1 A20. C-30. F3600.\nG93 G1 X0 A0 C0 F2.\nG94 G0 G49\nM30\n")
     turn = [b for b in prog.blocks if b.line == 3]
     tip = np.array([20.0, 5.0, 0.0])
     assert turn[-1].target == pytest.approx(machine(AC, tip, Solution(20.0, -30.0)), abs=1e-9)
@@ -355,7 +359,7 @@ def test_dense_chords_under_tcp_are_never_merged():
     prog = parse_iso("\n".join([*lines, "G49", "M30"]) + "\n", source="t.nc", context=FANUC)
     turning = [b.extra_start is not None and bool(np.any(b.extra_target != b.extra_start)) for b in prog.blocks]
     assert sum(turning) >= 200 and [b.tcp for b in prog.blocks] == [t and k > 0 for k, t in enumerate(turning)]
-    rows = [k for k, b in enumerate(prog.blocks) if b.kind == "line"][2:]
+    rows = [k for k, b in enumerate(prog.blocks) if b.kind == "line" and b.line <= len(lines)][2:]  # not G49's
     poly = np.array([(30.0, 0.0, 0.0), *pts]) + np.array(PRESET)
     u = np.linspace(0.0, 1.0, 200)[None, :, None]
     dense = (poly[:-1, None] + (poly[1:] - poly[:-1])[:, None] * u).reshape(-1, 3)

@@ -40,6 +40,10 @@ PROGRAM_TABLE_DOC = """
 #                                # Fanuc RAB=1) | shortest (Fanuc RAB=0, TNC M126) | difference (the TNC without
 #                                # M126: from the angle shown below 360); unset: the control's own (linuxcnc sign,
 #                                # heidenhain difference and M126 shortest, the others shortest). G91 is never wrapped
+#   peck_tapping = "high-speed"  # optional, fanuc, set with peck_tapping_d (unset: refused, the manuals giving no
+#   peck_tapping_d = 1.0         # default): M29 S.. / G84 (G74) .. Q.. is Fanuc's peck rigid tapping, Q each cut:
+#                                # high-speed (PCP = 0, No. 5200#5: back by d [mm], No. 5213, after each cut) or
+#                                # standard (PCP = 1: back to R after each cut, in again to d above the depth cut)
 #
 # [program.work_offsets]         # mm, machine coordinates of each work zero (G54 ... G59.3)
 # G54 = [0.0, 0.0, 0.0]

@@ -36,6 +36,9 @@ Layout::
     initial_feed = 500.0          # optional mm/min: feed of a feed move before any F (Fanuc No. 1411); unset: an error
     wrap_direction = "sign"       # optional: absolute moves of the wrap = true axes: sign (LinuxCNC; Fanuc RAB=1) |
                                   #   shortest (Fanuc RAB=0; TNC M126) | difference (TNC); unset: the control's own
+    peck_tapping = "high-speed"   # optional, fanuc: M29 .. G84 Q (peck rigid tapping): high-speed (PCP=0, back by d)
+    peck_tapping_d = 1.0          #   | standard (PCP=1, back to R, in to d above the cut); d [mm], No. 5213; unset:
+                                  #   such a block is refused (set both or neither)
     [program.work_offsets]        # mm: G54 = [x, y, z], ... G59.3, "G54.1 P1" .. "G54.1 P300", Fadal E7 .. E48
                                   #   (Haas "G154 P1" .. "G154 P99", G110 .. G129: the same entries)
     [program.tools.1]             # mm: length = 12.5, radius = 3.0, offset_x/offset_y = 0 (per tool number),
@@ -70,6 +73,7 @@ import controllers
 import drives
 from interpolators.context import (
     DIALECTS,
+    PECK_TAPPING,
     TOOL_OFFSET_MEMORIES,
     Dialect,
     MachineContext,
@@ -94,7 +98,7 @@ _TOP_KEYS = {"name": "", "description": "", "sample_time": "s", "axes": "", "pro
 _PROGRAM_KEYS = ("dialect", "default_units", "continuous_path", "tolerance", "home", "reference2", "tool_table",
                  "datum_table", "work_offsets", "tools", "linear_units", "decimal_point_input", "tool_offset_memory",
                  "kinematics", "subroutine_path", "user_m_path", "initial_feed", "touch_probe",
-                 "wrap_direction", "length_offset_motion")
+                 "wrap_direction", "length_offset_motion", "peck_tapping", "peck_tapping_d")
 _AXIS_KEYS = {"feedback", "measurement", "substeps", "fmu", "limits", "drive", "controller", "wrap",
               *NONIDEALITY_FIELDS}
 _LIMIT_UNITS = {"velocity": "mm/s", "acceleration": "mm/s^2", "jerk": "mm/s^3", "rapid": "mm/s"}
@@ -389,7 +393,24 @@ def _build_dialect(tab: dict, path: tuple, where: _Where, file: str) -> Dialect:
                               "Fanuc TOS = 0, No. 5006#6) or false (a shift of the coordinate system: TOS = 1, "
                               f"LinuxCNC), got {tab['length_offset_motion']!r}", path + ("length_offset_motion",))
         changes["length_offset_motion"] = tab["length_offset_motion"]
+    changes.update(_peck_tapping(tab, path, where))
     return dataclasses.replace(DIALECTS[name], **changes)
+
+
+def _peck_tapping(tab: dict, path: tuple, where: _Where) -> dict[str, Any]:
+    """``peck_tapping`` and ``peck_tapping_d`` of the ``[program]`` table: Fanuc's peck rigid tapping (PCP, No.
+    5200#5; d, No. 5213; :attr:`interpolators.context.Dialect.peck_tapping`), set together."""
+    if "peck_tapping" not in tab and "peck_tapping_d" not in tab:
+        return {}
+    kind, d = tab.get("peck_tapping"), tab.get("peck_tapping_d")
+    if kind not in PECK_TAPPING:
+        raise where.error("'program.peck_tapping' must be 'high-speed' (Fanuc PCP = 0: back by d after each cut) or "
+                          "'standard' (PCP = 1: back to R after each cut, in again to d above the depth cut), set "
+                          f"with peck_tapping_d; got {kind!r}", path + ("peck_tapping",))
+    if isinstance(d, bool) or not isinstance(d, (int, float)) or not (math.isfinite(d) and d >= 0):
+        raise where.error("'program.peck_tapping_d' [mm] must be a number >= 0 (d of Fanuc's peck rigid tapping, "
+                          f"parameter No. 5213), set with peck_tapping; got {d!r}", path + ("peck_tapping_d",))
+    return {"peck_tapping": kind, "peck_tapping_d": float(d)}
 
 
 def _build_context(tab: Any, where: _Where, file: str) -> MachineContext:  # noqa: C901
