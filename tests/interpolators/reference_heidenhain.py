@@ -2262,6 +2262,8 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     bottom = surface + depth
     _move_z(t, line, "rapid", clear, optional=True)
     if kind == "241":
+        if 0 < abs(p.get("Q202", 0.0)) < abs(depth):  # the newer 241's infeeds Q202/Q212/Q205 (tncwild39)
+            raise ReferenceError("cycle 241 with infeeds Q202 shorter than the depth (pecking not modelled)")
         _single_lip_entry(t, line, p, surface, sgn)
     if kind == "209":
         back = abs(p.get("Q256", 0.0) * p["Q239"])
@@ -2601,7 +2603,8 @@ def _tool(t: _Tnc, text: str) -> None:
     (the table's tool of that NAME, the lowest number of several; none: length and radius are the DL, DR
     deltas) and
     ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q[LR]?\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
+    # TOOL CALL Q11: the number in a Q; TOOL DEF1 (no space, a hand-written program's) as TOOL DEF 1
+    m = re.match(r"TOOL (DEF|CALL)\s*(\d+|Q[LR]?\d+|\"[^\"]*\")?\s*(.*)$", text)
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
     rest = m.group(3).upper()
@@ -3077,7 +3080,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CALL PGM"):
             if resolve is None:
                 raise ReferenceError("CALL PGM without a resolver")
-            _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
+            name = re.match(r"CALL\s+PGM\s*(.+)$", b, re.I).group(1)  # CALL PGM100 as CALL PGM 100
+            _execute(t, resolve(name.strip().strip('"')), resolve, called=True)
         elif up.startswith(("CALL LBL", "LBL")):
             nxt = _label_block(t, up, pc, labels, counters, stack)
         elif up.startswith("FN"):
