@@ -97,3 +97,44 @@ def test_cycle_241_with_an_infeed_of_the_whole_depth_runs_in_one():
     prog = checked_program(CYCLE_241.format(q202="+30"), CTX)
     depths = [b.target[2] for b in prog.blocks if b.kind == "line"]
     assert min(depths) == pytest.approx(-30.0 + 10.0)  # the depth, plus the tool length 10
+
+
+# -- CONTOUR DEF: a depth written without its '=' ('DP-5'): the reader refuses the word, naming the forms it reads;
+#    the reference skipped it and machined the pocket to cycle 20's depth ----------------------------------------
+
+def rough_out(contour: str, retract: str = " Q208=+1000 ;RETRACTION FEED RATE\n") -> str:
+    """A square pocket 80 x 80 roughed out by cycle 22 in two infeeds of 5 to Q1 = -10 (tool R3, L10)."""
+    return ("0 BEGIN PGM P MM\n1 TOOL CALL 1 Z S1000\n2 L Z+50 R0 FMAX\n" + contour
+            + "4 CYCL DEF 20 CONTOUR DATA ~\n Q1=-10 ;MILLING DEPTH ~\n Q2=+1 ;TOOL PATH OVERLAP ~\n"
+            " Q3=+0 ;ALLOWANCE FOR SIDE ~\n Q4=+0 ;ALLOWANCE FOR FLOOR ~\n Q5=+0 ;SURFACE COORDINATE ~\n"
+            " Q6=+2 ;SET-UP CLEARANCE ~\n Q7=+50 ;CLEARANCE HEIGHT ~\n Q8=+0 ;ROUNDING RADIUS ~\n"
+            " Q9=+1 ;ROTATIONAL DIRECTION\n5 CYCL DEF 22 ROUGH-OUT ~\n Q10=-5 ;PLUNGING DEPTH ~\n"
+            " Q11=+100 ;FEED RATE FOR PLNGNG ~\n Q12=+500 ;FEED RATE F. ROUGHNG ~\n Q18=+0 ;COARSE ROUGHING TOOL ~\n"
+            " Q19=+100 ;FEED RATE FOR RECIP." + (" ~\n" + retract if retract else "\n")
+            + "6 CYCL CALL\n7 L Z+50 R0 FMAX M30\n8 LBL 1\n9 L X+10 Y+10 RL\n10 L X+90\n11 L Y+90\n"
+            "12 L X+10\n13 L Y+10\n14 LBL 0\n15 END PGM P MM\n")
+
+
+def test_contour_def_word_not_read_is_refused_by_both():
+    text = rough_out("3 CONTOUR DEF P1 = LBL 1 DP-5\n")
+    with pytest.raises(GCodeError, match="DP-5"):
+        parse_heidenhain(text, source="t.h", context=CTX)
+    with pytest.raises(ReferenceError, match="CONTOUR DEF word"):
+        heidenhain_reference(text, CTX)
+    # with the depth written as the TNC writes it, 0: both run it (cycle 20's Q1)
+    prog = checked_program(rough_out("3 CONTOUR DEF P1 = LBL 1 DP1 = +0\n"), CTX, exact=False)
+    assert min(b.target[2] for b in prog.blocks) == pytest.approx(-10.0 + 10.0)
+
+
+# -- cycle 22's retraction feed Q208 (iTNC 530: "feed rate for retraction", 0: Q12): the reader retracted at it
+#    after each infeed, the reference at FMAX whatever Q208 said ---------------------------------------------------
+
+@pytest.mark.parametrize(("retract", "kind"), [(" Q208=+1000 ;RETRACTION FEED RATE\n", "line"),
+                                               (" Q208=+0 ;RETRACTION FEED RATE\n", "line"),
+                                               (" Q208=MAX ;RETRACTION FEED RATE\n", "rapid"), ("", "rapid")])
+def test_rough_out_retracts_between_infeeds_at_q208(retract, kind):
+    prog = checked_program(rough_out("3 CYCL DEF 14.0 CONTOUR GEOMETRY\n3 CYCL DEF 14.1 CONTOUR LABEL1\n",
+                                     retract), CTX, exact=False)
+    ups = [b for a, b in zip(prog.blocks, prog.blocks[1:])
+           if b.target[2] == pytest.approx(12.0) and a.target[2] == pytest.approx(5.0)]  # Z-5 up to Q6 = 2
+    assert [b.kind for b in ups] == [kind]
