@@ -28,10 +28,12 @@ from interpolators._words import Where
 
 __all__ = ["CALL_PGM_RE", "SEL_PGM_RE", "find_program"]
 
-#: ``CALL PGM name``, ``CALL PGM "path name.h"``, ``CALL SELECTED PGM``; group 1 the name.
-CALL_PGM_RE = re.compile(r"CALL\s+(?:SELECTED\s+PGM|PGM\s+(\"[^\"]+\"|'[^']+'|\S+))\s*$", re.I)
-#: ``SEL PGM name``.
-SEL_PGM_RE = re.compile(r"SEL\s+PGM\s+(\"[^\"]+\"|'[^']+'|\S+)\s*$", re.I)
+#: ``CALL PGM name``, ``CALL PGM "path name.h"``, ``CALL SELECTED PGM``; group 1 the name. A name written right
+#: after PGM (``CALL PGM100``, as hand-written programs have it; the TNC's editor puts a space) is the name, as
+#: ``TOOL DEF1`` is tool 1: our reading (tncwild39).
+CALL_PGM_RE = re.compile(r"CALL\s+(?:SELECTED\s+PGM|PGM\s*(\"[^\"]+\"|'[^']+'|[^\s\"']\S*))\s*$", re.I)
+#: ``SEL PGM name`` (``SEL PGM100`` likewise).
+SEL_PGM_RE = re.compile(r"SEL\s+PGM\s*(\"[^\"]+\"|'[^']+'|[^\s\"']\S*)\s*$", re.I)
 
 _DRIVE_RE = re.compile(r"^[A-Z]{2,}:[\\/]", re.I)
 

@@ -1691,7 +1691,8 @@ def _rough_out(t: _Tnc, line: int, p: dict) -> None:
     """22 ROUGH-OUT, one pocket of straight edges: rings R + Q3 + k Q2 R inside it while one fits
     (:func:`_pocket_rings`), run from the innermost out in the sense Q9 (+1 counter-clockwise), each from
     the middle of the first edge; per depth (Q10 down to Q1 less Q4): FMAX to Q7 (the first), over the
-    innermost start, to Q6 above Q5, Q11 down, the rings (each edge's end exact), up to Q6 above Q5; Q7."""
+    innermost start, to Q6 above Q5, Q11 down, the rings (each edge's end exact), up to Q6 above Q5 (at Q208 when
+    written, not MAX); Q7."""
     if t.scl != 1 or not np.all(t.factors == 1) or t.mirror.prod() < 0 or t.rot:
         raise ReferenceError("22 under a transformation")
     elements, _ = _contour_elements(t)
@@ -1730,7 +1731,8 @@ def _rough_out(t: _Tnc, line: int, p: dict) -> None:
                 t.out.append(Expected(line=lines[k % len(lines)], kind=None, end=np.array([*(end * flip), zm]),
                                       rows="last"))
             t.pos = np.array([*(start * flip), zm])
-        _move_z(t, line, "rapid", above)
+        # up at the iTNC 530's retraction feed Q208 (0: Q12's; MAX or none written: FMAX) (tncwild39)
+        _move_z(t, line, "rapid" if math.isinf(p.get("Q208", math.inf)) else "feed", above)
     _move_z(t, line, "rapid", p["Q7"])
 
 
@@ -2262,6 +2264,8 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
     bottom = surface + depth
     _move_z(t, line, "rapid", clear, optional=True)
     if kind == "241":
+        if 0 < abs(p.get("Q202", 0.0)) < abs(depth):  # the newer 241's infeeds Q202/Q212/Q205 (tncwild39)
+            raise ReferenceError("cycle 241 with infeeds Q202 shorter than the depth (pecking not modelled)")
         _single_lip_entry(t, line, p, surface, sgn)
     if kind == "209":
         back = abs(p.get("Q256", 0.0) * p["Q239"])
@@ -2286,11 +2290,15 @@ def _one_pass_cycle(t: _Tnc, line: int, kind: str, p: dict) -> None:
 def _contour_def(t: _Tnc, up: str) -> None:
     """CONTOUR DEF (the simple contour formula): Pn = LBL m a pocket, In = LBL m an island, ordered by n; a depth
     DPn / DIn of 0 is cycle 20's Q1 (another depth is not modelled)."""
-    subs = sorted((int(n), role, label.strip('"').upper())
-                  for role, n, label in re.findall(r"(?<![A-Z])([PI])(\d+)\s*=\s*LBL\s*(\"[^\"]+\"|\w+)", up))
-    for _, depth in re.findall(r"D([PI]\d+)\s*=\s*([-+]?\s*(?:Q\d+|[\d.]+))", up):
+    item = r"(?<![A-Z])([PI])(\d+)\s*=\s*LBL\s*(\"[^\"]+\"|\w+)"
+    depth_item = r"D([PI]\d+)\s*=\s*([-+]?\s*(?:Q\d+|[\d.]+))"
+    subs = sorted((int(n), role, label.strip('"').upper()) for role, n, label in re.findall(item, up))
+    for _, depth in re.findall(depth_item, up):
         if _val(depth.replace(" ", ""), t.q) != 0:
             raise ReferenceError("CONTOUR DEF with a depth of its own")
+    rest = re.sub(depth_item, "", re.sub(item, "", up)).replace("CONTOUR DEF", "").replace("~", "")
+    if rest.strip():  # a word this reading does not know (a depth written 'DP-5'): not skipped (tncwild39)
+        raise ReferenceError(f"CONTOUR DEF word {rest.strip()!r}")
     t.contours = tuple(label for _, _, label in subs)
     t.contour = t.contours[0]
     t.islands = {label for _, role, label in subs if role == "I"}
@@ -2601,7 +2609,8 @@ def _tool(t: _Tnc, text: str) -> None:
     (the table's tool of that NAME, the lowest number of several; none: length and radius are the DL, DR
     deltas) and
     ``TOOL CALL Z S..`` (no tool: the active one stays, only the axis, speed and feed)."""
-    m = re.match(r"TOOL (DEF|CALL)\s+(\d+|Q[LR]?\d+|\"[^\"]*\")?\s*(.*)$", text)  # TOOL CALL Q11: the number in a Q
+    # TOOL CALL Q11: the number in a Q; TOOL DEF1 (no space, a hand-written program's) as TOOL DEF 1
+    m = re.match(r"TOOL (DEF|CALL)\s*(\d+|Q[LR]?\d+|\"[^\"]*\")?\s*(.*)$", text)
     if m is None or (m.group(2) is None and m.group(1) == "DEF"):
         raise ReferenceError(f"tool block {text!r}")
     rest = m.group(3).upper()
@@ -3077,7 +3086,8 @@ def _execute(t: _Tnc, text: str, resolve, *, called: bool) -> None:
         elif up.startswith("CALL PGM"):
             if resolve is None:
                 raise ReferenceError("CALL PGM without a resolver")
-            _execute(t, resolve(b.split(None, 2)[2].strip().strip('"')), resolve, called=True)
+            name = re.match(r"CALL\s+PGM\s*(.+)$", b, re.I).group(1)  # CALL PGM100 as CALL PGM 100
+            _execute(t, resolve(name.strip().strip('"')), resolve, called=True)
         elif up.startswith(("CALL LBL", "LBL")):
             nxt = _label_block(t, up, pc, labels, counters, stack)
         elif up.startswith("FN"):
