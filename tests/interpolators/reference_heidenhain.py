@@ -283,6 +283,7 @@ class _Tnc:
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
+        self.last_len = math.inf  # length of the last line in the plane [mm] (what an RND after it may take)
         self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
         self.modal = False  # M89 active
         self.feed = 0.0  # the modal path feed [mm/min], for FUNCTION FEED DWELL
@@ -406,6 +407,7 @@ class _Tnc:
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
+            self.last_len = math.inf if centre is not None else float(np.linalg.norm(d))
         self.pos = end.copy()
 
     def target(self, w: dict, base: np.ndarray | None = None) -> np.ndarray:
@@ -845,6 +847,9 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
         if abs(turn) < 1e-9:
             raise ReferenceError("RND where the elements meet tangentially")
         t1, t2, fc = _fillet(p[:2], a, prev_centre, b, centre, size, 1.0 if turn > 0 else -1.0)
+        if centre is None and prev_centre is None and float(np.hypot(*(t1 - p[:2]))) > min(
+                t.last_len, float(np.hypot(*d))) + 1e-9:  # between lines: r tan(theta/2) of each
+            raise ReferenceError("RND radius does not fit: it needs more of a line than there is")
         t1, t2 = np.array([*t1, p[2]]), np.array([*t2, p[2]])
     t.out[row] = dataclasses.replace(prev, end=t1, element=None if prev.element is None else
                                      ("line", prev.element[1], t1.copy()) if prev.element[0] == "line"
