@@ -838,6 +838,10 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
         b = (np.array([-v[1], v[0]]) if ccw_next else np.array([v[1], -v[0]])) / np.hypot(*v)
     turn = float(a[0] * b[1] - a[1] * b[0])
     side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes (a mirror swaps RL/RR)
+    if kind == "RND" and centre is None and prev_centre is None and size * math.tan(
+            math.atan2(abs(turn), float(a @ b)) / 2) > min(t.last_len, float(np.hypot(*d))) + 1e-9:
+        # between lines it takes r tan(theta/2) of each, an inside one no larger than the tool as well
+        raise ReferenceError("RND radius does not fit: it needs more of a line than there is")
     if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * side > 0:
         return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
     if kind == "CHF":
@@ -847,9 +851,6 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
         if abs(turn) < 1e-9:
             raise ReferenceError("RND where the elements meet tangentially")
         t1, t2, fc = _fillet(p[:2], a, prev_centre, b, centre, size, 1.0 if turn > 0 else -1.0)
-        if centre is None and prev_centre is None and float(np.hypot(*(t1 - p[:2]))) > min(
-                t.last_len, float(np.hypot(*d))) + 1e-9:  # between lines: r tan(theta/2) of each
-            raise ReferenceError("RND radius does not fit: it needs more of a line than there is")
         t1, t2 = np.array([*t1, p[2]]), np.array([*t2, p[2]])
     t.out[row] = dataclasses.replace(prev, end=t1, element=None if prev.element is None else
                                      ("line", prev.element[1], t1.copy()) if prev.element[0] == "line"

@@ -171,3 +171,15 @@ def test_a_rounding_that_just_fits_on_the_line_left_by_the_one_before():
     prog = checked("L X+0 Y+0 Z+0 R0 F100\nL X+10 Y+0\nRND R4\nL X+10 Y+10\nRND R6\nL X+0 Y+10\nRND R4\n"
                    "L X+0 Y+30", exact=True)
     assert prog.blocks
+
+
+def test_an_inside_rounding_no_larger_than_the_tool_must_fit_on_its_lines_too():
+    # RL, an inside corner, RND R2 under the tool's R3: the tool centre paths meet without the arc, but the
+    # programmed rounding still takes 2 mm of the 1.5 mm line after it; the reference skipped such roundings before
+    # it asked (tnc_generator seeds 1100805, 1101054)
+    text = ("0 BEGIN PGM T MM\nTOOL DEF 1 L+0 R+3\nTOOL CALL 1 Z S1000\nL X+0 Y-10 Z+0 R0 F100\nL X+10 Y+0 RL\n"
+            "L X+30 Y+0\nRND R2\nL X+30 Y+1.5\nL X+60 Y+1.5\nL X+60 Y-20 R0\nEND PGM T MM\n")
+    with pytest.raises(GCodeError, match="rounding radius 2 mm does not fit"):
+        parse_heidenhain(text, source="t.h", context=HOME)
+    with pytest.raises(ReferenceError, match="RND radius does not fit"):
+        heidenhain_reference(text, HOME)
