@@ -283,6 +283,7 @@ class _Tnc:
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
+        self.last_len = math.inf  # length of the last line in the plane [mm] (what an RND after it may take)
         self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
         self.modal = False  # M89 active
         self.feed = 0.0  # the modal path feed [mm/min], for FUNCTION FEED DWELL
@@ -406,6 +407,7 @@ class _Tnc:
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
+            self.last_len = math.inf if centre is not None else float(np.linalg.norm(d))
         self.pos = end.copy()
 
     def target(self, w: dict, base: np.ndarray | None = None) -> np.ndarray:
@@ -836,6 +838,10 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
         b = (np.array([-v[1], v[0]]) if ccw_next else np.array([v[1], -v[0]])) / np.hypot(*v)
     turn = float(a[0] * b[1] - a[1] * b[0])
     side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes (a mirror swaps RL/RR)
+    if kind == "RND" and centre is None and prev_centre is None and size * math.tan(
+            math.atan2(abs(turn), float(a @ b)) / 2) > min(t.last_len, float(np.hypot(*d))) + 1e-9:
+        # between lines it takes r tan(theta/2) of each, an inside one no larger than the tool as well
+        raise ReferenceError("RND radius does not fit: it needs more of a line than there is")
     if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * side > 0:
         return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
     if kind == "CHF":
