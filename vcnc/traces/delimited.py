@@ -120,6 +120,7 @@ from vcnc.traces.columns import (
 )
 from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.diadem import looks_like_diadem, read_diadem_channels
+from vcnc.traces.fptrace import fp_table, fp_trace
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.indraworks import looks_like_oscilloscope, read_oscilloscope_signals
@@ -207,6 +208,16 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if looks_like_diadem(text[:40000]):
         return _diadem(text, Path(path), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
                        sample_time=sample_time)
+    fp = fp_trace(text.lstrip("\ufeff").splitlines())
+    if fp is not None:
+        if time_unit is not None:
+            raise CaptureError("--time-unit applies to a time column; a Panasonic FP trace CSV has intervals in "
+                               "counts (--sample-time S gives their period)", file=src, line=fp.header + 1)
+        capture = _generic(fp_table(text.lstrip("\ufeff"), src, fp, sample_time), src, columns=columns,
+                           time_unit=None, unit=unit, resample=resample, sample_time=None)
+        capture.meta["format"] = "Panasonic FP data logging/trace CSV"
+        capture.meta["time_unit"] = f"obtaining intervals, {sample_time:.9g} s given for the commonest"
+        return capture
     return _generic(_matrix_literal(text.lstrip("\ufeff")), src, columns=columns, time_unit=time_unit, unit=unit,
                     resample=resample, sample_time=sample_time)
 

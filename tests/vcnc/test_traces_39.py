@@ -1,0 +1,66 @@
+"""Traces in layouts of traces39 (session 39): Panasonic FP data logging/trace CSV files (FP0H user manual 1.3.3,
+FPWIN Pro7 help "CSV format") and the fuzzer's cases (``benchmarks/trace_fuzz.py``, seeds 47-49). Each file is a few
+lines written here after the layout, not an export itself."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vcnc.capture import read_capture
+from vcnc.errors import CaptureError
+
+_SET = [0.0, 100.0, 300.0, 600.0, 900.0, 1100.0, 1200.0]
+_ACT = [0.0, 40.0, 200.0, 480.0, 790.0, 1020.0, 1150.0]
+
+
+def _fp_trace(path, *, header="Date,Time,Obtaining interval,1,2", rows=("DT100,DT102", "Command position,Actual "
+              "position", "MOMENT,MOMENT", "Signed 32-bit,Signed 32-bit", "um,um"), trigger_after=4):
+    """An FP trace CSV: a comment, the header line, the header rows, records 100 counts apart and a stop trigger
+    60 counts after record ``trigger_after``, the next record 40 after it."""
+    lines = ["Comment,axis 1 trace", header, *(",,," + r for r in rows)]
+    for k, (s, a) in enumerate(zip(_SET, _ACT)):
+        lines.append(f"2020/07/24,12:00:00,{0 if k == 0 else 40 if k == trigger_after + 1 else 100},{s:g},{a:g}")
+        if k == trigger_after:
+            lines.append("2020/07/24,12:00:00,60,STOP TRG")
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_fp_trace_asks_for_its_sampling_interval(tmp_path):
+    """An FP trace's intervals count 10 us (FP0H manual) or 10 ms (FPWIN Pro7 help): the file is named as what it is
+    and its sampling interval asked for (it said 'the file has no header line')."""
+    f = _fp_trace(tmp_path / "trace.csv")
+    with pytest.raises(CaptureError, match=r"Panasonic FP data logging/trace CSV.*100 counts apart.*10 us.*10 ms"
+                                           r".*--sample-time") as err:
+        read_capture(f)
+    assert err.value.line == 2 and str(f) in str(err.value)
+
+
+def test_fp_trace_is_read_with_its_sampling_interval(tmp_path):
+    """Given the period of the commonest interval, the records are read under the names and comments of their
+    channels, in the unit row's unit, the stop trigger's record left out and its interval counted."""
+    cap = read_capture(_fp_trace(tmp_path / "trace.csv"), sample_time=0.001)
+    assert cap.axes == ("x",) and cap.meta["format"].startswith("Panasonic FP")
+    np.testing.assert_allclose(cap.reference[:, 0], np.array(_SET) * 1e-3)
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(_ACT) * 1e-3)
+    np.testing.assert_allclose(cap.t, np.arange(len(_SET)) * 0.001, atol=1e-12)
+
+
+def test_fp_trace_in_japanese_without_unit_row(tmp_path):
+    """The Japanese header (日付, 時刻, 取得間隔) and a trace without its unit row: positions in counts asked for as
+    any table's without a unit (here given)."""
+    f = _fp_trace(tmp_path / "trace.csv", header="\u65e5\u4ed8,\u6642\u523b,\u53d6\u5f97\u9593\u9694,1,2",
+                  rows=("Command position,Actual position",), trigger_after=99)
+    cap = read_capture(f, sample_time=0.002, unit="um")
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(_ACT) * 1e-3)
+    np.testing.assert_allclose(np.diff(cap.t), 0.002)
+
+
+def test_fp_trace_interval_that_is_no_count(tmp_path):
+    """A record whose interval is no whole number is named with its line and column."""
+    f = _fp_trace(tmp_path / "trace.csv")
+    f.write_text(f.read_text().replace(",12:00:00,100,300,", ",12:00:00,1.5,300,"), encoding="utf-8")
+    with pytest.raises(CaptureError, match="obtaining interval") as err:
+        read_capture(f, sample_time=0.001)
+    assert err.value.line == 10
