@@ -7,6 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from identification.dead_time import delay_reference
+from identification.synthetic import random_moves_reference
 from vcnc.capture import read_capture
 from vcnc.errors import CaptureError
 
@@ -64,3 +66,42 @@ def test_fp_trace_interval_that_is_no_count(tmp_path):
     with pytest.raises(CaptureError, match="obtaining interval") as err:
         read_capture(f, sample_time=0.001)
     assert err.value.line == 10
+
+
+def _led_layouts(ref: np.ndarray, meas: np.ndarray, ts: float) -> dict[str, str]:
+    """A TNCscope text export (``s soll``/``s ist`` of Y), a LinuxCNC 2.8 halscope log (``label value`` pairs, one
+    line past the record) and a TwinCAT Scope export (tab, decimal comma, a time column per channel) of one record."""
+    tnc = ["%TNCscopeNT data file", "%[GLOBAL]", f"%SAMPLING={ts * 1e6:g}", "%[CURVE1]", "%NAME=s soll/Y",
+           "%CHANNELTYPE=s soll", "%AXISTYPE=Y", "%DIMENSION=mm", "%COLUMN=1", "%[CURVE2]", "%NAME=s ist/Y",
+           "%CHANNELTYPE=s ist", "%AXISTYPE=Y", "%DIMENSION=mm", "%COLUMN=2", "%[DATA]"]
+    tnc += [f"{k * ts * 1e6:.0f};{r:.6f};{m:.6f};" for k, (r, m) in enumerate(zip(ref, meas))]
+    hal = [f"Sampling period is {ts * 1e9:.0f} ns ", ""]
+    hal += [f"joint.0.motor-pos-cmd {r:+.9f} joint.0.motor-pos-fb {m:+.9f} " for r, m in [*zip(ref, meas), (0, 0)]]
+    tc = ["Name\tMAIN.fPosCmd\tName\tMAIN.fPosAct", f"SampleTime[ms]\t{ts * 1e3:g}\tSampleTime[ms]\t{ts * 1e3:g}",
+          "Unit\tmm\tUnit\tmm", ""]
+    tc += ["\t".join(f"{v:.6f}".replace(".", ",") for v in (k * ts * 1e3, r, k * ts * 1e3, m))
+           for k, (r, m) in enumerate(zip(ref, meas))]
+    return {"tncscope": "\n".join(tnc), "halscope": "\n".join(hal), "twincat": "\n".join([*tc, "EOF"])}
+
+
+@pytest.mark.parametrize("shift_s", [0.1, -0.02])
+def test_a_reference_that_leads_or_lags_keeps_its_timing_in_three_layouts(tmp_path, shift_s):
+    """A reference recorded 0.1 s ahead of the loop (a Heidenhain trace's) or 20 ms behind it, written as TNCscope,
+    halscope and TwinCAT record it, reads as the capture CSV holds it: every sample in its place against the
+    measured one, which the dead-time scan then finds (session 39: 0.1003 s and -0.0187 s on fadal-pid's random moves
+    in all four files, their models equal to 6 digits; /tmp/traces39/lead)."""
+    ts = 0.001
+    loop = random_moves_reference(moves=6, sample_time=ts, seed=3)  # the loop's command; the axis 8 samples behind
+    ref = np.round(delay_reference(loop, -shift_s / ts), 6)
+    meas = np.round(delay_reference(loop, 8.0), 6)
+    for name, text in _led_layouts(ref, meas, ts).items():
+        got = read_capture(_write(tmp_path / f"{name}.txt", text))
+        assert len(got) == ref.size, name
+        np.testing.assert_allclose(got.reference[:, 0], ref, atol=1e-9, err_msg=name)
+        np.testing.assert_allclose(got.measured[:, 0], meas, atol=1e-9, err_msg=name)
+        np.testing.assert_allclose(got.t, np.arange(ref.size) * ts, atol=1e-9, err_msg=name)
+
+
+def _write(path, text):
+    path.write_text(text + "\n", encoding="utf-8")
+    return path
