@@ -105,3 +105,28 @@ def test_a_reference_that_leads_or_lags_keeps_its_timing_in_three_layouts(tmp_pa
 def _write(path, text):
     path.write_text(text + "\n", encoding="utf-8")
     return path
+
+
+def test_fp_trace_channels_without_names_are_mapped_by_their_numbers(tmp_path):
+    """A trace whose header rows are all left out names its channels only by their numbers (``1,2`` after
+    ``Obtaining interval``): the question lists them so, and ``--columns x_ref=1,x=2`` maps them."""
+    f = _fp_trace(tmp_path / "trace.csv", rows=(), trigger_after=99)
+    with pytest.raises(CaptureError, match=r"columns found: \['Date', 'Clock', 'Time \[s\]', '1', '2'\]"):
+        read_capture(f, sample_time=0.001)
+    cap = read_capture(f, sample_time=0.001, columns={"t": "Time [s]", "x_ref": "1", "x": "2"}, unit="um")
+    np.testing.assert_allclose(cap.reference[:, 0], np.array(_SET) * 1e-3)
+
+
+def test_fp_data_logging_records_are_periodic(tmp_path):
+    """A data logging CSV (``Date,Time,1,2``, no obtaining interval, records stamped to the second) is named and
+    asks for its interval; given, a record every interval."""
+    lines = ["Date,Time,1,2", ",,Command position,Actual position", ",,um,um"]
+    lines += [f"2020/07/24,12:00:0{k // 4},{s:g},{a:g}" for k, (s, a) in enumerate(zip(_SET, _ACT))]
+    f = tmp_path / "log.csv"
+    f.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(CaptureError, match=r"Panasonic FP data logging CSV.*stamped to the second.*--sample-time"):
+        read_capture(f)
+    cap = read_capture(f, sample_time=0.01)
+    assert cap.meta["format"] == "Panasonic FP data logging CSV"
+    np.testing.assert_allclose(cap.measured[:, 0], np.array(_ACT) * 1e-3)
+    np.testing.assert_allclose(cap.t, np.arange(len(_SET)) * 0.01, atol=1e-12)
