@@ -130,3 +130,13 @@ def test_fp_data_logging_records_are_periodic(tmp_path):
     assert cap.meta["format"] == "Panasonic FP data logging CSV"
     np.testing.assert_allclose(cap.measured[:, 0], np.array(_ACT) * 1e-3)
     np.testing.assert_allclose(cap.t, np.arange(len(_SET)) * 0.01, atol=1e-12)
+
+
+def test_fp_trace_without_records(tmp_path):
+    """Only the header and one record: named as such (it said the records were 0 counts apart)."""
+    f = tmp_path / "trace.csv"
+    f.write_text("Date,Time,Obtaining interval,1,2\n,,Command position,Actual position\n2020/07/24,12:00:00,0,0,0\n",
+                 encoding="utf-8")
+    with pytest.raises(CaptureError, match=r"with 1 record\(s\) below its header") as err:
+        read_capture(f, sample_time=0.001)
+    assert err.value.line == 1

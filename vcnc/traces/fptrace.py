@@ -126,6 +126,10 @@ def fp_table(text: str, src: str, fp: FpTrace, sample_time: float | None) -> str
     lines = text.splitlines()
     names, units = _header_rows(lines, fp)
     rows, step = _records(lines, fp, src)
+    if len(rows) < 2:
+        raise CaptureError(f"a Panasonic FP trace or data logging CSV (channels {names}) with {len(rows)} record(s) "
+                           "below its header; expected a record of date, time and values per line", file=src,
+                           line=fp.header + 1)
     if sample_time is None or step <= 0:
         what = (f"data logging/trace CSV (Date, Time, Obtaining interval; channels {names}): its records are {step} "
                 "counts apart, and the count is 10 us in the FP0H manual and 10 ms in FPWIN Pro7's help, never "
