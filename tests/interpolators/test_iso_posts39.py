@@ -1,0 +1,36 @@
+"""Constructs of more CAM posts and shop macros, read as their controls read them (session 39, posts39).
+
+Each program is hand-written in the output style of the post or program named in its test; the posts were read,
+not run."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext, Tool
+from vcnc.errors import GCodeError
+
+FANUC = MachineContext(dialect=DIALECTS["fanuc"], tools={1: Tool(number=1, length=10.0, radius=1.0)})
+
+#: The end of a program from keycult/mazak-hcn's Fusion post (mazak.cps, Mazak HCN-5000 with a pallet changer):
+#: the parts count checked in a multi-line IF block before the final retract (its SWAP_PALLET.EIA macro has
+#: IF [..] THEN / ELSE / ENDIF as well).
+MAZAK_END = ("%\nO1001\nG17 G21 G40 G49 G80 G90 G94\n#3901 = 0\n#3902 = 5\nM6 T1\nS8000\nM3\nG54\n"
+             "G90 G0 X10. Y10.\nG90 G0 G43 Z15. H1\nG1 Z-2. F300.\nG0 Z15.\n"
+             "IF [#3902 EQ 0.] GOTO 99999\nIF [#3901 GE #3902] THEN\n  M30\nENDIF\n"
+             "N99999\nG90 G53 G0 Z0. M5 M9\nM30\n%\n")
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_multi_line_if_block_is_refused_not_run_whatever_its_condition(dialect):
+    # "IF [#3901 GE #3902] THEN" alone on its line opens a block closed by ENDIF (Mazak EIA macros). Before: read
+    # as an empty one-line THEN, so the M30 inside the false block ended the program before its final retract
+    # (the G53 Z0. move lost, no error)
+    context = MachineContext(dialect=DIALECTS[dialect], tools={1: Tool(number=1, length=10.0, radius=1.0)})
+    with pytest.raises(GCodeError, match=r":15:20: IF \[\.\.\] THEN with nothing after THEN: the start of a "
+                                         r"multi-line IF \.\. ELSE \.\. ENDIF block"):
+        parse_program(MAZAK_END, context=context)
+    # the one-line form stays: THEN and one macro statement
+    prog = parse_program(MAZAK_END.replace("THEN\n  M30\nENDIF\n", "THEN #100 = 1\n"), context=context)
+    assert prog.blocks[-1].line == 17  # the final G53 Z0. retract
