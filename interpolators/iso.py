@@ -961,6 +961,8 @@ def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
         fail_words(where, SMOOTHING_CODES[key], exc, seen, w)
     if sm.tolerance is not None:
         st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
+    elif sm.continuous:
+        st.exact_stop, st.tolerance = False, None
     elif sm.reset:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)

@@ -34,3 +34,23 @@ def test_a_multi_line_if_block_is_refused_not_run_whatever_its_condition(dialect
     # the one-line form stays: THEN and one macro statement
     prog = parse_program(MAZAK_END.replace("THEN\n  M30\nENDIF\n", "THEN #100 = 1\n"), context=context)
     assert prog.blocks[-1].line == 17  # the final G53 Z0. retract
+
+
+#: Keycult's Mazak HCN post (keycult/mazak-hcn post-processor/mazak.cps, a fork of Fusion's mazak.cps): the
+#: machining mode of an operation, "G61.1 P<level>", back to cutting mode with G64.
+MAZAK_G61_1 = ("G21 G90 G17\nG54\nG61.1 P2\nG0 X0. Y0. Z5.\nG1 Z-1. F500.\nX10.\nY10.\nX0.\nG64\nG1 Y0.\n"
+               "G0 Z5.\nM30\n")
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_mazak_g61_1_geometry_compensation_is_a_continuous_path(dialect):
+    # Mazak VORTEX i-series manual, 5 Supplement, "G-code (Group13)", "A. Geometry compensation": G61.1 reduces
+    # geometry errors with pre-interpolation acceleration/deceleration, feedforward and optimum corner
+    # deceleration; it is no exact stop. Fanuc and Haas define no G61.1. Before: read as LinuxCNC's G61.1, exact
+    # stop mode: every block of the operation ended at rest, without a note
+    prog = parse_program(MAZAK_G61_1, context=MachineContext(dialect=DIALECTS[dialect]))
+    assert not any(b.exact_stop for b in prog.blocks if b.line in (5, 6, 7, 8))
+    assert "G61.1 geometry compensation (Mazak): continuous path, as G64 (P2: its level, not modelled)" in prog.notes
+    # under linuxcnc G61.1 stays LinuxCNC's exact stop mode (without the Mazak P)
+    prog = parse_program(MAZAK_G61_1.replace(" P2", ""), context=MachineContext(dialect=DIALECTS["linuxcnc"]))
+    assert all(b.exact_stop for b in prog.blocks if b.line in (5, 6, 7, 8))
