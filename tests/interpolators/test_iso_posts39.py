@@ -54,3 +54,16 @@ def test_mazak_g61_1_geometry_compensation_is_a_continuous_path(dialect):
     # under linuxcnc G61.1 stays LinuxCNC's exact stop mode (without the Mazak P)
     prog = parse_program(MAZAK_G61_1.replace(" P2", ""), context=MachineContext(dialect=DIALECTS["linuxcnc"]))
     assert all(b.exact_stop for b in prog.blocks if b.line in (5, 6, 7, 8))
+
+
+@pytest.mark.parametrize("dialect", ["fanuc", "linuxcnc"])
+def test_a_centroid_m_code_with_an_axis_argument_is_named(dialect):
+    # swissi2000's Fusion post for Centroid CNC12 (centroid.cps, property resetRotary) ends with "M26/A" and
+    # "G92 A0". Before: "'/' after the word 'M26': arithmetic on a word's value needs brackets (M[.../])", which
+    # names no Centroid form
+    text = "G21 G90\nG0 X0. Y0. Z5.\nM5\nM26/A\nG92 A0\nM30\n"
+    with pytest.raises(GCodeError, match=r":4:4: 'M26/A': an M code with an axis after '/', Centroid CNC12's form"):
+        parse_program(text, context=MachineContext(dialect=DIALECTS[dialect], extra_axes=("a",)))
+    # a '/' and a number after a word stays the bracket hint
+    with pytest.raises(GCodeError, match=r"'/2' after the word 'X1\.': arithmetic on a word's value needs brackets"):
+        parse_program("G21 G90\nG0 X1./2\nM30\n", context=MachineContext(dialect=DIALECTS[dialect]))
