@@ -9,6 +9,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext, Tool
+from interpolators.tilted import Kinematics, RotaryAxis
 from vcnc.errors import GCodeError
 
 FANUC = MachineContext(dialect=DIALECTS["fanuc"], tools={1: Tool(number=1, length=10.0, radius=1.0)})
@@ -67,3 +68,28 @@ def test_a_centroid_m_code_with_an_axis_argument_is_named(dialect):
     # a '/' and a number after a word stays the bracket hint
     with pytest.raises(GCodeError, match=r"'/2' after the word 'X1\.': arithmetic on a word's value needs brackets"):
         parse_program("G21 G90\nG0 X1./2\nM30\n", context=MachineContext(dialect=DIALECTS[dialect]))
+
+
+#: Fusion's mazak.cps (Autodesk 2023, OpenPostProject/mazak): the tilted plane, then "G53.1 P1" when the first
+#: rotary axis' angle is positive, "P2" when negative. A/C trunnion: A tilts about X, C turns the table.
+MAZAK_TILT = ("G90 G94 G17 G49\nG21\nT1 M6\nG54\nG69\nG68.2 X0. Y0. Z0. I0. J30. K0.\nG53.1 P1\nG0 X0. Y0.\n"
+              "G43 Z50. H1\nG1 Z5. F500.\nG1 X10. F1000.\nG0 Z50.\nG49\nG69\nM30\n")
+AC_TABLE = MachineContext(kinematics=Kinematics(axes=(RotaryAxis(name="a", limits=(-120.0, 120.0)),
+                                                      RotaryAxis(name="c"))),
+                          extra_axes=("a", "c"), dialect=DIALECTS["fanuc"], tools={1: Tool(number=1, length=10.0)})
+
+
+def test_mazak_g53_1_p_that_asks_for_the_other_rotary_solution_is_refused():
+    # G68.2 I0 J30 K0 (Euler ZXZ: 30 deg about X) is reached with A+30 C0 or A-30 C180; FANUC's rule (the master
+    # axis' smallest move from A0 C0, then the tie to the positive master angle) takes A+30. Before: the P of
+    # "G53.1 P2" was dropped without a word and the part was machined with A+30 C0, not A-30 C180
+    prog = parse_program(MAZAK_TILT, context=AC_TABLE)
+    assert prog.blocks[0].extra_target[0] == pytest.approx(30.0)
+    assert "G53.1 P1: the solution with a positive A (Mazak), as FANUC's rule took it" in prog.notes
+    with pytest.raises(GCodeError, match=r":7:7: G53.1 P2: the solution with a negative A .*vcnc took A\+30 C\+0 "
+                                         r"at the G68.2"):
+        parse_program(MAZAK_TILT.replace("P1", "P2"), context=AC_TABLE)
+    with pytest.raises(GCodeError, match=r":7:7: G53.1 P3: P1 or P2"):
+        parse_program(MAZAK_TILT.replace("P1", "P3"), context=AC_TABLE)
+    # without P, FANUC's G53.1 as before
+    assert parse_program(MAZAK_TILT.replace(" P1", ""), context=AC_TABLE).blocks[0].extra_target[0] == pytest.approx(30)
