@@ -93,3 +93,12 @@ def test_mazak_g53_1_p_that_asks_for_the_other_rotary_solution_is_refused():
         parse_program(MAZAK_TILT.replace("P1", "P3"), context=AC_TABLE)
     # without P, FANUC's G53.1 as before
     assert parse_program(MAZAK_TILT.replace(" P1", ""), context=AC_TABLE).blocks[0].extra_target[0] == pytest.approx(30)
+
+
+def test_a_block_delete_goto_that_runs_is_noted():
+    # keycult's Mazak post (mazak.cps, BlockSkipController.writeSkip): "/<level> GOTO <n>" skips the work of a
+    # fixture whose block delete switch is off. The branch runs (vcnc's switch is off); before: the lines of NC words
+    # that started with '/' were noted, a macro statement's were not
+    prog = parse_program("G21 G90\nG0 X1. Y1. Z1.\n/1 GOTO 2\nG0 X2.\nN2\nG0 X3.\nM30\n", context=FANUC)
+    assert [b.line for b in prog.blocks] == [2, 6]
+    assert "/ block delete lines run (switch off)" in prog.notes
