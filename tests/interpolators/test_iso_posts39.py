@@ -102,3 +102,14 @@ def test_a_block_delete_goto_that_runs_is_noted():
     prog = parse_program("G21 G90\nG0 X1. Y1. Z1.\n/1 GOTO 2\nG0 X2.\nN2\nG0 X3.\nM30\n", context=FANUC)
     assert [b.line for b in prog.blocks] == [2, 6]
     assert "/ block delete lines run (switch off)" in prog.notes
+
+
+@pytest.mark.parametrize(("block", "column", "word"), [("S5000 M3 M8 P0 R20.", 13, "word P with M7/M8"),
+                                                       ("S5000 M3 M8 E12.", 13, "word 'E12.' outside M66-M68")])
+def test_tormach_smartcool_words_are_named(block, column, word):
+    # Fusion's tormach.cps with "SmartCool equipped": "M8 P0 R<sweep>" (side milling), "M8 E<top of part>"
+    # (drilling), PathPilot's nozzle positions. Before: P was named as the Snapmaker firmware's M3 spindle power,
+    # E12 as a Fadal fixture offset
+    text = f"G21 G90\nG0 X1 Y1 Z1\n{block}\nG0 X2\nM30\n"
+    with pytest.raises(GCodeError, match=rf":3:{column}: {word}.*Tormach PathPilot's SmartCool nozzle"):
+        parse_program(text, context=MachineContext(dialect=DIALECTS["linuxcnc"]))
