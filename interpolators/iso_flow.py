@@ -694,6 +694,14 @@ def _modal_call(prog: _Program, pc: int, words: list[Word], modal: ModalCalls, i
     return call.start
 
 
+def _macro_statement(prog: _Program, pc: int, params: Parameters, on_note: Callable[[str], None] | None) -> int:
+    """Run the IF / GOTO / WHILE / END statement of line ``pc`` (:mod:`interpolators.iso_macro`); one on a '/' line
+    is noted as a block-delete line that runs (:func:`interpolators.iso_text.line_notes` notes the others)."""
+    if on_note is not None and prog.raw[pc].lstrip().startswith("/"):
+        on_note(BLOCK_DELETE_RUN)
+    return prog.macro.execute(pc, prog.where(pc), params)
+
+
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
@@ -745,9 +753,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
             continue
         if pc in prog.macro.statements:
-            if on_note is not None and prog.raw[pc].lstrip().startswith("/"):  # as a block's (iso_text.line_notes)
-                on_note(BLOCK_DELETE_RUN)
-            pc = prog.macro.execute(pc, prog.where(pc), params)
+            pc = _macro_statement(prog, pc, params, on_note)
             continue
         code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
