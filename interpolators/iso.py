@@ -159,7 +159,15 @@ from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes, value_limits
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import HAAS_OWN_M, io_words, m_codes, planner_word, spindle_select, user_m_file
+from interpolators.iso_mcodes import (
+    HAAS_OWN_M,
+    io_words,
+    m_codes,
+    planner_word,
+    smartcool_hint,
+    spindle_select,
+    user_m_file,
+)
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -968,6 +976,8 @@ def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
         fail_words(where, SMOOTHING_CODES[key], exc, seen, w)
     if sm.tolerance is not None:
         st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
+    elif sm.continuous:
+        st.exact_stop, st.tolerance = False, None
     elif sm.reset:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
@@ -1244,6 +1254,9 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
         spindle = next((m for m, _ in mcodes if m in (3, 4)), None)
+        if smartcool_hint(mcodes):
+            where.fail(f"word P with M7/M8{smartcool_hint(mcodes)}", column=w.column, text=w.text,
+                       expected="M7/M8 alone (flood or mist coolant)")
         if spindle is not None:
             where.fail(f"M{spindle} P: spindle power in percent (Snapmaker 2.0 firmware): not a word of the linuxcnc, "
                        "grbl, fanuc or haas dialect", column=w.column, text=w.text, expected=f"M{spindle} S<rpm>")

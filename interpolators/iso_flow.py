@@ -72,7 +72,7 @@ from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
 
 __all__ = ["FlowLine", "run", "one_line_end", "sinumerik_construct", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS",
-           "SKIP_AFTER_NUMBER"]
+           "SKIP_AFTER_NUMBER", "BLOCK_DELETE_RUN"]
 
 #: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
 #: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
@@ -223,6 +223,8 @@ def _refuse_folder_line(line: str, where: Where) -> None:
 _SKIP_LEVEL = re.compile(r"[ \t]*/([1-9])")
 #: The sequence number of a line whose next character is '/' ("N45 /G1 X10", "N45/2 G1 X10").
 SKIP_AFTER_NUMBER = re.compile(r"[ \t]*[Nn][ \t]*\d+(?:\.\d*)?[ \t]*(?=/)")
+#: The note of a line that starts with '/' and runs (the block delete switch off), an NC block or a macro statement.
+BLOCK_DELETE_RUN = "/ block delete lines run (switch off)"
 
 
 def _block_delete(code: str, where: Where, *, levels: bool, start: int = 0) -> str:
@@ -692,6 +694,14 @@ def _modal_call(prog: _Program, pc: int, words: list[Word], modal: ModalCalls, i
     return call.start
 
 
+def _macro_statement(prog: _Program, pc: int, params: Parameters, on_note: Callable[[str], None] | None) -> int:
+    """Run the IF / GOTO / WHILE / END statement of line ``pc`` (:mod:`interpolators.iso_macro`); one on a '/' line
+    is noted as a block-delete line that runs (:func:`interpolators.iso_text.line_notes` notes the others)."""
+    if on_note is not None and prog.raw[pc].lstrip().startswith("/"):
+        on_note(BLOCK_DELETE_RUN)
+    return prog.macro.execute(pc, prog.where(pc), params)
+
+
 def run(text: str, *, source: str | None = None, params: Parameters | None = None,  # noqa: C901
         max_lines: int = MAX_EXECUTED_LINES, max_loop_passes: int = MAX_LOOP_PASSES,
         subroutine_path: tuple[str, ...] = (), tape_leader: bool = False,
@@ -743,7 +753,7 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
             continue
         if pc in prog.macro.statements:
-            pc = prog.macro.execute(pc, prog.where(pc), params)
+            pc = _macro_statement(prog, pc, params, on_note)
             continue
         code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)

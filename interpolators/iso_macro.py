@@ -254,6 +254,13 @@ class MacroFlow:
         if m is None:
             where.fail("IF [condition] must be followed by GOTO n or THEN", column=end + 1, text=code.strip(),
                        expected="IF [condition] GOTO n, or IF [condition] THEN #i = expression")
+        if m.group(1).upper() in ("THEN", "TH") and not code[m.end():].strip():
+            # a multi-line IF block (IF [..] THEN / ELSE / ENDIF, as Mazak EIA macros write it: keycult/mazak-hcn
+            # SWAP_PALLET.EIA): read as an empty THEN, the blocks up to ENDIF would run whatever the condition
+            where.fail("IF [..] THEN with nothing after THEN: the start of a multi-line IF .. ELSE .. ENDIF block, "
+                       "which vcnc does not read (the blocks up to ENDIF would run whatever the condition)",
+                       column=m.start() + 1, text=code.strip(),
+                       expected="IF [condition] THEN #i = expression on one line, or IF [condition] GOTO n")
         if not holds:
             return pc + 1
         if m.group(1).upper() in ("GOTO", "GO"):

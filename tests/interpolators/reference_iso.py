@@ -2553,6 +2553,8 @@ def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
     if kind == "while":
         return pc + 1 if holds else st["ends"][pc] + 1
     rest = ev.s[ev.i:]
+    if rest in ("then", "th"):
+        raise ReferenceError("IF [..] THEN alone: a multi-line IF .. ENDIF block")
     if not holds:
         return pc + 1
     if rest.startswith("goto"):
