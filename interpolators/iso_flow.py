@@ -743,9 +743,13 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
             continue
         if pc in prog.macro.statements:
-            pc = prog.macro.execute(pc, prog.where(pc), params)
-            continue
-        code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
+            code = prog.macro.then_block(pc, prog.where(pc), params)  # Haas: IF [..] THEN <block>
+            if code is None:
+                pc = prog.macro.execute(pc, prog.where(pc), params)
+                continue
+            code = code or None  # "": its condition failed, the line runs as an empty one
+        else:
+            code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
         if words is not None and not _may_call(code, words) and not (modal_calls and modal_calls.calls):  # CAM output
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__

@@ -2393,8 +2393,11 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                 break
             continue
         if ln.macro is not None:
-            pc = _macro(ln, pc, st, params)
-            continue
+            nxt = _macro(ln, pc, st, params, haas=context.dialect.name == "haas")
+            if not isinstance(nxt, _Line):
+                pc = nxt
+                continue
+            ln = nxt  # Haas: IF [..] THEN <block>, the block runs
         if not ln.text:
             pc += 1
             continue
@@ -2501,10 +2504,12 @@ def _m98_start(words: dict, st: dict) -> int:
     return start
 
 
-def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
+def _macro(ln: _Line, pc: int, st: dict, params: _Params, *, haas: bool = False) -> int | _Line:
     """Run a macro B statement; returns the next line index. GOTO n: the first line numbered Nn
     after this one in the same program, else the first from the program's start; IF [c] GOTO n /
-    THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE)."""
+    THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE). Under ``haas`` an IF whose condition
+    holds gives the line after THEN, to run as a block (Haas mill operator's manual, "Macros", "Conditional
+    Execution (IF THEN)": "IF [#1 NE #0] THEN G1 X#24 Y#26 F#9")."""
     kind, rest = ln.macro
     if kind in ("do", "dprnt", "bprnt", "popen", "pclos"):
         return pc + 1
@@ -2524,6 +2529,8 @@ def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
         return _goto(_Eval(rest[4:], params).chain(closed=False), pc, st)
     if not rest.startswith("then"):
         raise ReferenceError(f"IF without GOTO/THEN: {rest[:20]!r}")
+    if haas:
+        return dataclasses.replace(ln, text=rest[4:], macro=None)
     words, sets = _words(rest[4:], params)
     if words:
         raise ReferenceError("NC words after THEN")

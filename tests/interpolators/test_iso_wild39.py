@@ -1,0 +1,36 @@
+"""Readings settled by the shopiso39 set of public shop programs (/tmp/shopiso39/progs, sources.tsv: a Russian
+job shop's Haas macro programs (RomanBoreyko/r_cod2), student Haas programs, Fanuc 0i macros (dennisselyaev/gcode),
+grbl senders' and plotters' test files, Fusion 360 and hobby CAM output). The snippets are written for these tests
+after those programs."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import INTERPOLATION_CONTEXT
+from tests.interpolators.reference_iso import iso_reference
+from tests.interpolators.reference_match import match_blocks, reader_rows
+from vcnc.commands.interpolate import blocks_table
+from vcnc.errors import GCodeError
+
+HAAS = INTERPOLATION_CONTEXT.with_dialect("haas")
+FANUC = INTERPOLATION_CONTEXT.with_dialect("fanuc")
+
+#: r_cod2's pocket programs: a finishing speed and feed set only on the last pass, as an IF .. THEN with NC words.
+THEN_BLOCK = ("%\nO1\n#1=5\nG0 X0 Y0 Z10\nIF [#1 GT 2] THEN G1 X10 F100\nIF [#1 LT 2] THEN G1 X20 F100\n"
+              "IF [#1 EQ 5] THEN S900 G1 Y3\nM30\n%\n")
+
+
+def test_haas_then_runs_the_rest_of_its_block():
+    """Haas "Conditional Execution (IF THEN)": the block after THEN runs when the condition holds (NC words too),
+    and is skipped when it fails; the reference agrees."""
+    prog = parse_program(THEN_BLOCK, context=HAAS)
+    assert [(b.line, *map(float, b.target[:2])) for b in prog.blocks] == [(4, 0, 0), (5, 10, 0), (7, 10, 3)]
+    m = match_blocks(iso_reference(THEN_BLOCK, HAAS), reader_rows(*blocks_table(prog)))
+    assert m.mismatch is None and m.exact == 3
+
+
+def test_fanuc_then_still_takes_one_macro_statement():
+    with pytest.raises(GCodeError, match=r":5:19: IF \[..\] THEN: NC word 'G1' after THEN"):
+        parse_program(THEN_BLOCK, context=FANUC)
