@@ -642,6 +642,11 @@ class _Reader:
                 compared = True
             right, p = self.operand(q + len(op))
             right, p = self._operations(right, p, op_level + 1)
+            divisor = self.code[q + len(op):p].strip()
+            if op in ("/", "MOD") and not right and not _LITERAL.fullmatch(divisor):
+                # name the divisor: its value came from elsewhere (a tool table, a call's argument, a loop)
+                value = "vacant (counts 0)" if right is None else "0"
+                self.fail(f"division by zero: the divisor {divisor!r} is {value}", q, "a divisor other than 0")
             left = self.binary(op, left, right, q)
 
     def binary(self, op: str, a: float | None, b: float | None, pos: int) -> float:
@@ -664,6 +669,10 @@ class _Reader:
 
 _COMPARE = {"EQ": float.__eq__, "NE": float.__ne__, "GT": float.__gt__, "GE": float.__ge__, "LT": float.__lt__,
             "LE": float.__le__}
+
+
+#: A number written as such (a divisor that needs no naming).
+_LITERAL = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)")
 
 
 def _operator_at(up: str, q: int, table: dict[str, tuple[tuple[str, int], ...]] = _OPERATORS

@@ -34,3 +34,13 @@ def test_haas_then_runs_the_rest_of_its_block():
 def test_fanuc_then_still_takes_one_macro_statement():
     with pytest.raises(GCodeError, match=r":5:19: IF \[..\] THEN: NC word 'G1' after THEN"):
         parse_program(THEN_BLOCK, context=FANUC)
+
+
+def test_division_by_zero_names_the_divisor():
+    """r_cod2's passes: a step width from the tool table's diameter (#[2400 + #3026]), zero without a table; the
+    error names the divisor, whose value came from elsewhere, not only the '/'."""
+    text = "%\nO1\n#6=40.\n#11=#4*0.8\n#20=FIX[#6/#11]+1.\nM30\n%\n"
+    with pytest.raises(GCodeError, match=r":5:11: division by zero: the divisor '#11' is 0 \(got '/#11\]\+1.'\)"):
+        parse_program(text, context=HAAS)
+    with pytest.raises(GCodeError, match=r":1:7: division by zero \(got '/0\]'\)"):
+        parse_program("G1 X[1/0]\n", context=INTERPOLATION_CONTEXT)
