@@ -267,8 +267,10 @@ class MacroFlow:
         holds, end = evaluate_condition(code, code.index("[", stmt.start), where, params)
         m = (_BRANCH_SHORT if self.abbreviations else _BRANCH).match(code, end)
         if m is None:
+            block = "a block (Haas: '#i = expression', NC words or both)" if params.macro_b and not params.fanuc \
+                else "#i = expression"
             where.fail("IF [condition] must be followed by GOTO n or THEN", column=end + 1, text=code.strip(),
-                       expected="IF [condition] GOTO n, or IF [condition] THEN #i = expression")
+                       expected=f"IF [condition] GOTO n, or IF [condition] THEN {block}")
         if not holds:
             return pc + 1
         if m.group(1).upper() in ("GOTO", "GO"):

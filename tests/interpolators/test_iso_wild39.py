@@ -44,3 +44,12 @@ def test_division_by_zero_names_the_divisor():
         parse_program(text, context=HAAS)
     with pytest.raises(GCodeError, match=r":1:7: division by zero \(got '/0\]'\)"):
         parse_program("G1 X[1/0]\n", context=INTERPOLATION_CONTEXT)
+
+
+def test_a_bare_if_names_the_haas_then_block():
+    """r_cod2's 'IF [ #1 EQ #2 ] S900. F500.' (no THEN): refused at the text after the condition, and under haas the
+    expected form names the block THEN takes there."""
+    text = "%\nO1\n#1=1\n#2=1\nIF [ #1 EQ #2 ] S900. F500.\nM30\n%\n"
+    with pytest.raises(GCodeError, match=r":5:16: IF \[condition\] must be followed by GOTO n or THEN .*THEN a block "
+                                         r"\(Haas: '#i = expression', NC words or both\)"):
+        parse_program(text, context=HAAS)
