@@ -53,3 +53,22 @@ def test_a_bare_if_names_the_haas_then_block():
     with pytest.raises(GCodeError, match=r":5:16: IF \[condition\] must be followed by GOTO n or THEN .*THEN a block "
                                          r"\(Haas: '#i = expression', NC words or both\)"):
         parse_program(text, context=HAAS)
+
+
+#: r_cod2's main programs: a cycle-time log in Haas's extended variables, read from the power-on timer #3020.
+CYCLE_LOG = "%\nO99\n#10002= #3020 - #10000\nG0 X5 Y0\n#10000= #3020\nM30\n%\n"
+
+
+def test_a_clock_stored_in_a_common_variable_is_held_there():
+    """A value vcnc cannot know (Haas #3020) may be stored in a common variable: the log above runs; reading the
+    variable, or one set from it, is the error naming the first reading; a call's local still refuses at once."""
+    prog = parse_program(CYCLE_LOG, context=HAAS)
+    assert [float(b.target[0]) for b in prog.blocks] == [5.0]
+    steered = CYCLE_LOG.replace("G0 X5 Y0", "#101=#10002*2\nG0 X#101 Y0")
+    with pytest.raises(GCodeError, match=r":5:5: parameter #101 holds a value vcnc cannot know \(#3020 read at line 3: "
+                                         r"Haas's power-on timer"):
+        parse_program(steered, context=HAAS)
+    with pytest.raises(GCodeError, match=r":3:5: parameter #3020: Haas's power-on timer"):
+        parse_program(CYCLE_LOG.replace("#10002=", "#1="), context=HAAS)
+    again = CYCLE_LOG.replace("G0 X5 Y0", "#10002=3\nG0 X#10002 Y0")  # set again: known
+    assert [float(b.target[0]) for b in parse_program(again, context=HAAS).blocks] == [3.0]
