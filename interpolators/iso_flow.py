@@ -520,17 +520,19 @@ class _Program:
         self._check_structure()
 
     def external_fanuc(self, number: int) -> int | None:
-        """Index of program ``O<number>`` after including the file of the main program's directory
-        that holds it: Fanuc and Haas keep programs in memory by number, a file per program; the
-        candidates are the files whose name ends with the number (``o1002.nc``,
-        ``gauge_tool_o1002.cnc``, ``1002.nc``), and the one holding an ``O1002`` line is taken."""
+        """Index of program ``O<number>`` after including the file of the main program's directory, or of a
+        folder of :attr:`subroutine_path` (the folders that stand for the control's memory: a shop's main program
+        calling the programs of its subfolders), that holds it: Fanuc and Haas keep programs in memory by number,
+        a file per program; the candidates are the files whose name ends with the number (``o1002.nc``,
+        ``gauge_tool_o1002.cnc``, ``1002.nc``), and the first holding an ``O1002`` line is taken."""
         if number in self.fanuc:
             return self.fanuc[number]
         if self.source is None:
             return None
         pattern = re.compile(rf"(?:^|[^0-9])[oO]?0*{number}$")
-        folder = Path(self.source).parent
-        for cand in sorted(folder.iterdir()) if folder.is_dir() else ():
+        home = Path(self.source).parent
+        folders = (home, *(home / p for p in self.subroutine_path))
+        for cand in (c for folder in folders if folder.is_dir() for c in sorted(folder.iterdir())):
             if cand.is_file() and cand.suffix.lower() in _PROGRAM_SUFFIXES and pattern.search(cand.stem):
                 try:
                     text = program_text(str(cand))
@@ -1059,7 +1061,8 @@ def _called_program(prog: _Program, words: list[Word], call: Word, where: Where,
                                                 "program file of its folder" + prog.unnumbered(p.value)
                                                 + _probing_macro(p.value))
         where.fail(f"{what}: {target}", column=call.column, text=call.text,
-                   expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder")
+                   expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder "
+                            "(or a folder of --subroutine-path, [program] subroutine_path)")
     return prog.fanuc[int(p.value)] + 1
 
 

@@ -5,9 +5,11 @@ after those programs."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
-from interpolators import parse_program
+from interpolators import load_program, parse_program
 from interpolators.context import INTERPOLATION_CONTEXT
 from tests.interpolators.reference_iso import iso_reference
 from tests.interpolators.reference_match import match_blocks, reader_rows
@@ -72,3 +74,17 @@ def test_a_clock_stored_in_a_common_variable_is_held_there():
         parse_program(CYCLE_LOG.replace("#10002=", "#1="), context=HAAS)
     again = CYCLE_LOG.replace("G0 X5 Y0", "#10002=3\nG0 X#10002 Y0")  # set again: known
     assert [float(b.target[0]) for b in parse_program(again, context=HAAS).blocks] == [3.0]
+
+
+def test_numbered_programs_are_found_in_the_subroutine_path(tmp_path):
+    """r_cod2's main programs O00999 call O10, O20 .. by M98 P, kept in the subfolders '1 VERH', '2 NIZ' (in the
+    control's memory on the machine): the folders of subroutine_path (--subroutine-path) stand for that memory."""
+    (tmp_path / "1 VERH").mkdir()
+    (tmp_path / "O00999.nc").write_text("%\nO00999\nG0 X0 Y0\nM98 P10\nM30\n%\n")
+    (tmp_path / "1 VERH" / "O00010.nc").write_text("%\nO00010\nG0 X7\nM99\n%\n")
+    with pytest.raises(GCodeError, match=r":4:1: M98 subprogram call: program O10 is neither in this file nor in a "
+                                         r"program file of its folder .*or a folder of --subroutine-path"):
+        load_program(tmp_path / "O00999.nc", context=HAAS)
+    memory = dataclasses.replace(HAAS, dialect=dataclasses.replace(HAAS.dialect, subroutine_path=("1 VERH",)))
+    prog = load_program(tmp_path / "O00999.nc", context=memory)
+    assert [float(b.target[0]) for b in prog.blocks] == [0.0, 7.0]
