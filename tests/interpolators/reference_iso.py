@@ -401,12 +401,23 @@ class _Params:
         self.frames: list[dict] = [{}]
         # Fanuc/Haas macro B: a variable never set is vacant ("null"), as #0; LinuxCNC reads it as 0
         self.unset = math.nan if vacant else 0.0
+        # macro B: common variables (#100 up) that hold a clock's reading (Fanuc #3001/#3002, Haas #3020-#3025), a
+        # time no reading of the text fixes: it may be stored (a cycle-time log) but not used; ``holding`` is set
+        # while an assignment's value is read (False: no clock read yet, True: one was)
+        self.held: set[int] = set()
+        self.holding: bool | None = None
 
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
+        if isinstance(key, int) and math.isnan(self.unset) and (key in (3001, 3002, *range(3020, 3026))
+                                                                 or key in self.held):
+            if self.holding is None:
+                raise ReferenceError(f"#{key}: a clock's reading used")
+            self.holding = True
+            return 0.0
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 1000 <= key < 5000:
             raise ReferenceError(f"system variable #{key} (signals, modal information: the control's state)")
         if isinstance(key, int):
@@ -623,7 +634,12 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
         if c == "#":
             key = ev.param_ref()
             ev.expect("=")
+            common = isinstance(key, int) and key >= 100 and math.isnan(params.unset)
+            params.holding = False if common else None
             sets.append((key, ev.chain(closed=False)))
+            if common:
+                (params.held.add if params.holding else params.held.discard)(key)
+            params.holding = None
         elif c in "@^$" or c.isalpha():
             ev.i += 1
             value = ev.real()

@@ -66,6 +66,7 @@ def test_a_clock_stored_in_a_common_variable_is_held_there():
     variable, or one set from it, is the error naming the first reading; a call's local still refuses at once."""
     prog = parse_program(CYCLE_LOG, context=HAAS)
     assert [float(b.target[0]) for b in prog.blocks] == [5.0]
+    assert match_blocks(iso_reference(CYCLE_LOG, HAAS), reader_rows(*blocks_table(prog))).mismatch is None
     steered = CYCLE_LOG.replace("G0 X5 Y0", "#101=#10002*2\nG0 X#101 Y0")
     with pytest.raises(GCodeError, match=r":5:5: parameter #101 holds a value vcnc cannot know \(#3020 read at line 3: "
                                          r"Haas's power-on timer"):
