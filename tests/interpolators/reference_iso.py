@@ -392,6 +392,10 @@ def _reduce(vals: list[float], ops: list) -> None:
     vals.append(res)
 
 
+#: Fanuc's clocks #3001/#3002, date #3011 and time #3012, Haas's timers #3020-#3025 (macro B).
+_CLOCKS = frozenset((3001, 3002, 3011, 3012, *range(3020, 3026)))
+
+
 class _Params:
     """Numbered parameters (global), named ``#<_global>`` and ``#<local>`` (per call level)."""
 
@@ -401,9 +405,9 @@ class _Params:
         self.frames: list[dict] = [{}]
         # Fanuc/Haas macro B: a variable never set is vacant ("null"), as #0; LinuxCNC reads it as 0
         self.unset = math.nan if vacant else 0.0
-        # macro B: common variables (#100 up) that hold a clock's reading (Fanuc #3001/#3002, Haas #3020-#3025), a
-        # time no reading of the text fixes: it may be stored (a cycle-time log) but not used; ``holding`` is set
-        # while an assignment's value is read (False: no clock read yet, True: one was)
+        # macro B: common variables (#100 up) that hold a clock's reading (Fanuc #3001/#3002, the date and time
+        # #3011/#3012, Haas #3020-#3025), which no reading of the text fixes: it may be stored (a cycle-time log) but
+        # not used; ``holding`` is set while an assignment's value is read (False: no clock read yet, True: one was)
         self.held: set[int] = set()
         self.holding: bool | None = None
 
@@ -412,8 +416,7 @@ class _Params:
             return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
-        if isinstance(key, int) and math.isnan(self.unset) and (key in (3001, 3002, *range(3020, 3026))
-                                                                 or key in self.held):
+        if isinstance(key, int) and math.isnan(self.unset) and (key in _CLOCKS or key in self.held):
             if self.holding is None:
                 raise ReferenceError(f"#{key}: a clock's reading used")
             self.holding = True
