@@ -744,14 +744,10 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if ow is not None:
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
             continue
-        if pc in prog.macro.statements:
-            code = prog.macro.then_block(pc, prog.where(pc), params)  # Haas: IF [..] THEN <block>
-            if code is None:
-                pc = prog.macro.execute(pc, prog.where(pc), params)
-                continue
-            code = code or None  # "": its condition failed, the line runs as an empty one
-        else:
-            code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
+        nxt, code = _statement_or_code(prog, pc, params)  # code None: none, or a Haas condition that fails
+        if nxt is not None:
+            pc = nxt
+            continue
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
         if words is not None and not _may_call(code, words) and not (modal_calls and modal_calls.calls):  # CAM output
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
@@ -888,6 +884,18 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
 _M99 = re.compile(r"M\s*0*99(?![0-9.])", re.I)
 #: A Haas conditional M99: a bracketed expression opens the block (after its sequence number), an M99 follows.
 _CONDITIONAL_M99 = re.compile(r"\s*(?:N\s*\d+\s*)?\[.*\]\s*M\s*0*99(?![0-9.])", re.I)
+
+
+def _statement_or_code(prog: _Program, pc: int, params: Parameters) -> tuple[int | None, str | None]:
+    """``(next line, None)`` when line ``pc`` is a macro B statement, run here; else ``(None, code)``: the code the
+    line runs as a block (:func:`_conditional_m99`), or of a Haas ``IF [..] THEN <block>`` whose condition holds
+    its block (:meth:`interpolators.iso_macro.MacroFlow.then_block`; None when the condition fails)."""
+    if pc not in prog.macro.statements:
+        return None, _conditional_m99(prog, pc, params)
+    code = prog.macro.then_block(pc, prog.where(pc), params)
+    if code is None:
+        return prog.macro.execute(pc, prog.where(pc), params), None
+    return None, code or None
 
 
 def _conditional_m99(prog: _Program, pc: int, params: Parameters) -> str | None:

@@ -2412,11 +2412,9 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                 break
             continue
         if ln.macro is not None:
-            nxt = _macro(ln, pc, st, params, haas=context.dialect.name == "haas")
-            if not isinstance(nxt, _Line):
-                pc = nxt
+            pc, ln = _macro(ln, pc, st, params, haas=context.dialect.name == "haas")  # ln: a Haas THEN block
+            if ln is None:
                 continue
-            ln = nxt  # Haas: IF [..] THEN <block>, the block runs
         if not ln.text:
             pc += 1
             continue
@@ -2523,12 +2521,18 @@ def _m98_start(words: dict, st: dict) -> int:
     return start
 
 
-def _macro(ln: _Line, pc: int, st: dict, params: _Params, *, haas: bool = False) -> int | _Line:
-    """Run a macro B statement; returns the next line index. GOTO n: the first line numbered Nn
+def _macro(ln: _Line, pc: int, st: dict, params: _Params, *, haas: bool = False) -> tuple[int, _Line | None]:
+    """Run a macro B statement; returns the next line index and None. GOTO n: the first line numbered Nn
     after this one in the same program, else the first from the program's start; IF [c] GOTO n /
     THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE). Under ``haas`` an IF whose condition
-    holds gives the line after THEN, to run as a block (Haas mill operator's manual, "Macros", "Conditional
-    Execution (IF THEN)": "IF [#1 NE #0] THEN G1 X#24 Y#26 F#9")."""
+    holds gives its own index and the line after THEN, to run as a block (Haas mill operator's manual, "Macros",
+    "Conditional Execution (IF THEN)": "IF [#1 NE #0] THEN G1 X#24 Y#26 F#9")."""
+    nxt = _macro_step(ln, pc, st, params, haas=haas)
+    return (pc, nxt) if isinstance(nxt, _Line) else (nxt, None)
+
+
+def _macro_step(ln: _Line, pc: int, st: dict, params: _Params, *, haas: bool) -> int | _Line:
+    """:func:`_macro`: the next line index, or (Haas) the THEN block to run."""
     kind, rest = ln.macro
     if kind in ("do", "dprnt", "bprnt", "popen", "pclos"):
         return pc + 1
