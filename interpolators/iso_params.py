@@ -465,8 +465,11 @@ class _Reader:
             return m.group(1), m.end()
         if p < len(self.code) and self.code[p].isalpha() and not any(self.up.startswith(f, p) for f in _FUNCTIONS):
             name = re.match(r"[^\W\d]\w*", self.code[p:]).group(0)  # any letter, as str.isalpha (e.g. 'À')
-            self.fail(f"'#{name}' is not a parameter (CNCSimulator Pro's #region and $ lines are skipped only "
-                      "alone on their line)", pos, "#<number>, #<name> or #[expression]")
+            why = ("CNCSimulator Pro's #region and $ lines are skipped only alone on their line"
+                   if name.lower().startswith(("region", "endregion")) else
+                   "a placeholder a sender fills in before it streams the program, as GRBL-Plotter's tool-change "
+                   "scripts' #TOAZ: vcnc reads the program as the control receives it")
+            self.fail(f"'#{name}' is not a parameter ({why})", pos, "#<number>, #<name> or #[expression]")
         value, end = self.real(p)
         if value != int(value):
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")

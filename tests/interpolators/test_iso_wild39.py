@@ -89,3 +89,13 @@ def test_numbered_programs_are_found_in_the_subroutine_path(tmp_path):
     memory = dataclasses.replace(HAAS, dialect=dataclasses.replace(HAAS.dialect, subroutine_path=("1 VERH",)))
     prog = load_program(tmp_path / "O00999.nc", context=memory)
     assert [float(b.target[0]) for b in prog.blocks] == [0.0, 7.0]
+
+
+def test_a_sender_placeholder_is_not_named_as_cnc_simulator_text():
+    """GRBL-Plotter's tool-change scripts ('G53 G90 G0 Z#TOAZ', filled in by the sender): the error named
+    CNCSimulator Pro's #region lines, which these are not."""
+    with pytest.raises(GCodeError, match=r":2:13: '#TOAZ' is not a parameter \(a placeholder a sender fills in") as exc:
+        parse_program("G91 G0 Z20\nG53 G90 G0 Z#TOAZ\n", context=INTERPOLATION_CONTEXT.with_dialect("grbl"))
+    assert "CNCSimulator" not in str(exc.value)
+    with pytest.raises(GCodeError, match=r"'#region' is not a parameter \(CNCSimulator Pro's #region"):
+        parse_program("G21 #region\nG0 X1\n", context=INTERPOLATION_CONTEXT)
