@@ -452,13 +452,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     used: set[int] = set()
     name = program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
-    macro_b = dialect.name in ("fanuc", "haas")
     plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
-    params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                        fanuc=dialect.name == "fanuc",
-                        set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
-                        (lambda n, v: set_reference_parameter(n, v, st)) if dialect.name == "linuxcnc" else None,
-                        named_state=(lambda k: named_state_parameter(k, st)) if dialect.name == "linuxcnc" else None)
+    params = _parameters(st, dialect.name, plain)
     messages: list[Message] = []
     on_comment = functools.partial(note_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
@@ -964,6 +959,19 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
         st.tool_selected = int(w.value)
         if st.tool(st.tool_selected) is None and st.tool_selected != 0:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
+
+
+def _parameters(st: State, dialect: str, plain: PlainMoves) -> Parameters:
+    """The program's parameters: macro B's system variables under fanuc/haas (a work offset written through them
+    judged again by ``plain``), LinuxCNC's writable G28/G30 positions and its predefined named parameters of the
+    modal state under linuxcnc (:mod:`interpolators.iso_system`)."""
+    macro_b = dialect in ("fanuc", "haas")
+    linuxcnc = dialect == "linuxcnc"
+    return Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
+                      fanuc=dialect == "fanuc",
+                      set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
+                      (lambda n, v: set_reference_parameter(n, v, st)) if linuxcnc else None,
+                      named_state=(lambda k: named_state_parameter(k, st)) if linuxcnc else None)
 
 
 def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
