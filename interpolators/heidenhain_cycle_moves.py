@@ -640,11 +640,16 @@ def pattern_cycle_run(pat: PatternCycle, m: Machine, where: Where, blk: SourceBl
     if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
                                                RuledSurface)) or m.cycle.surface is None:
         # which of the other cycles a pattern runs, and from where, no manual page found says (the
-        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces)
+        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces);
+        # the old cycles 1, 2, 17 (shop programs call them from cycle 220, e.g. an iTNC 530 program tapping
+        # with cycle 2 on a pitch circle) run from the tool's position with their depth counted from their own
+        # set-up clearance below it: from which height the pattern starts them, no manual page found says
         number = getattr(m.cycle, "number", None)  # SL cycles 21/24/25 carry none
         what = ("without a machining cycle" if m.cycle is None else f"with cycle {number}" if number
                 else "with an SL cycle")
-        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series here",
+        why = (" (an old cycle runs from the tool's position: from which height a pattern starts it, no manual page"
+               " found says)" if isinstance(number, int) and number < 20 else "")
+        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series here{why}",
                    column=blk.column, text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)
     scaled = base if m.transform.identity else scaled_cycle(base, m.transform.axis_factor(m.plane))

@@ -2421,6 +2421,12 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
                 for i in range(int(p["Q242"]))]
         points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
                    p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
+    if t.cycle is None or not t.cycle[0].isdigit() or int(t.cycle[0]) < 200 \
+            or t.cycle[0] in ("230", "231", "232", "233"):
+        # the old cycles (1, 2, 17, ...) run from the tool's position, their depth counted from ABST below it: from
+        # which height a pattern starts them, and whether its Q200/Q203/Q204 act on them, no manual page found says
+        raise ReferenceError(f"cycle {number} with cycle {t.cycle[0] if t.cycle else None}: a pattern runs "
+                             "the 200-series machining cycles here")
     _called(t)
     kind, cyc = t.cycle
     sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
