@@ -159,7 +159,15 @@ from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes, value_limits
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import HAAS_OWN_M, io_words, m_codes, planner_word, spindle_select, user_m_file
+from interpolators.iso_mcodes import (
+    HAAS_OWN_M,
+    OVERRIDES_AT_START,
+    io_words,
+    m_codes,
+    planner_word,
+    spindle_select,
+    user_m_file,
+)
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -324,6 +332,9 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
+    mist: bool = False  # M7 on, M9 (and M2/M30) off (LinuxCNC #<_mist>)
+    flood: bool = False  # M8 on, M9 (and M2/M30) off (LinuxCNC #<_flood>)
+    overrides: dict[str, bool] = dataclasses.field(default_factory=lambda: dict(OVERRIDES_AT_START))  # M48-M53
     rigid_tap: bool = False  # Fanuc M29 S.. until its tapping cycle ends: the G84/G74 turns it (iso_rigid_tap)
     rigid_tap_at: Where | None = None  # the M29 block while no G84/G74 has come since (iso_rigid_tap)
     rigid_tap_s: float = 0.0  # the S [rev/min] of the rigid tap that ran (iso_rigid_tap)

@@ -186,6 +186,11 @@ class ReaderState(Protocol):
     arc_incremental: bool
     tool_selected: int | None
     tool_xy: np.ndarray
+    spindle_turning: bool
+    spindle_ccw: bool
+    mist: bool
+    flood: bool
+    overrides: dict[str, bool]  # LinuxCNC M48-M53 (iso_mcodes.OVERRIDES_AT_START)
 
     @property
     def scale(self) -> float: ...
@@ -377,9 +382,22 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     return None, ""
 
 
-def named_state_parameter(key: str, st: ReaderState) -> float | None:
-    """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state, or None when it is not one
-    vcnc models (the spindle, coolant and override states, pockets: the caller reports it).
+#: LinuxCNC's version as its interpreter gives it (interp_namedparams.cc ``init_named_parameters``: ``sscanf`` of
+#: PACKAGE_VERSION "2.9.0~pre1" into ``%lf%lf``, 2.9 and 0.0; "M.N.m" gives M.N and 0.m): vcnc reads LinuxCNC 2.9's
+#: G-code and is checked against rs274 2.9.0~pre1 (benchmarks/linuxcnc_diff.py), whose values these are.
+LINUXCNC_VERSION = {"_vmajor": 2.9, "_vminor": 0.0}
+#: Predefined parameters whose value is the machine's and not the program's: errors naming why.
+_UNKNOWN_NAMED = {
+    "_current_pocket": "the tool changer's pocket of the tool in the spindle (LinuxCNC reads it from the tool table's "
+                       "P column and [EMCIO] RANDOM_TOOLCHANGER; vcnc models no pockets)",
+    "_selected_pocket": "the tool changer's pocket of the selected tool (LinuxCNC reads it from the tool table's P "
+                        "column and [EMCIO] RANDOM_TOOLCHANGER; vcnc models no pockets)",
+}
+
+
+def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]:
+    """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state: ``(value, "")``, ``(None,
+    why)`` for one whose value is the machine's (the pockets: an error naming why), ``(None, "")`` for another name.
 
     overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode
     and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none; ``_plane`` 170), ``_ccomp`` 400/410/420,
@@ -388,7 +406,20 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
     ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 .. G59.3, ``_feed`` (F in program
     units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any), ``_spindle_rpm_mode`` 1 (G97: vcnc has no
     G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and ``_remap_level`` 0 (no remaps); rs274
-    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)"."""
+    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)".
+
+    The switches (active_m_codes): ``_spindle_on`` (M3/M4; M5, M19, M6 and the program end stop it), ``_spindle_cw``
+    (M3 turning), ``_mist`` (M7) and ``_flood`` (M8) until M9, ``_feed_override`` ``_speed_override`` ``_adaptive_feed``
+    ``_feed_hold`` as M48-M53 set them (1 1 0 1 at the start: :data:`interpolators.iso_mcodes.OVERRIDES_AT_START`);
+    ``_metric_machine`` 1 on a machine in mm, 0 in inch (LinuxCNC's [TRAJ] LINEAR_UNITS, the machine's
+    ``linear_units``; rs274 without that INI entry reads -1); ``_vmajor`` 2.9 and ``_vminor`` 0
+    (:data:`LINUXCNC_VERSION`). ``_line`` and ``_task`` are :class:`interpolators.iso_params.Parameters`'."""
+    if key in _UNKNOWN_NAMED:
+        return None, _UNKNOWN_NAMED[key]
+    if key[1:] in st.overrides:
+        return float(st.overrides[key[1:]]), ""
+    if key in LINUXCNC_VERSION:
+        return LINUXCNC_VERSION[key], ""
     wcs = WORK_OFFSETS.index(st.wcs) + 1 if st.wcs in WORK_OFFSETS else 0
     values = {
         "_motion_mode": 800.0 if st.motion is None else float(st.motion),
@@ -405,8 +436,11 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
         "_feed": 0.0 if st.feed is None else st.feed * 60.0 / st.scale, "_rpm": abs(st.spindle_speed),
         "_selected_tool": float(st.tool_selected or 0), "_spindle_rpm_mode": 1.0, "_spindle_css_mode": 0.0,
         "_lathe_radius_mode": 1.0, "_lathe_diameter_mode": 0.0, "_remap_level": 0.0,
+        "_spindle_on": float(st.spindle_turning), "_spindle_cw": float(st.spindle_turning and not st.spindle_ccw),
+        "_mist": float(st.mist), "_flood": float(st.flood),
+        "_metric_machine": float(st.context.linear_units == "mm"),
     }
-    return values.get(key)
+    return values.get(key), ""
 
 
 def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
