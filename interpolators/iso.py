@@ -121,7 +121,7 @@ import re
 import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
-from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_arc3d import ARC3D_CODES, arc3d_interrupted, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, refuse_wrapped_offset, word_values
@@ -202,7 +202,9 @@ from interpolators.iso_system import (
     named_state_parameter,
     set_reference_parameter,
     set_system_parameter,
+    set_work_offset_parameter,
     system_parameter,
+    take_written_offsets,
 )
 from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
 from interpolators.iso_text import (
@@ -335,6 +337,7 @@ class State:
     mist: bool = False  # M7 on, M9 (and M2/M30) off (LinuxCNC #<_mist>)
     flood: bool = False  # M8 on, M9 (and M2/M30) off (LinuxCNC #<_flood>)
     overrides: dict[str, bool] = dataclasses.field(default_factory=lambda: dict(OVERRIDES_AT_START))  # M48-M53
+    written_offsets: dict[str, dict[int, float]] = dataclasses.field(default_factory=dict)  # LinuxCNC #5221 .. #5390
     rigid_tap: bool = False  # Fanuc M29 S.. until its tapping cycle ends: the G84/G74 turns it (iso_rigid_tap)
     rigid_tap_at: Where | None = None  # the M29 block while no G84/G74 has come since (iso_rigid_tap)
     rigid_tap_s: float = 0.0  # the S [rev/min] of the rigid tap that ran (iso_rigid_tap)
@@ -460,7 +463,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
                         fanuc=dialect.name == "fanuc",
                         set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
-                        (lambda n, v: set_reference_parameter(n, v, st)) if dialect.name == "linuxcnc" else None,
+                        (lambda n, v: set_reference_parameter(n, v, st) or set_work_offset_parameter(n, v, st))
+                        if dialect.name == "linuxcnc" else None,
                         named_state=(lambda k: named_state_parameter(k, st)) if dialect.name == "linuxcnc" else None)
     messages: list[Message] = []
     on_comment = functools.partial(note_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
@@ -1155,6 +1159,8 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
             where.fail(f"{w.text.upper()}: cannot change coordinate systems with cutter radius compensation on "
                        "(LinuxCNC)", column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
         if key in G_CODES:
+            if st.written_offsets and G_CODES[key][1] != st.wcs:
+                take_written_offsets(st)
             st.wcs = G_CODES[key][1]
         else:  # Fanuc G54.1 P, Haas G154 P / G110-G129 (interpolators.iso_offsets)
             try:
@@ -1429,6 +1435,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                            text=w.text, expected="M6 T0 (no tool in the spindle) before G10 L0")
             notes.add("G10 L0 tool table reload (table unchanged)")
             return True
+        p = int(seen["P"].value) if "P" in seen else -1
+        if p == 0 or 0 < p <= len(WORK_OFFSETS) and WORK_OFFSETS[p - 1] == st.wcs:  # LinuxCNC #5221 .. written
+            take_written_offsets(st)
         notes.add(g10(seen, st, where, w))
         return True
     return False

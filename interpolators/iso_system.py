@@ -116,7 +116,7 @@ if TYPE_CHECKING:
     from interpolators.iso_transforms import Frame
 
 __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "named_state_parameter",
-           "set_reference_parameter", "POSITION_PARAMETERS"]
+           "set_reference_parameter", "set_work_offset_parameter", "take_written_offsets", "POSITION_PARAMETERS"]
 
 #: Fanuc/Haas parts counters: machined parts, required parts.
 PARTS_COUNTERS = (3901, 3902)
@@ -191,6 +191,8 @@ class ReaderState(Protocol):
     mist: bool
     flood: bool
     overrides: dict[str, bool]  # LinuxCNC M48-M53 (iso_mcodes.OVERRIDES_AT_START)
+    written_offsets: dict[str, dict[int, float]]  # LinuxCNC #5221.. of the system in force, not yet taken
+    rotations: dict[str, float]
 
     @property
     def scale(self) -> float: ...
@@ -251,6 +253,8 @@ def _work_offset(n: int, st: ReaderState) -> float | None:
     if k >= len(WORK_OFFSETS) or j > 9:
         return None
     code = WORK_OFFSETS[k]
+    if j in st.written_offsets.get(code, {}):
+        return st.written_offsets[code][j]
     if j == 9:
         return float(st.rotations.get(code, 0.0))
     return _offset_axis(code, j, st)
@@ -451,6 +455,53 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
     else:
         found = offset_parameter(n, st.context.dialect.name)
     return found if found is not None and found[1] < 6 else None
+
+
+def set_work_offset_parameter(n: int, value: float | None, st: ReaderState) -> bool:
+    """LinuxCNC ``#n = value`` on a work offset, ``#5221``-``#5230`` (G54 X Y Z A B C U V W and the G10 R rotation)
+    .. ``#5381``-``#5390`` (G59.3): True when ``#n`` is one. LinuxCNC keeps them as numbered parameters below #5400,
+    which a program may write (overview.adoc "Numbered Parameters": "5221-5230 Coordinate System 1, G54 (X Y Z A B
+    C U V W R)"), and takes the table into the offset in force when G54-G59.3 selects another system
+    (interp_convert.cc ``convert_coordinate_system``, which does nothing for the system already in force): a write
+    to another system's values is taken at its selection, one to the system in force waits in
+    ``st.written_offsets`` for :func:`take_written_offsets` and reads back at once. rs274 2.9.0~pre1: ``#5241 = 10``
+    then ``G55 G0 X0`` goes to X 10 (machine units); ``#5221 = 10`` under G54, then ``G0 X0``, stays at 0. In the
+    machine's unit (:attr:`interpolators.context.MachineContext.linear_units`), A B C and R in deg."""
+    k, j = divmod(n - 5221, 20)
+    if not (0 <= k < len(WORK_OFFSETS) and n >= 5221 and j <= 9):
+        return False
+    code = WORK_OFFSETS[k]
+    v = 0.0 if value is None else float(value)
+    if code == st.wcs:
+        st.written_offsets.setdefault(code, {})[j] = v
+    else:
+        _write_offset(code, j, v, st)
+    return True
+
+
+def take_written_offsets(st: ReaderState) -> None:
+    """Take the values a LinuxCNC program wrote to the work offset in force (:func:`set_work_offset_parameter`) into
+    its table: at the selection of another system, or a G10 L2/L20 that sets the table (convert_setup reads the
+    parameters for the axes it is not given)."""
+    for code, values in st.written_offsets.items():
+        for j, v in values.items():
+            _write_offset(code, j, v, st)
+    st.written_offsets.clear()
+
+
+def _write_offset(code: str, j: int, v: float, st: ReaderState) -> None:
+    """Axis ``j`` (X Y Z A B C U V W R) of work offset ``code`` becomes ``v`` (the machine's unit; deg)."""
+    if j == 9:
+        st.rotations[code] = v
+    elif j < 3:
+        current = st.offsets.get(code)
+        linear = (st.context.offset(code) if current is None else current).copy()
+        linear[j] = v * _stored(st)
+        st.offsets[code] = linear
+    else:
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[j - 3] = v if j < 6 else v * _stored(st)
+        st.extra_offsets[code] = extra
 
 
 def set_reference_parameter(n: int, value: float | None, st: ReaderState) -> bool:

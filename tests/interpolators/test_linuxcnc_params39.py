@@ -85,3 +85,39 @@ def test_a_pocket_is_the_machines_and_named_as_such():
         parse_program("G21 T3\n#1 = #<_selected_pocket>\nM2\n", context=LINUXCNC)
     with pytest.raises(GCodeError, match=r"#<_current_pocket> is read-only"):
         parse_program("G21\n#<_current_pocket> = 1\nM2\n", context=LINUXCNC)
+
+
+#: A program writes the work offsets #5221 .. #5390 (Probe Basic's and sttts' tool-change subroutines save and restore
+#: "#5381 = #<_G59_3_X>"): before, "parameter #5241 is read-only".
+OFFSET_WRITES = """G21 G0 X0
+#5241 = 10
+#5242 = 20
+#5221 = 3
+#1 = #5221
+G55 G0 X0 Y0
+G0 X[#1]
+G54 X1
+#5221 = 1
+G0 X0
+G10 L2 P2 Y0
+G0 X0
+G55 X0
+G54 X0
+#5230 = 90
+G55 X0
+G54 X1
+M2
+"""
+
+
+def test_a_written_work_offset_is_taken_when_another_system_is_selected():
+    # rs274 -g on an inch machine (linear_units inch, as rs274's standalone tables): SET_G5X_OFFSET(2, 254, 508) at
+    # G55, "#5221 = 3" read back at once (X 3) but not taken by G54 in force; G54 takes 76.2 = 3 in; "#5221 = 1"
+    # waits; "G10 L2 P2 Y0" leaves G54; the next G54 takes 25.4 and "#5230 = 90" turns it at its selection
+    # (rs274 prints program points: G54 X1 under the 90 deg turn is (1, -228.6), machine (254, 1));
+    # benchmarks/linuxcnc_diff.py: "match, 8 moves"
+    inch = MachineContext(dialect=DIALECTS["linuxcnc"], linear_units="inch")
+    prog = parse_program(OFFSET_WRITES, context=inch)
+    xy = [v for b in prog.blocks for v in b.target[:2].tolist()]
+    assert xy == pytest.approx([0, 0, 254, 508, 257, 508, 77.2, 508, 76.2, 508, 76.2, 508, 254, 508, 25.4, 508,
+                                254, 508, 254, 1])
