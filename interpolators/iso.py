@@ -121,7 +121,7 @@ import re
 import numpy as np
 
 from interpolators._words import INCH, Where, lines_of
-from interpolators.context import DEFAULT_CONTEXT, MachineContext, Tool
+from interpolators.context import DEFAULT_CONTEXT, WORK_OFFSETS, MachineContext, Tool
 from interpolators.iso_arc3d import ARC3D_CODES, arc3d_interrupted, unfinished_arc3d
 from interpolators.iso_arcs import off_plane
 from interpolators.iso_axes import EXTRA_LETTERS, ROTARY_LETTERS, fill_extra, refuse_wrapped_offset, word_values
@@ -161,6 +161,7 @@ from interpolators.iso_grbl import unsupported_codes, value_limits
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
 from interpolators.iso_mcodes import (
     HAAS_OWN_M,
+    OVERRIDES_AT_START,
     io_words,
     m_codes,
     planner_word,
@@ -202,7 +203,9 @@ from interpolators.iso_system import (
     named_state_parameter,
     set_reference_parameter,
     set_system_parameter,
+    set_work_offset_parameter,
     system_parameter,
+    take_written_offsets,
 )
 from interpolators.iso_tcp import tcp_block, tcp_switch, tip_point
 from interpolators.iso_text import (
@@ -332,6 +335,10 @@ class State:
     spindle_speed: float = 0.0  # S [rev/min]
     spindle_turning: bool = False  # M3/M4 on, M5 (and M2/M30, M19) off
     spindle_ccw: bool = False  # the last start was M4
+    mist: bool = False  # M7 on, M9 (and M2/M30) off (LinuxCNC #<_mist>)
+    flood: bool = False  # M8 on, M9 (and M2/M30) off (LinuxCNC #<_flood>)
+    overrides: dict[str, bool] = dataclasses.field(default_factory=lambda: dict(OVERRIDES_AT_START))  # M48-M53
+    written_offsets: dict[str, dict[int, float]] = dataclasses.field(default_factory=dict)  # LinuxCNC #5221 .. #5390
     rigid_tap: bool = False  # Fanuc M29 S.. until its tapping cycle ends: the G84/G74 turns it (iso_rigid_tap)
     rigid_tap_at: Where | None = None  # the M29 block while no G84/G74 has come since (iso_rigid_tap)
     rigid_tap_s: float = 0.0  # the S [rev/min] of the rigid tap that ran (iso_rigid_tap)
@@ -963,14 +970,17 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
 
 def _parameters(st: State, dialect: str, plain: PlainMoves) -> Parameters:
     """The program's parameters: macro B's system variables under fanuc/haas (a work offset written through them
-    judged again by ``plain``), LinuxCNC's writable G28/G30 positions and its predefined named parameters of the
-    modal state under linuxcnc (:mod:`interpolators.iso_system`)."""
+    judged again by ``plain``); under linuxcnc the writable G28/G30 positions and work offsets and the predefined
+    named parameters of the modal state (:mod:`interpolators.iso_system`)."""
     macro_b = dialect in ("fanuc", "haas")
     linuxcnc = dialect == "linuxcnc"
+    def set_linuxcnc(n, v):
+        return set_reference_parameter(n, v, st) or set_work_offset_parameter(n, v, st)
+
     return Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
                       fanuc=dialect == "fanuc",
                       set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
-                      (lambda n, v: set_reference_parameter(n, v, st)) if linuxcnc else None,
+                      set_linuxcnc if linuxcnc else None,
                       named_state=(lambda k: named_state_parameter(k, st)) if linuxcnc else None)
 
 
@@ -1162,6 +1172,8 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
             where.fail(f"{w.text.upper()}: cannot change coordinate systems with cutter radius compensation on "
                        "(LinuxCNC)", column=w.column, text=w.text, expected=f"G40 before {w.text.upper()}")
         if key in G_CODES:
+            if st.written_offsets and G_CODES[key][1] != st.wcs:
+                take_written_offsets(st)
             st.wcs = G_CODES[key][1]
         else:  # Fanuc G54.1 P, Haas G154 P / G110-G129 (interpolators.iso_offsets)
             try:
@@ -1439,6 +1451,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
                            text=w.text, expected="M6 T0 (no tool in the spindle) before G10 L0")
             notes.add("G10 L0 tool table reload (table unchanged)")
             return True
+        p = int(seen["P"].value) if "P" in seen else -1
+        if p == 0 or 0 < p <= len(WORK_OFFSETS) and WORK_OFFSETS[p - 1] == st.wcs:  # LinuxCNC #5221 .. written
+            take_written_offsets(st)
         notes.add(g10(seen, st, where, w))
         return True
     return False

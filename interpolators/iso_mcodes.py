@@ -18,7 +18,8 @@ from interpolators.iso_words import Word, foreign_hint
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["user_m_file", "m_codes", "planner_word", "io_words", "spindle_select", "smartcool_hint"]
+__all__ = ["user_m_file", "m_codes", "planner_word", "io_words", "spindle_select", "smartcool_hint",
+           "OVERRIDES_AT_START"]
 
 
 _M_NOTES = {
@@ -30,6 +31,15 @@ _M_NOTES = {
     70: "M70-M73 modal state", 71: "M70-M73 modal state", 72: "M70-M73 modal state", 73: "M70-M73 modal state",
     **{m: "M62-M68 digital/analog I/O" for m in range(62, 69)},
 }
+
+
+#: LinuxCNC's override switches at power-on and what sets them (interp_convert.cc convert_m: M48/M49 both overrides,
+#: M50 the feed override, M51 the spindle speed override, M52 adaptive feed, M53 the feed stop; P0 off, another P or
+#: none on), read as ``#<_feed_override>`` ``#<_speed_override>`` ``#<_adaptive_feed>`` ``#<_feed_hold>``; rs274
+#: 2.9.0~pre1 prints 1, 1, 0, 1 at the start. The program end (M2/M30) enables both overrides again.
+OVERRIDES_AT_START = {"feed_override": True, "speed_override": True, "adaptive_feed": False, "feed_hold": True}
+_OVERRIDE_M = {48: ("feed_override", "speed_override"), 49: ("feed_override", "speed_override"),
+               50: ("feed_override",), 51: ("speed_override",), 52: ("adaptive_feed",), 53: ("feed_hold",)}
 
 
 #: Haas's own M codes above M99 that move nothing (Haas mill operator's manual, NGC, "M-codes": "M130 Display
@@ -116,12 +126,17 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
         if m in (3, 4, 5, 19):  # M19 orients: the spindle stops turning (LinuxCNC m-code.adoc "M19")
             st.spindle_turning = m in (3, 4)
             st.spindle_ccw = m == 4
+        _switch_state(m, seen, st)
         if m in (2, 30):
             ended = True
             st.spindle_turning = False
             end_rigid_tap(st)
         elif m == 6:
             st.tool_current = st.tool_selected
+            if st.context.dialect.name == "linuxcnc" and not any(k in (3, 4) for k, _ in mcodes):
+                # convert_tool_change stops the spindle ([EMCIO] TOOL_CHANGE_WITH_SPINDLE_ON unset); an M3/M4 of the
+                # block runs after it (LinuxCNC's order of execution)
+                st.spindle_turning = False
             notes.add("T/M6 tool change")
         elif m == 29 and st.context.dialect.name == "fanuc":  # Fanuc rigid tapping (parameter No. 5210: M29)
             arm_rigid_tap(st, where, notes)
@@ -142,6 +157,23 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
         else:
             notes.add(f"M{m} (no motion)")
     return ended
+
+
+def _switch_state(m: int, seen, st: State) -> None:
+    """The coolant and override switches LinuxCNC's predefined parameters read (``#<_mist>``, ``#<_flood>``,
+    ``#<_feed_override>`` ...: :func:`interpolators.iso_system.named_state_parameter`): M7 mist, M8 flood, M9 both
+    off; M48-M53 (:data:`OVERRIDES_AT_START`); the program end turns the coolant off and enables the overrides
+    (interp_convert.cc convert_stop, M2/M30 steps 5, 7 and 9). No motion."""
+    if m in (7, 8, 9):
+        st.mist = m == 7 or (st.mist and m == 8)
+        st.flood = m == 8 or (st.flood and m == 7)
+    elif m in _OVERRIDE_M:
+        on = m != 49 and (m == 48 or "P" not in seen or seen["P"].value != 0)
+        for name in _OVERRIDE_M[m]:
+            st.overrides[name] = on
+    elif m in (2, 30):
+        st.mist = st.flood = False
+        st.overrides.update(feed_override=True, speed_override=True)
 
 
 def _modal_state(m: int, st: State, where: Where, notes: Notes) -> None:

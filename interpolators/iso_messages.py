@@ -53,7 +53,7 @@ _PREDEFINED = frozenset(
     "_spindle_css_mode _ijk_absolute_mode _lathe_diameter_mode _lathe_radius_mode _spindle_on _spindle_cw _mist "
     "_flood _speed_override _feed_override _adaptive_feed _feed_hold _feed _rpm _current_tool _current_pocket "
     "_selected_pocket _selected_tool _x _y _z _a _b _c _u _v _w _abs_x _abs_y _abs_z _abs_a _abs_b _abs_c _abs_u "
-    "_abs_v _abs_w _value _value_returned _task _call_level _remap_level".split())
+    "_abs_v _abs_w _value _value_returned _task _call_level _remap_level _vmajor _vminor _metric_machine".split())
 #: What ``convert_param_comment`` writes for a parameter it cannot print.
 _MISSING = "######"
 #: Its buffer of a printed value (VAL_LEN): a longer value prints as :data:`_MISSING`.

@@ -7,7 +7,8 @@ level (the main program, or one O-word subroutine invocation), ``M72`` restores 
 valid: it can be restored again), ``M71`` invalidates it, ``M73`` saves it and restores it when the
 subroutine returns (``endsub`` or ``return``). The state: units (G20/G21), plane, cutter compensation,
 distance mode, feed mode, coordinate system, tool length offset, retract mode, arc distance mode, path
-mode, the F and S values, the spindle's state; the motion mode is not restored.
+mode, the F and S values, the spindle's state and the coolant (M7/M8: rs274 2.9.0~pre1 turns mist and flood
+on again at M72); the motion mode is not restored.
 
 In vcnc the saved state is the reader's own modal values (the tool length offset as the offsets in effect,
 not the code that set them). Not modelled (errors naming them): an ``M72`` that would switch cutter
@@ -27,7 +28,7 @@ __all__ = ["SAVED_FIELDS", "ModalStates"]
 SAVED_FIELDS = ("inch", "plane", "incremental", "arc_incremental", "inverse_time", "per_rev", "feed_reset", "wcs",
                 "tool_length", "tool_xy", "length_code", "length_number", "retract_r", "exact_stop", "tolerance",
                 "feed", "feed_rotary", "feed_zero", "feed_per_rev", "feed_per_rev_word", "spindle_speed",
-                "spindle_turning", "spindle_ccw", "comp_side", "comp_radius")
+                "spindle_turning", "spindle_ccw", "mist", "flood", "comp_side", "comp_radius")
 
 
 class ModalStates:

@@ -210,8 +210,9 @@ class Parameters:
         parameter it models is read-only, unless ``set_system`` takes it.
     named_state : callable, optional
         ``named_state(name)`` gives LinuxCNC's predefined named parameter ``#<name>`` of the modal state
-        (:func:`interpolators.iso_system.named_state_parameter`), None for another name; with it ``#<_call_level>``
-        reads the O-word call depth. They are read-only.
+        (:func:`interpolators.iso_system.named_state_parameter`) as ``(value, why)``: the value, or None with the
+        reason the machine and not the program knows it (an error naming it), ``(None, "")`` for another name; with it
+        ``#<_call_level>`` reads the O-word call depth. They are read-only.
     set_system : callable, optional
         ``set_system(n, value)`` sets a system parameter the control lets a program write (Fanuc/Haas
         work offsets: :func:`interpolators.iso_system.set_system_parameter`); True when it did.
@@ -229,7 +230,7 @@ class Parameters:
     def __init__(self, *, macro_b: bool = False,
                  system: Callable[[int], tuple[float | None, str]] | None = None,
                  set_system: Callable[[int, float | None], bool] | None = None, fanuc: bool = False,
-                 named_state: Callable[[str], float | None] | None = None) -> None:
+                 named_state: Callable[[str], tuple[float | None, str]] | None = None) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
@@ -356,9 +357,12 @@ class Parameters:
         if key in _NAMED_SYSTEM and self.system is not None:
             value = self.get_numbered(_NAMED_SYSTEM[key], where, column, text)
             return 0.0 if value is None else value
-        state = None if self.named_state is None else self.named_state(key)
+        state, why = (None, "") if self.named_state is None else self.named_state(key)
         if state is not None:
             return state
+        if why:
+            where.fail(f"named parameter #<{name}>: {why}", column=column, text=text,
+                       expected="a parameter whose value the program determines")
         if key == "_call_level" and self.named_state is not None:
             return float(len(self.frames))  # the O-word call depth (interp_namedparams.cc NP_CALL_LEVEL)
         scope = self._scope(key)
@@ -411,7 +415,7 @@ class Parameters:
         else:
             k = key.lower().replace(" ", "")
             if k.startswith("_ini[") or (k in _NAMED_SYSTEM and self.system is not None) or (
-                    self.named_state is not None and (k == "_call_level" or self.named_state(k) is not None)):
+                    self.named_state is not None and (k == "_call_level" or self.named_state(k) != (None, ""))):
                 # LinuxCNC "Cannot assign to read-only parameter" (tests/interp/iniparam-failassign)
                 where.fail(f"named parameter #<{key}> is read-only", column=column, text=text,
                            expected="a named parameter of the program's own")

@@ -117,7 +117,7 @@ if TYPE_CHECKING:
     from interpolators.iso_transforms import Frame
 
 __all__ = ["ReaderState", "system_parameter", "set_system_parameter", "named_state_parameter",
-           "set_reference_parameter", "POSITION_PARAMETERS"]
+           "set_reference_parameter", "set_work_offset_parameter", "take_written_offsets", "POSITION_PARAMETERS"]
 
 #: Fanuc/Haas parts counters: machined parts, required parts.
 PARTS_COUNTERS = (3901, 3902)
@@ -187,6 +187,13 @@ class ReaderState(Protocol):
     arc_incremental: bool
     tool_selected: int | None
     tool_xy: np.ndarray
+    spindle_turning: bool
+    spindle_ccw: bool
+    mist: bool
+    flood: bool
+    overrides: dict[str, bool]  # LinuxCNC M48-M53 (iso_mcodes.OVERRIDES_AT_START)
+    written_offsets: dict[str, dict[int, float]]  # LinuxCNC #5221.. of the system in force, not yet taken
+    rotations: dict[str, float]
 
     @property
     def scale(self) -> float: ...
@@ -247,6 +254,8 @@ def _work_offset(n: int, st: ReaderState) -> float | None:
     if k >= len(WORK_OFFSETS) or j > 9:
         return None
     code = WORK_OFFSETS[k]
+    if j in st.written_offsets.get(code, {}):
+        return st.written_offsets[code][j]
     if j == 9:
         return float(st.rotations.get(code, 0.0))
     return _offset_axis(code, j, st)
@@ -378,9 +387,22 @@ def system_parameter(n: int, st: ReaderState, *, fanuc: bool = False) -> tuple[f
     return None, ""
 
 
-def named_state_parameter(key: str, st: ReaderState) -> float | None:
-    """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state, or None when it is not one
-    vcnc models (the spindle, coolant and override states, pockets: the caller reports it).
+#: LinuxCNC's version as its interpreter gives it (interp_namedparams.cc ``init_named_parameters``: ``sscanf`` of
+#: PACKAGE_VERSION "2.9.0~pre1" into ``%lf%lf``, 2.9 and 0.0; "M.N.m" gives M.N and 0.m): vcnc reads LinuxCNC 2.9's
+#: G-code and is checked against rs274 2.9.0~pre1 (benchmarks/linuxcnc_diff.py), whose values these are.
+LINUXCNC_VERSION = {"_vmajor": 2.9, "_vminor": 0.0}
+#: Predefined parameters whose value is the machine's and not the program's: errors naming why.
+_UNKNOWN_NAMED = {
+    "_current_pocket": "the tool changer's pocket of the tool in the spindle (LinuxCNC reads it from the tool table's "
+                       "P column and [EMCIO] RANDOM_TOOLCHANGER; vcnc models no pockets)",
+    "_selected_pocket": "the tool changer's pocket of the selected tool (LinuxCNC reads it from the tool table's P "
+                        "column and [EMCIO] RANDOM_TOOLCHANGER; vcnc models no pockets)",
+}
+
+
+def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]:
+    """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state: ``(value, "")``, ``(None,
+    why)`` for one whose value is the machine's (the pockets: an error naming why), ``(None, "")`` for another name.
 
     overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode
     and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none; ``_plane`` 170), ``_ccomp`` 400/410/420,
@@ -389,7 +411,20 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
     ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 .. G59.3, ``_feed`` (F in program
     units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any), ``_spindle_rpm_mode`` 1 (G97: vcnc has no
     G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and ``_remap_level`` 0 (no remaps); rs274
-    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)"."""
+    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)".
+
+    The switches (active_m_codes): ``_spindle_on`` (M3/M4; M5, M19, M6 and the program end stop it), ``_spindle_cw``
+    (M3 turning), ``_mist`` (M7) and ``_flood`` (M8) until M9, ``_feed_override`` ``_speed_override`` ``_adaptive_feed``
+    ``_feed_hold`` as M48-M53 set them (1 1 0 1 at the start: :data:`interpolators.iso_mcodes.OVERRIDES_AT_START`);
+    ``_metric_machine`` 1 on a machine in mm, 0 in inch (LinuxCNC's [TRAJ] LINEAR_UNITS, the machine's
+    ``linear_units``; rs274 without that INI entry reads -1); ``_vmajor`` 2.9 and ``_vminor`` 0
+    (:data:`LINUXCNC_VERSION`). ``_line`` and ``_task`` are :class:`interpolators.iso_params.Parameters`'."""
+    if key in _UNKNOWN_NAMED:
+        return None, _UNKNOWN_NAMED[key]
+    if key[1:] in st.overrides:
+        return float(st.overrides[key[1:]]), ""
+    if key in LINUXCNC_VERSION:
+        return LINUXCNC_VERSION[key], ""
     wcs = WORK_OFFSETS.index(st.wcs) + 1 if st.wcs in WORK_OFFSETS else 0
     values = {
         "_motion_mode": 800.0 if st.motion is None else float(st.motion),
@@ -406,8 +441,11 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
         "_feed": 0.0 if st.feed is None else st.feed * 60.0 / st.scale, "_rpm": abs(st.spindle_speed),
         "_selected_tool": float(st.tool_selected or 0), "_spindle_rpm_mode": 1.0, "_spindle_css_mode": 0.0,
         "_lathe_radius_mode": 1.0, "_lathe_diameter_mode": 0.0, "_remap_level": 0.0,
+        "_spindle_on": float(st.spindle_turning), "_spindle_cw": float(st.spindle_turning and not st.spindle_ccw),
+        "_mist": float(st.mist), "_flood": float(st.flood),
+        "_metric_machine": float(st.context.linear_units == "mm"),
     }
-    return values.get(key)
+    return values.get(key), ""
 
 
 def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
@@ -418,6 +456,53 @@ def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
     else:
         found = offset_parameter(n, st.context.dialect.name)
     return found if found is not None and found[1] < 6 else None
+
+
+def set_work_offset_parameter(n: int, value: float | None, st: ReaderState) -> bool:
+    """LinuxCNC ``#n = value`` on a work offset, ``#5221``-``#5230`` (G54 X Y Z A B C U V W and the G10 R rotation)
+    .. ``#5381``-``#5390`` (G59.3): True when ``#n`` is one. LinuxCNC keeps them as numbered parameters below #5400,
+    which a program may write (overview.adoc "Numbered Parameters": "5221-5230 Coordinate System 1, G54 (X Y Z A B
+    C U V W R)"), and takes the table into the offset in force when G54-G59.3 selects another system
+    (interp_convert.cc ``convert_coordinate_system``, which does nothing for the system already in force): a write
+    to another system's values is taken at its selection, one to the system in force waits in
+    ``st.written_offsets`` for :func:`take_written_offsets` and reads back at once. rs274 2.9.0~pre1: ``#5241 = 10``
+    then ``G55 G0 X0`` goes to X 10 (machine units); ``#5221 = 10`` under G54, then ``G0 X0``, stays at 0. In the
+    machine's unit (:attr:`interpolators.context.MachineContext.linear_units`), A B C and R in deg."""
+    k, j = divmod(n - 5221, 20)
+    if not (0 <= k < len(WORK_OFFSETS) and n >= 5221 and j <= 9):
+        return False
+    code = WORK_OFFSETS[k]
+    v = 0.0 if value is None else float(value)
+    if code == st.wcs:
+        st.written_offsets.setdefault(code, {})[j] = v
+    else:
+        _write_offset(code, j, v, st)
+    return True
+
+
+def take_written_offsets(st: ReaderState) -> None:
+    """Take the values a LinuxCNC program wrote to the work offset in force (:func:`set_work_offset_parameter`) into
+    its table: at the selection of another system, or a G10 L2/L20 that sets the table (convert_setup reads the
+    parameters for the axes it is not given)."""
+    for code, values in st.written_offsets.items():
+        for j, v in values.items():
+            _write_offset(code, j, v, st)
+    st.written_offsets.clear()
+
+
+def _write_offset(code: str, j: int, v: float, st: ReaderState) -> None:
+    """Axis ``j`` (X Y Z A B C U V W R) of work offset ``code`` becomes ``v`` (the machine's unit; deg)."""
+    if j == 9:
+        st.rotations[code] = v
+    elif j < 3:
+        current = st.offsets.get(code)
+        linear = (st.context.offset(code) if current is None else current).copy()
+        linear[j] = v * _stored(st)
+        st.offsets[code] = linear
+    else:
+        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
+        extra[j - 3] = v if j < 6 else v * _stored(st)
+        st.extra_offsets[code] = extra
 
 
 def set_reference_parameter(n: int, value: float | None, st: ReaderState) -> bool:
