@@ -183,6 +183,7 @@ class ReaderState(Protocol):
     input_result: float | None  # LinuxCNC #5399 (iso_mcodes, M66)
     input_unknown: str
     tcp: int  # tool centre point control in force (iso_tcp), 0 off
+    after_g80: bool
     arc_incremental: bool
     tool_selected: int | None
     tool_xy: np.ndarray
@@ -382,8 +383,8 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
     vcnc models (the spindle, coolant and override states, pockets: the caller reports it).
 
     overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode
-    and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none; ``_plane`` 170), ``_ccomp`` 400/410/420,
-    1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time`` ``_units_per_minute``
+    and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none and after G80; ``_plane`` 170), ``_ccomp``
+    400/410/420, 1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time`` ``_units_per_minute``
     ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force), ``_retract_r_plane`` (G99) and
     ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 .. G59.3, ``_feed`` (F in program
     units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any), ``_spindle_rpm_mode`` 1 (G97: vcnc has no
@@ -391,7 +392,7 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
     2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)"."""
     wcs = WORK_OFFSETS.index(st.wcs) + 1 if st.wcs in WORK_OFFSETS else 0
     values = {
-        "_motion_mode": 800.0 if st.motion is None else float(st.motion),
+        "_motion_mode": 800.0 if st.motion is None or st.after_g80 else float(st.motion),
         "_plane": {2: 170.0, 1: 180.0, 0: 190.0}[st.plane],
         "_ccomp": 400.0 if st.comp_side is None else float(st.comp_code[1:3]) * 10.0,
         "_metric": float(not st.inch), "_imperial": float(st.inch),
