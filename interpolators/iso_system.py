@@ -382,14 +382,14 @@ def named_state_parameter(key: str, st: ReaderState) -> float | None:
     """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state, or None when it is not one
     vcnc models (the spindle, coolant and override states, pockets: the caller reports it).
 
-    overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode
-    and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none and after G80; ``_plane`` 170), ``_ccomp``
+    overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode and
+    plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none and after G80; ``_plane`` 170), ``_ccomp``
     400/410/420, 1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time``
-    ``_units_per_minute`` ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force), ``_retract_r_plane`` (G99) and
-    ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 .. G59.3, ``_feed`` (F in program
-    units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any), ``_spindle_rpm_mode`` 1 (G97: vcnc has no
-    G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and ``_remap_level`` 0 (no remaps); rs274
-    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)"."""
+    ``_units_per_minute`` ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force),
+    ``_retract_r_plane`` (G99) and ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 ..
+    G59.3, ``_feed`` (F in program units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any),
+    ``_spindle_rpm_mode`` 1 (G97: vcnc has no G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and
+    ``_remap_level`` 0 (no remaps); rs274 2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)"."""
     wcs = WORK_OFFSETS.index(st.wcs) + 1 if st.wcs in WORK_OFFSETS else 0
     values = {
         "_motion_mode": 800.0 if st.motion is None or st.after_g80 else float(st.motion),
