@@ -444,13 +444,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     used: set[int] = set()
     name = program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
-    macro_b = dialect.name in ("fanuc", "haas")
-    plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
-    params = Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                        fanuc=dialect.name == "fanuc",
-                        set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
-                        (lambda n, v: set_reference_parameter(n, v, st)) if dialect.name == "linuxcnc" else None,
-                        named_state=(lambda k: named_state_parameter(k, st)) if dialect.name == "linuxcnc" else None)
+    plain = PlainMoves(st, blocks, used)
+    params = _parameters(st, plain)
     messages: list[Message] = []
     on_comment = functools.partial(note_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
@@ -507,6 +502,18 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     blocks = fill_extra(blocks) if st.extra_used else blocks
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages), rapid_feed_stop=dialect.rapid_feed_stop)
+
+
+def _parameters(st: State, plain: PlainMoves) -> Parameters:
+    """The program's parameters, read through ``st``: Fanuc/Haas system variables (``#5221 = ..`` writes a work offset,
+    the plain moves judged again), LinuxCNC's writable G28/G30 positions and predefined named parameters."""
+    name = st.context.dialect.name
+    macro_b = name in ("fanuc", "haas")
+    linuxcnc = name == "linuxcnc"
+    return Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b), fanuc=name == "fanuc",
+                      set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
+                      (lambda n, v: set_reference_parameter(n, v, st)) if linuxcnc else None,
+                      named_state=(lambda k: named_state_parameter(k, st)) if linuxcnc else None)
 
 
 def _enter_level(st: State, level: int, lowest: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
