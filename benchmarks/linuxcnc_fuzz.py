@@ -414,11 +414,12 @@ def chunk_inverse_time(w: _Writer) -> None:
     w.incremental = False  # the G90 above
     if w.rng.random() < 0.3:
         # G94 again while G94 is on: LinuxCNC clears the feed all the same (interp_convert.cc convert_feed_mode),
-        # so the next feed move carries its F; rarely it does not, which rs274 refuses ("Cannot do g1 with zero
-        # feed rate"): a reader that kept the old F shows as "vcnc only"
+        # so the next feed move carries its F. Always: without it rs274 and vcnc both refuse the program ("Cannot
+        # do g1 with zero feed rate"), which tests nothing after it; test_reader_fast_g93's "G94 again without
+        # F" keeps that refusal
         w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]]) or 'X' + w.num(w.pos[0])}")
         again = w.rng.choice(["G94", "G94 G1", "G94 G0"])
-        feed = "" if w.rng.random() < 0.15 else " " + w.feed()
+        feed = " " + w.feed()
         if again == "G94":
             w.emit(again)
         else:

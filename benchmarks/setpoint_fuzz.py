@@ -499,7 +499,7 @@ def program_of(source: str, seed: int) -> tuple[str, MachineContext]:
     if source in ("fanuc", "haas"):
         return fanuc_generator.generate(seed, source), fanuc_generator.context(seed, source)
     if source == "tnc":
-        return tnc_generator.generate(seed), MachineContext(home=(0.0, 0.0, 300.0))
+        return tnc_generator.generate(seed), tnc_generator.context(seed)
     raise ValueError(f"unknown source {source!r}; known: {', '.join(SOURCES)}")
 
 

@@ -636,22 +636,25 @@ def pattern_cycle_run(pat: PatternCycle, m: Machine, where: Where, blk: SourceBl
     machining cycle's). After the last position the tool is at the 2nd set-up clearance. Cycle 220 with
     Q365 = 1 moves from one position to the next on the pitch circle (TNC 640 cycle programming manual
     34059x-01, cycle 220 "Cycle run" 3: "on a straight line or circular arc"), at rapid traverse as the
-    straight moves (our reading: the manual names the rapid for the first position only)."""
-    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
-                                               RuledSurface)) or m.cycle.surface is None:
-        # which of the other cycles a pattern runs, and from where, no manual page found says (the
-        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces)
-        number = getattr(m.cycle, "number", None)  # SL cycles 21/24/25 carry none
-        what = ("without a machining cycle" if m.cycle is None else f"with cycle {number}" if number
-                else "with an SL cycle")
-        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series here",
-                   column=blk.column, text=blk.code, expected="CYCL DEF 200..240 before the pattern cycle")
+    straight moves (our reading: the manual names the rapid for the first position only).
+
+    The old cycles 1 PECKING, 2 TAPPING and 17 RIGID TAPPING (:data:`PATTERN_OLD_CYCLES`; an iTNC 530 shop
+    program taps with cycle 2 on cycle 220's positions) start where the tool stands, their surface their own
+    set-up clearance below it (TNC 426/430 user's manual, cycles 1 and 2: "Set-up clearance: distance between
+    tool tip (at starting position) and workpiece surface"): the pattern takes the tool at rapid to its set-up
+    clearance Q200 above its surface Q203 and runs the cycle from there, which is the same surface when
+    Q200 equals the cycle's set-up clearance (another value is an error: which surface would count, no
+    manual page found says); after the cycle, back at that start, the tool rises at rapid to the 2nd set-up
+    clearance before the next position with Q301 = 1 and after the last one (our reading)."""
+    _check_pattern_cycle(pat, m, where, blk)
+    old = m.cycle.surface is None
     base = dataclasses.replace(m.cycle, setup=pat.setup, surface=pat.surface, second_setup=pat.second_setup)
     scaled = base if m.transform.identity else scaled_cycle(base, m.transform.axis_factor(m.plane))
     axis, p, q = m.plane, *PLANE_AXES[m.plane]
     d = -1.0 if scaled.depth < 0 else 1.0
     surface = surface_level(m, scaled.surface, 0.0)
-    axis_move(m, "rapid", surface - d * max(scaled.setup, scaled.second_setup), math.inf, where, blk)
+    clear = surface - d * max(scaled.setup, scaled.second_setup)
+    axis_move(m, "rapid", clear, math.inf, where, blk)
     for k, (u, v) in enumerate(pat.points):
         target, _ = program_target(m, {"XYZ"[p]: u, "XYZ"[q]: v}, m.pos)
         target[axis] = m.pos[axis]
@@ -659,8 +662,41 @@ def pattern_cycle_run(pat: PatternCycle, m: Machine, where: Where, blk: SourceBl
             _pitch_circle_move(m, pat, target, where, blk)
         elif not np.array_equal(target, m.pos):
             m.emit("rapid", target, Line(m.pos, target), math.inf, where, blk.number)
-        last = k == len(pat.points) - 1
-        run_hole(m, scaled if pat.high or last else dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
+        high = pat.high or k == len(pat.points) - 1
+        if old:
+            axis_move(m, "rapid", surface - d * scaled.setup, math.inf, where, blk)
+            run_hole(m, dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
+            if high:
+                axis_move(m, "rapid", clear, math.inf, where, blk)
+        else:
+            run_hole(m, scaled if high else dataclasses.replace(scaled, second_setup=0.0), surface, where, blk)
+
+
+#: The old cycles a pattern cycle 220/221 runs (:func:`pattern_cycle_run`).
+PATTERN_OLD_CYCLES: tuple[int, ...] = (1, 2, 17)
+
+
+def _check_pattern_cycle(pat: PatternCycle, m: Machine, where: Where, blk: SourceBlock) -> None:
+    """An error unless the defined cycle is one a pattern runs: a drilling or milling cycle of the 200 series
+    (not the SL and surface cycles), or an old cycle of :data:`PATTERN_OLD_CYCLES` whose set-up clearance is
+    the pattern's Q200."""
+    number = getattr(m.cycle, "number", None)  # SL cycles 21/24/25 carry none
+    if m.cycle is None or isinstance(m.cycle, (ContourTrain, RoughOut, SideFinish, PilotDrill, SurfaceCycle,
+                                               RuledSurface)) or (m.cycle.surface is None
+                                                                  and number not in PATTERN_OLD_CYCLES):
+        # which of the other cycles a pattern runs, and from where, no manual page found says (the
+        # TNC 320 cycle manual gives the pattern's run for the 200 series, whose Q200/Q203/Q204 it replaces)
+        what = ("without a machining cycle" if m.cycle is None else f"with cycle {number}" if number
+                else "with an SL cycle")
+        where.fail(f"cycle {pat.number} {what}: a pattern runs the machining cycles of the 200 series and the old "
+                   f"cycles {', '.join(map(str, PATTERN_OLD_CYCLES))} here", column=blk.column, text=blk.code,
+                   expected="CYCL DEF 200..240 or CYCL DEF 1, 2, 17 before the pattern cycle")
+    if m.cycle.surface is None and abs(m.cycle.setup - pat.setup) > 1e-9:
+        where.fail(f"cycle {pat.number} with cycle {number}: the pattern's set-up clearance Q200 "
+                   f"({pat.setup / m.scale:g}) differs from the cycle's ({m.cycle.setup / m.scale:g}) (the old cycle "
+                   "counts its depth from its own set-up clearance below the tool; which surface then counts, no "
+                   "manual page found says)", column=blk.column, text=blk.code,
+                   expected=f"Q200 = {m.cycle.setup / m.scale:g}, the set-up clearance of cycle {number}")
 
 
 def _pitch_circle_move(m: Machine, pat: PatternCycle, target: np.ndarray, where: Where, blk: SourceBlock) -> None:

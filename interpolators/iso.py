@@ -159,7 +159,15 @@ from interpolators.iso_flow import run
 from interpolators.iso_frames import check_rotated, g68, g68_2_g53_1, scaling_mirror, set_frame
 from interpolators.iso_grbl import unsupported_codes, value_limits
 from interpolators.iso_home import grbl_homing, mill_positioning, reference_return
-from interpolators.iso_mcodes import HAAS_OWN_M, io_words, m_codes, planner_word, spindle_select, user_m_file
+from interpolators.iso_mcodes import (
+    HAAS_OWN_M,
+    io_words,
+    m_codes,
+    planner_word,
+    smartcool_hint,
+    spindle_select,
+    user_m_file,
+)
 from interpolators.iso_modal_call import ModalCalls
 from interpolators.iso_modal_state import ModalStates
 from interpolators.iso_motion import (
@@ -444,8 +452,8 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     used: set[int] = set()
     name = program_name(text)
     external: set[str | None] = set()  # files of subprograms called from this one
-    plain = PlainMoves(st, blocks, used)
-    params = _parameters(st, plain)
+    plain = PlainMoves(st, blocks, used)  # a work offset written by "#5221 = .." on its line: judged again
+    params = _parameters(st, dialect.name, plain)
     messages: list[Message] = []
     on_comment = functools.partial(note_comment, messages=messages, notes=notes) if dialect.name == "linuxcnc" else None
     lines = run(text, source=source, params=params, subroutine_path=tuple(dialect.subroutine_path),
@@ -502,18 +510,6 @@ def parse_iso(text: str, *, source: str | None = None, context: MachineContext =
     blocks = fill_extra(blocks) if st.extra_used else blocks
     return Program(blocks=tuple(blocks), source=source, dialect="iso", axes=axes, name=name, notes=notes.lines(),
                    messages=tuple(messages), rapid_feed_stop=dialect.rapid_feed_stop)
-
-
-def _parameters(st: State, plain: PlainMoves) -> Parameters:
-    """The program's parameters, read through ``st``: Fanuc/Haas system variables (``#5221 = ..`` writes a work offset,
-    the plain moves judged again), LinuxCNC's writable G28/G30 positions and predefined named parameters."""
-    name = st.context.dialect.name
-    macro_b = name in ("fanuc", "haas")
-    linuxcnc = name == "linuxcnc"
-    return Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b), fanuc=name == "fanuc",
-                      set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
-                      (lambda n, v: set_reference_parameter(n, v, st)) if linuxcnc else None,
-                      named_state=(lambda k: named_state_parameter(k, st)) if linuxcnc else None)
 
 
 def _enter_level(st: State, level: int, lowest: int, plain: PlainMoves, where: Where, notes: Notes) -> None:
@@ -965,6 +961,19 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
             notes.add(f"T{st.tool_selected} not in the tool table (length and radius 0)")
 
 
+def _parameters(st: State, dialect: str, plain: PlainMoves) -> Parameters:
+    """The program's parameters: macro B's system variables under fanuc/haas (a work offset written through them
+    judged again by ``plain``), LinuxCNC's writable G28/G30 positions and its predefined named parameters of the
+    modal state under linuxcnc (:mod:`interpolators.iso_system`)."""
+    macro_b = dialect in ("fanuc", "haas")
+    linuxcnc = dialect == "linuxcnc"
+    return Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
+                      fanuc=dialect == "fanuc",
+                      set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
+                      (lambda n, v: set_reference_parameter(n, v, st)) if linuxcnc else None,
+                      named_state=(lambda k: named_state_parameter(k, st)) if linuxcnc else None)
+
+
 def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
     """A Fanuc/Haas look-ahead code (:mod:`interpolators.iso_smoothing`): a note, G187 E the path
     tolerance; returns ``seen`` without the words it reads."""
@@ -975,6 +984,8 @@ def _smoothing(entry, seen, st: State, where: Where, notes: Notes) -> dict:
         fail_words(where, SMOOTHING_CODES[key], exc, seen, w)
     if sm.tolerance is not None:
         st.exact_stop, st.tolerance = False, sm.tolerance * st.scale
+    elif sm.continuous:
+        st.exact_stop, st.tolerance = False, None
     elif sm.reset:
         st.tolerance = st.context.dialect.tolerance
     notes.add(sm.note)
@@ -1251,6 +1262,9 @@ def _check_p_q(seen, gcodes, st: State, where: Where, mcodes: list) -> None:
     if "P" in seen and "path" not in gcodes and not cycle and "nonmodal" not in gcodes:
         w = seen["P"]
         spindle = next((m for m, _ in mcodes if m in (3, 4)), None)
+        if smartcool_hint(mcodes):
+            where.fail(f"word P with M7/M8{smartcool_hint(mcodes)}", column=w.column, text=w.text,
+                       expected="M7/M8 alone (flood or mist coolant)")
         if spindle is not None:
             where.fail(f"M{spindle} P: spindle power in percent (Snapmaker 2.0 firmware): not a word of the linuxcnc, "
                        "grbl, fanuc or haas dialect", column=w.column, text=w.text, expected=f"M{spindle} S<rpm>")

@@ -72,7 +72,7 @@ from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
 
 __all__ = ["FlowLine", "run", "one_line_end", "sinumerik_construct", "MAX_EXECUTED_LINES", "MAX_CALL_LEVELS",
-           "SKIP_AFTER_NUMBER"]
+           "SKIP_AFTER_NUMBER", "BLOCK_DELETE_RUN"]
 
 #: Largest number of lines a program may execute beyond its own length (a guard against endless loops: a
 #: loop is stopped within seconds, before its blocks fill the memory; a CAM file of any length runs once).
@@ -223,6 +223,8 @@ def _refuse_folder_line(line: str, where: Where) -> None:
 _SKIP_LEVEL = re.compile(r"[ \t]*/([1-9])")
 #: The sequence number of a line whose next character is '/' ("N45 /G1 X10", "N45/2 G1 X10").
 SKIP_AFTER_NUMBER = re.compile(r"[ \t]*[Nn][ \t]*\d+(?:\.\d*)?[ \t]*(?=/)")
+#: The note of a line that starts with '/' and runs (the block delete switch off), an NC block or a macro statement.
+BLOCK_DELETE_RUN = "/ block delete lines run (switch off)"
 
 
 def _block_delete(code: str, where: Where, *, levels: bool, start: int = 0) -> str:
@@ -520,17 +522,19 @@ class _Program:
         self._check_structure()
 
     def external_fanuc(self, number: int) -> int | None:
-        """Index of program ``O<number>`` after including the file of the main program's directory
-        that holds it: Fanuc and Haas keep programs in memory by number, a file per program; the
-        candidates are the files whose name ends with the number (``o1002.nc``,
-        ``gauge_tool_o1002.cnc``, ``1002.nc``), and the one holding an ``O1002`` line is taken."""
+        """Index of program ``O<number>`` after including the file of the main program's directory, or of a
+        folder of :attr:`subroutine_path` (the folders that stand for the control's memory: a shop's main program
+        calling the programs of its subfolders), that holds it: Fanuc and Haas keep programs in memory by number,
+        a file per program; the candidates are the files whose name ends with the number (``o1002.nc``,
+        ``gauge_tool_o1002.cnc``, ``1002.nc``), and the first holding an ``O1002`` line is taken."""
         if number in self.fanuc:
             return self.fanuc[number]
         if self.source is None:
             return None
         pattern = re.compile(rf"(?:^|[^0-9])[oO]?0*{number}$")
-        folder = Path(self.source).parent
-        for cand in sorted(folder.iterdir()) if folder.is_dir() else ():
+        home = Path(self.source).parent
+        folders = (home, *(home / p for p in self.subroutine_path))
+        for cand in (c for folder in folders if folder.is_dir() for c in sorted(folder.iterdir())):
             if cand.is_file() and cand.suffix.lower() in _PROGRAM_SUFFIXES and pattern.search(cand.stem):
                 try:
                     text = program_text(str(cand))
@@ -742,10 +746,10 @@ def run(text: str, *, source: str | None = None, params: Parameters | None = Non
         if ow is not None:
             pc = _oword(prog, pc, ow, params, frames, taken, repeats)
             continue
-        if pc in prog.macro.statements:
-            pc = prog.macro.execute(pc, prog.where(pc), params)
+        nxt, code = _statement_or_code(prog, pc, params, on_note)  # code None: none, or a Haas condition that fails
+        if nxt is not None:
+            pc = nxt
             continue
-        code = _conditional_m99(prog, pc, params)  # the line's code; None: none, or a Haas condition that fails
         words = None if code is None or pc in prog.active else plain_words(code, checked=pc in prog.plain)
         if words is not None and not _may_call(code, words) and not (modal_calls and modal_calls.calls):  # CAM output
             line = object.__new__(FlowLine)  # without the frozen dataclass's per-field object.__setattr__
@@ -882,6 +886,21 @@ def _call_or_return(prog: _Program, pc: int, words: list[Word], m98: Word | None
 _M99 = re.compile(r"M\s*0*99(?![0-9.])", re.I)
 #: A Haas conditional M99: a bracketed expression opens the block (after its sequence number), an M99 follows.
 _CONDITIONAL_M99 = re.compile(r"\s*(?:N\s*\d+\s*)?\[.*\]\s*M\s*0*99(?![0-9.])", re.I)
+
+
+def _statement_or_code(prog: _Program, pc: int, params: Parameters,
+                       on_note: Callable[[str], None] | None) -> tuple[int | None, str | None]:
+    """``(next line, None)`` when line ``pc`` is a macro B statement, run here; else ``(None, code)``: the code the
+    line runs as a block (:func:`_conditional_m99`), or of a Haas ``IF [..] THEN <block>`` whose condition holds
+    its block (:meth:`interpolators.iso_macro.MacroFlow.then_block`; None when the condition fails)."""
+    if pc not in prog.macro.statements:
+        return None, _conditional_m99(prog, pc, params)
+    if on_note is not None and prog.raw[pc].lstrip().startswith("/"):  # a statement on a '/' line that runs
+        on_note(BLOCK_DELETE_RUN)  # (:func:`interpolators.iso_text.line_notes` notes the other '/' lines)
+    code = prog.macro.then_block(pc, prog.where(pc), params)
+    if code is None:
+        return prog.macro.execute(pc, prog.where(pc), params), None
+    return None, code or None
 
 
 def _conditional_m99(prog: _Program, pc: int, params: Parameters) -> str | None:
@@ -1055,7 +1074,8 @@ def _called_program(prog: _Program, words: list[Word], call: Word, where: Where,
                                                 "program file of its folder" + prog.unnumbered(p.value)
                                                 + _probing_macro(p.value))
         where.fail(f"{what}: {target}", column=call.column, text=call.text,
-                   expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder")
+                   expected=f"{call.text.upper()} P<number> of an O<number> program in this file or its folder "
+                            "(or a folder of --subroutine-path, [program] subroutine_path)")
     return prog.fanuc[int(p.value)] + 1
 
 

@@ -122,6 +122,7 @@ def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], wh
         if not isinstance(rot, TiltedRotation):
             where.fail("G53.1 without a G68.2 tilted working plane", column=w.column, text=w.text,
                        expected="G68.2 X.. Y.. Z.. I.. J.. K.. (or P1 Q..) before G53.1")
+        _g53_1_side(seen, rot, where, notes)
         turned = st.extra.copy()
         for name, angle in rot.positions.items():
             turned[EXTRA_LETTERS.index(name.upper())] = angle
@@ -133,6 +134,30 @@ def g68_2_g53_1(gcodes, seen, st: State, blocks: list[Block], used: set[int], wh
                             text=where.text, start=st.pos.copy(), target=st.pos.copy(), exact_stop=st.exact_stop,
                             tolerance=st.tolerance, extra_start=st.extra.copy(), extra_target=turned))
         st.extra, st.extra_used = turned, True
+
+
+def _g53_1_side(seen, rot: TiltedRotation, where: Where, notes: Notes) -> None:
+    """``G53.1 P1`` / ``P2``: the solution with a positive / negative first (tilting) rotary axis, as Fusion's
+    mazak.cps (Autodesk, 2023; OpenPostProject/mazak) writes them after ``G68.2`` for a Mazak ("P1" when the first
+    rotary axis' angle is positive, "P2" when negative, no P at 0: our reading of the post, no Mazak manual at hand).
+    vcnc chooses the solution at G68.2 by FANUC's rule (:func:`interpolators.iso_tilt.g68_2_rotation`): a P that
+    agrees is noted, one that asks for the other solution is refused, not read silently as the other."""
+    if "P" not in seen:
+        return
+    p = seen["P"]
+    sign = {1.0: 1, 2.0: -1}.get(p.value)
+    if sign is None:
+        where.fail(f"G53.1 {p.text}: P1 or P2 (the side of the first rotary axis, as Mazak's G53.1 takes it)",
+                   column=p.column, text=p.text, expected="G53.1, G53.1 P1 or G53.1 P2")
+    name, angle = next(iter(rot.positions.items()))
+    side = "positive" if sign > 0 else "negative"
+    if angle * sign < -1e-6:
+        taken = " ".join(f"{n.upper()}{a:+g}" for n, a in rot.positions.items())
+        where.fail(f"G53.1 {p.text}: the solution with a {side} {name.upper()} (Mazak's choice, as Fusion's "
+                   f"mazak.cps writes it); vcnc took {taken} at the G68.2 (FANUC's rule of the rotary solution): "
+                   "not supported", column=p.column, text=p.text,
+                   expected=f"G53.1 without P, or a G68.2 plane whose FANUC solution has a {side} {name.upper()}")
+    notes.add(f"G53.1 {p.text}: the solution with a {side} {name.upper()} (Mazak), as FANUC's rule took it")
 
 
 def set_frame(st: State, frame: Frame) -> None:

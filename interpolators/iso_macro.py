@@ -13,6 +13,11 @@ https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual
 * ``IF [condition] GOTO n`` branches when the condition holds, else the next block runs;
   ``IF [condition] THEN #i = expression`` makes the assignment only when it holds (one macro
   statement, no NC words). The condition may join bracketed comparisons, ``[#1 EQ 2] AND [#3 GT 0]``.
+  Under ``haas`` the rest of the block after ``THEN`` runs as a block when the condition holds, NC words
+  too (:meth:`MacroFlow.then_block`; Haas mill operator's manual, "Macros", "Conditional Execution (IF THEN)":
+  "if a conditional evaluates to FALSE (0.0), then the remainder of the IF block is ignored. This means that
+  control statements can also be conditioned so that we could write something like: IF [#1 NE #0] THEN G1
+  X#24 Y#26 F#9 ... IF [#1 GE 180] THEN #101=0.0 M99"); Fanuc's THEN takes one macro statement.
 * ``WHILE [condition] DO m`` ... ``END m`` repeats the blocks between while the condition holds
   (tested at ``WHILE`` on each pass); ``DO m`` without ``WHILE`` repeats without end (left only
   by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
@@ -154,6 +159,16 @@ def read_statement(code: str, where: Where, *, abbreviations: bool = False) -> S
     return None
 
 
+def _closing(code: str, start: int) -> int:
+    """The index of the ``]`` closing the bracket that opens at ``start`` (the line's end if none does)."""
+    depth = 0
+    for i in range(start, len(code)):
+        depth += {"[": 1, "]": -1}.get(code[i], 0)
+        if depth == 0:
+            return i
+    return len(code)
+
+
 class MacroFlow:
     """The macro B statements of a program, its sequence numbers per program and its loops.
 
@@ -251,9 +266,18 @@ class MacroFlow:
             return self._goto(pc, stmt.start + len(stmt.word), where, params)
         holds, end = evaluate_condition(code, code.index("[", stmt.start), where, params)
         m = (_BRANCH_SHORT if self.abbreviations else _BRANCH).match(code, end)
+        block = "a block (Haas: '#i = expression', NC words or both)" if params.macro_b and not params.fanuc \
+            else "#i = expression"
         if m is None:
             where.fail("IF [condition] must be followed by GOTO n or THEN", column=end + 1, text=code.strip(),
-                       expected="IF [condition] GOTO n, or IF [condition] THEN #i = expression")
+                       expected=f"IF [condition] GOTO n, or IF [condition] THEN {block}")
+        if m.group(1).upper() in ("THEN", "TH") and not code[m.end():].strip():
+            # a multi-line IF block (IF [..] THEN / ELSE / ENDIF, as Mazak EIA macros write it: keycult/mazak-hcn
+            # SWAP_PALLET.EIA): read as an empty THEN, the blocks up to ENDIF would run whatever the condition
+            where.fail("IF [..] THEN with nothing after THEN: the start of a multi-line IF .. ELSE .. ENDIF block, "
+                       "which vcnc does not read (the blocks up to ENDIF would run whatever the condition)",
+                       column=m.start() + 1, text=code.strip(),
+                       expected=f"IF [condition] THEN {block} on one line, or IF [condition] GOTO n")
         if not holds:
             return pc + 1
         if m.group(1).upper() in ("GOTO", "GO"):
@@ -264,6 +288,21 @@ class MacroFlow:
             where.fail(f"IF [..] THEN: NC word {words[0].text!r} after THEN", column=words[0].column,
                        text=words[0].text, expected="one macro statement after THEN, e.g. THEN #3 = 0")
         return pc + 1
+
+    def then_block(self, pc: int, where: Where, params: Parameters) -> str | None:
+        """Under ``haas``, the code of an ``IF [..] THEN <block>`` line: when its condition holds, its text up to
+        and with ``THEN`` blanked (columns kept), to run as an ordinary block, assignments and NC words alike
+        (module docstring, Haas "Conditional Execution (IF THEN)"); when it fails, ``""`` (nothing runs). None for
+        any other statement (:meth:`execute` runs those); the condition is evaluated once either way."""
+        stmt = self.statements[pc]
+        if stmt.kind != "if" or params.fanuc or not params.macro_b:
+            return None
+        code = stmt.code
+        m = _BRANCH.match(code, _closing(code, code.index("[", stmt.start)) + 1)
+        if m is None or m.group(1).upper() != "THEN" or not code[m.end():].strip():
+            return None
+        holds, _ = evaluate_condition(code, code.index("[", stmt.start), where, params)
+        return " " * m.end() + code[m.end():] if holds else ""
 
     def _goto(self, pc: int, pos: int, where: Where, params: Parameters) -> int:
         code = self.statements[pc].code

@@ -18,7 +18,7 @@ from interpolators.iso_words import Word, foreign_hint
 if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
-__all__ = ["user_m_file", "m_codes", "planner_word", "io_words", "spindle_select"]
+__all__ = ["user_m_file", "m_codes", "planner_word", "io_words", "spindle_select", "smartcool_hint"]
 
 
 _M_NOTES = {
@@ -263,6 +263,16 @@ def planner_word(seen, gcodes, mcodes, where: Where, notes: Notes) -> dict:
     return {k: v for k, v in seen.items() if k != "R"}
 
 
+def smartcool_hint(mcodes) -> str:
+    """The hint of an E or P word no code reads in a block with M7/M8: Tormach PathPilot's SmartCool nozzle, as
+    Fusion's tormach.cps writes it with "SmartCool equipped" set ("M8 E<top of part>" for drilling, "M8 P0
+    [R<sweep length>]" for milling); '' without M7/M8."""
+    if not any(m in (7, 8) for m, _ in mcodes):
+        return ""
+    return (" (Tormach PathPilot's SmartCool nozzle, M7/M8 E<height> or P<mode> R<sweep>, as Fusion's tormach.cps "
+            "writes it: a PathPilot extension vcnc does not read)")
+
+
 def io_words(mcodes, seen, st: State, where: Where) -> dict:
     """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
     elsewhere is an error."""
@@ -300,7 +310,8 @@ def io_words(mcodes, seen, st: State, where: Where) -> dict:
         # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
         fadal = " (E1-E48 select a Fadal fixture offset: use --dialect fadal)" if 0 <= w.value <= 48 and \
             w.value == int(w.value) else ""
-        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){fadal}", column=w.column, text=w.text,
+        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){smartcool_hint(mcodes) or fadal}",
+                   column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen
 

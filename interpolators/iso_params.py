@@ -72,6 +72,12 @@ manual, "Macros"):
   the reader, which ends the path at rest there as at M0,
   other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
   feed-hold switches), and reading an unmodelled one is an error naming it.
+* a value vcnc cannot know (a clock, Haas's timers, a jogged or probed position: ``system`` gives the reason)
+  may be stored in a common variable (``#100`` up) and is then *held* there (:attr:`Parameters.held`): reading
+  that variable, or one set from it, is the error naming the first reading, its line and its reason. A program that
+  only logs a time (a Haas shop's cycle-time count ``#10002 = #3020 - #10000`` ... ``#10000 = #3020``, whose
+  variables steer nothing) so reads; one steered by it is refused where the value is used (our reading: nothing the
+  tool does depends on a value no block reads, so the value itself need not be known).
 * a G65 macro call's locals are ``#1``-``#33`` per call level (Haas, "Local Variables": "Local
   variables range between #1 and #33 ... During a G65 call, all new local variables are cleared");
   ``#100``-``#199`` and ``#500``-``#999`` are common (global) variables, and the Haas Next
@@ -237,6 +243,26 @@ class Parameters:
         self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
         self.plain_alarms: list[tuple[int, int]] = []  # without macro B: #3000 / #3006 set at line, as parameters
         self.joined_comparisons = 0  # macro B brackets that join comparisons without brackets of their own
+        #: common variables holding a value vcnc cannot know: #n -> (line, reason) of the first reading
+        self.held: dict[int, tuple[int, str]] = {}
+        self._holding: list[tuple[int, str] | None] | None = None  # while an assignment's value is read
+
+    def held_value(self, key: int | str, read: Callable[[], tuple[float | None, int]]) -> tuple[float | None, int]:
+        """``read()`` of the value a macro B assignment gives ``key``: when ``key`` is a common variable (#100
+        up, not a call's local), a value vcnc cannot know read there is held by it (module docstring) instead of
+        an error; ``held`` then says so until the variable is set again."""
+        if not isinstance(key, int) or key < 100 or self._holding is not None:
+            return read()
+        self._holding = [None]
+        try:
+            result = read()
+        finally:
+            origin, self._holding = self._holding[0], None
+        if origin is None:
+            self.held.pop(key, None)
+        else:
+            self.held[key] = origin
+        return result
 
     def _local_numbered(self, n: int) -> dict[int, float]:
         return self.frames[-1][0] if self.frames and 1 <= n <= self.frames[-1][2] else self.numbered
@@ -255,10 +281,19 @@ class Parameters:
                        expected="a parameter #1 .. #5601 (or Haas #10000 .. #10999)")
         if state is not None:
             return state
+        if why and self._holding is not None:  # an assignment's value: held by the variable it sets (docstring)
+            self._holding[0] = self._holding[0] or (where.line, f"#{n} read at line {where.line}: {why}")
+            return 0.0
         if why:
             where.fail(f"parameter #{n}: {why}", column=column, text=text,
                        expected="a parameter whose value the program determines")
         store = self._local_numbered(n)
+        if n in self.held and store is self.numbered:
+            if self._holding is not None:
+                self._holding[0] = self._holding[0] or self.held[n]
+                return 0.0
+            where.fail(f"parameter #{n} holds a value vcnc cannot know ({self.held[n][1]})", column=column,
+                       text=text, expected="a parameter whose value the program determines")
         if self.macro_b and n == _FANUC_ALARM and n not in store:
             where.fail("#3000 read: it is the macro alarm, which a program writes to stop with an alarm (#3000 = n "
                        "(message)); what reading it gives is not modelled (no Fanuc or Haas manual found says)",
@@ -442,8 +477,11 @@ class _Reader:
             return m.group(1), m.end()
         if p < len(self.code) and self.code[p].isalpha() and not any(self.up.startswith(f, p) for f in _FUNCTIONS):
             name = re.match(r"[^\W\d]\w*", self.code[p:]).group(0)  # any letter, as str.isalpha (e.g. 'À')
-            self.fail(f"'#{name}' is not a parameter (CNCSimulator Pro's #region and $ lines are skipped only "
-                      "alone on their line)", pos, "#<number>, #<name> or #[expression]")
+            why = ("CNCSimulator Pro's #region and $ lines are skipped only alone on their line"
+                   if name.lower().startswith(("region", "endregion")) else
+                   "a placeholder a sender fills in before it streams the program, as GRBL-Plotter's tool-change "
+                   "scripts' #TOAZ: vcnc reads the program as the control receives it")
+            self.fail(f"'#{name}' is not a parameter ({why})", pos, "#<number>, #<name> or #[expression]")
         value, end = self.real(p)
         if value != int(value):
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")
@@ -654,6 +692,11 @@ class _Reader:
                 compared = True
             right, p = self.operand(q + len(op))
             right, p = self._operations(right, p, op_level + 1)
+            divisor = self.code[q + len(op):p].strip()
+            if op in ("/", "MOD") and not right and not _LITERAL.fullmatch(divisor):
+                # name the divisor: its value came from elsewhere (a tool table, a call's argument, a loop)
+                value = "vacant (counts 0)" if right is None else "0"
+                self.fail(f"division by zero: the divisor {divisor!r} is {value}", q, "a divisor other than 0")
             left = self.binary(op, left, right, q)
 
     def binary(self, op: str, a: float | None, b: float | None, pos: int) -> float:
@@ -676,6 +719,10 @@ class _Reader:
 
 _COMPARE = {"EQ": float.__eq__, "NE": float.__ne__, "GT": float.__gt__, "GE": float.__ge__, "LT": float.__lt__,
             "LE": float.__le__}
+
+
+#: A number written as such (a divisor that needs no naming).
+_LITERAL = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)")
 
 
 def _operator_at(up: str, q: int, table: dict[str, tuple[tuple[str, int], ...]] = _OPERATORS
@@ -798,7 +845,7 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         if code[eq:eq + 1] != "=":
             r.fail("a parameter outside a word must be assigned", i, "#n = value")
         if params.macro_b:
-            value, end = r.grouped(eq + 1)  # Fanuc macro B: "#1=#2+#3" needs no enclosing brackets
+            value, end = params.held_value(key, lambda: r.grouped(eq + 1))  # "#1=#2+#3" needs no brackets
         else:
             # LinuxCNC overview.adoc "Parameter Setting": "# , a real value ..., an equal sign = , and a real
             # value"; a real value is "a number, an expression, a parameter value, or a unary function value",

@@ -18,6 +18,12 @@ is a note, and Haas G187 E also sets the path tolerance as ``G64 P`` does:
                     30i-B manual's section was not in our index).
 ``G08 P1 / P0``     Fanuc AI advanced preview control (look-ahead feed-forward) on / off.
 ``G05 P10000 / P0`` Fanuc high-precision contour control (HPCC) on / off.
+``G61.1 [P..]``     Mazak geometry compensation (Mazak VORTEX i-series manual, 5 Supplement, "G-code
+                    (Group13)", "A. Geometry compensation": pre-interpolation acceleration/deceleration,
+                    feedforward, precise vector compensation, optimum corner deceleration), in the
+                    group of G61-G64: a continuous-path mode, read as G64 without tolerance, the P
+                    (the level Keycult's Mazak HCN post writes, P0-P3) noted. Fanuc and Haas define no
+                    G61.1; LinuxCNC's (exact stop mode) stays under ``linuxcnc``.
 =================== ===============================================================================
 
 ``G05 P2`` is refused by name: Mazak's high-speed machining mode (Keycult's Mazak HCN post, a fork of
@@ -42,6 +48,7 @@ __all__ = ["G05_OTHERS", "SMOOTHING_CODES", "Smoothing", "smoothing"]
 SMOOTHING_CODES: dict[int, str] = {
     1870: "G187 smoothness control", 1030: "G103 block look-ahead limit", 51: "G05.1 AI contour control",
     80: "G08 AI advanced preview control", 50: "G05 high-precision contour control",
+    611: "G61.1 geometry compensation (Mazak): continuous path, as G64",
 }
 
 
@@ -59,12 +66,15 @@ class Smoothing:
         New path tolerance [program units] (G187 E), or None to leave it.
     reset : bool
         True when the tolerance returns to the dialect's default (G187 alone).
+    continuous : bool
+        True when the code selects a continuous-path mode without tolerance, as G64 does (Mazak G61.1).
     """
 
     note: str
     consumed: tuple[str, ...]
     tolerance: float | None = None
     reset: bool = False
+    continuous: bool = False
 
 
 #: The hint of a G05 other than Fanuc's HPCC P10000 / P0 (the module text).
@@ -106,6 +116,9 @@ def smoothing(key: int, words: dict[str, float]) -> Smoothing:
         consumed = ("Q", "R", "X", "Y", "Z", "A", "B", "C") if q >= 2.0 else ("Q", "R")
         note = {2.0: "G05.1 Q2 nano smoothing", 3.0: "G05.1 Q3 smooth tolerance+ control"}.get(q, name)
         return Smoothing(note=note, consumed=consumed)
+    if key == 611:
+        level = f" (P{words['P']:g}: its level, not modelled)" if "P" in words else ""
+        return Smoothing(note=name + level, consumed=("P",), continuous=True)
     if key == 80:
         _choice(words, "P", (0.0, 1.0), "G08")
         return Smoothing(note=name, consumed=("P",))

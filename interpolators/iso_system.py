@@ -74,7 +74,8 @@ power-on timer #3020 ("read only") reset as #3001 is;
 Mike Lynch, "Converting Time and Date to a More Useful Format", Modern Machine Shop 2019:
 ``#3001`` the milliseconds clock "always runs, can be reset using #3001=0", ``#3002`` the hours clock likewise,
 ``#3011`` the date yyyymmdd and ``#3012`` the time hhmmss, which "cannot be reset"). A program writes ``#3001 = 0``
-or ``#3002 = 0`` to start timing: accepted, without effect. Reading one is an error naming it: the clocks count the
+or ``#3002 = 0`` to start timing: accepted, without effect. Reading one is an error naming it (where the
+value is only stored in a common variable, the variable holds it: :mod:`interpolators.iso_params`): the clocks count the
 time the machine has run, which depends on the feeds, accelerations and servo lags the interpolation and
 simulation work out after the program is read, and on how long the control takes per macro statement, which no
 manual gives; the value may steer the program (a wait ``WHILE [#3001 LT 2000]``, a tool-life count), so no

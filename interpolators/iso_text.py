@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from interpolators._words import Where
 from interpolators.context import DIALECTS, Dialect
-from interpolators.iso_flow import SKIP_AFTER_NUMBER
+from interpolators.iso_flow import BLOCK_DELETE_RUN, SKIP_AFTER_NUMBER
 from interpolators.iso_grbl import system_lines
 from interpolators.iso_params import Parameters
 from interpolators.iso_simulator import simulator_lines
@@ -59,7 +59,7 @@ def message_stops(params: Parameters, st: State, blocks: list[Block], notes: Not
 def line_notes(fl, source: str | None, external: set[str | None], notes: Notes) -> None:
     """Notes of a line read: a block-delete line run, the first line of a subprogram file."""
     if fl.raw.lstrip().startswith("/"):
-        notes.add("/ block delete lines run (switch off)")
+        notes.add(BLOCK_DELETE_RUN)
     elif "/" in fl.raw and SKIP_AFTER_NUMBER.match(fl.raw):
         notes.add("/ block skip after the sequence number (N45 /G1 ..): the block runs (switch off)")
     if fl.file != source and fl.file not in external:

@@ -226,6 +226,13 @@ def read_words(code: str, where: Where, *, value: Callable[[int, str], tuple[flo
             up = "," + corner.group(1).upper()
             i = corner.start(1)
         if ch == "/" and words:
+            axis = re.match(r"/\s*([XYZABCUVW])(?![A-Z])", code[i:], re.I)
+            if words[-1].letter == "M" and axis is not None:
+                # swissi2000's Fusion post for Centroid (centroid.cps, resetRotary) writes "M26/A" before "G92 A0"
+                where.fail(f"'{words[-1].text}/{axis.group(1).upper()}': an M code with an axis after '/', Centroid "
+                           "CNC12's form (M26/A, as the Fusion Centroid post homes a rotary axis; M91/M92 /Z); vcnc "
+                           "reads no Centroid program", column=i + 1, text=code[i:i + axis.end()],
+                           expected="an M code without an axis argument (a Fanuc/Haas/LinuxCNC/grbl program)")
             tok = re.match(r"/[0-9.]*", code[i:]).group(0)
             where.fail(f"'{tok}' after the word {words[-1].text!r}: arithmetic on a word's value needs brackets "
                        f"({words[-1].letter}[...{tok}]), and a '/' block skip inside a block is not supported",

@@ -283,6 +283,7 @@ class _Tnc:
         self.cycle: tuple | None = None
         self.out: list[Expected] = []
         self.last_dir: np.ndarray | None = None
+        self.last_len = math.inf  # length of the last line in the plane [mm] (what an RND after it may take)
         self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
         self.modal = False  # M89 active
         self.feed = 0.0  # the modal path feed [mm/min], for FUNCTION FEED DWELL
@@ -406,6 +407,7 @@ class _Tnc:
         if kind != "dwell" and np.linalg.norm((end - start)[:2]) > 0:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
+            self.last_len = math.inf if centre is not None else float(np.linalg.norm(d))
         self.pos = end.copy()
 
     def target(self, w: dict, base: np.ndarray | None = None) -> np.ndarray:
@@ -836,6 +838,10 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
         b = (np.array([-v[1], v[0]]) if ccw_next else np.array([v[1], -v[0]])) / np.hypot(*v)
     turn = float(a[0] * b[1] - a[1] * b[0])
     side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes (a mirror swaps RL/RR)
+    if kind == "RND" and centre is None and prev_centre is None and size * math.tan(
+            math.atan2(abs(turn), float(a @ b)) / 2) > min(t.last_len, float(np.hypot(*d))) + 1e-9:
+        # between lines it takes r tan(theta/2) of each, an inside one no larger than the tool as well
+        raise ReferenceError("RND radius does not fit: it needs more of a line than there is")
     if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * side > 0:
         return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
     if kind == "CHF":
@@ -2421,9 +2427,19 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
                 for i in range(int(p["Q242"]))]
         points = [(p["Q225"] + i * p["Q237"] * math.cos(rot) - j * p["Q238"] * math.sin(rot),
                    p["Q226"] + i * p["Q237"] * math.sin(rot) + j * p["Q238"] * math.cos(rot)) for i, j in grid]
+    old = t.cycle is not None and t.cycle[0] in ("1", "2", "17")
+    if t.cycle is None or not old and (not t.cycle[0].isdigit() or int(t.cycle[0]) < 200
+                                       or t.cycle[0] in ("230", "231", "232", "233")):
+        raise ReferenceError(f"cycle {number} with cycle {t.cycle[0] if t.cycle else None}: a pattern runs "
+                             "the 200-series machining cycles and the old cycles 1, 2, 17 here")
+    if old and abs(abs(t.cycle[1][1]) - abs(p["Q200"])) > 1e-9:
+        # an old cycle starts where the tool stands, its surface its own set-up clearance below: the pattern
+        # places it at Q203 + Q200, the same surface only when Q200 is the cycle's set-up clearance
+        raise ReferenceError(f"cycle {number} with cycle {t.cycle[0]}: Q200 differs from the cycle's set-up "
+                             "clearance")
     _called(t)
     kind, cyc = t.cycle
-    sgn = -1.0 if cyc.get("Q201", -1.0) < 0 else 1.0
+    sgn = -1.0 if (cyc[2] if old else cyc.get("Q201", -1.0)) < 0 else 1.0
     _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
     for k, (x, y) in enumerate(points):
         here = t.prog()
@@ -2437,6 +2453,12 @@ def _pattern(t: _Tnc, line: int, number: int, p: dict) -> None:
             t.emit(line, "rapid", t.machine(here), rows="optional" if np.allclose(t.machine(here), t.pos) else "one")
         last = k == len(points) - 1
         second = p["Q204"] if last or p.get("Q301", 0) else 0.0
+        if old:  # down to the set-up clearance, the old cycle from there, back up to the 2nd one (our reading)
+            _move_z(t, line, "rapid", p["Q203"] - sgn * p["Q200"], optional=True)
+            _run_cycle(t, line, fresh=False)
+            if second:
+                _move_z(t, line, "rapid", p["Q203"] - sgn * max(p["Q204"], p["Q200"]), optional=True)
+            continue
         t.cycle = (kind, {**cyc, "Q200": p["Q200"], "Q203": p["Q203"], "Q204": second})
         _run_cycle(t, line, fresh=False)
     t.cycle = (kind, cyc)

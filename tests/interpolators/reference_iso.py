@@ -392,6 +392,10 @@ def _reduce(vals: list[float], ops: list) -> None:
     vals.append(res)
 
 
+#: Fanuc's clocks #3001/#3002, date #3011 and time #3012, Haas's timers #3020-#3025 (macro B).
+_CLOCKS = frozenset((3001, 3002, 3011, 3012, *range(3020, 3026)))
+
+
 class _Params:
     """Numbered parameters (global), named ``#<_global>`` and ``#<local>`` (per call level)."""
 
@@ -401,12 +405,22 @@ class _Params:
         self.frames: list[dict] = [{}]
         # Fanuc/Haas macro B: a variable never set is vacant ("null"), as #0; LinuxCNC reads it as 0
         self.unset = math.nan if vacant else 0.0
+        # macro B: common variables (#100 up) that hold a clock's reading (Fanuc #3001/#3002, the date and time
+        # #3011/#3012, Haas #3020-#3025), which no reading of the text fixes: it may be stored (a cycle-time log) but
+        # not used; ``holding`` is set while an assignment's value is read (False: no clock read yet, True: one was)
+        self.held: set[int] = set()
+        self.holding: bool | None = None
 
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
+        if isinstance(key, int) and math.isnan(self.unset) and (key in _CLOCKS or key in self.held):
+            if self.holding is None:
+                raise ReferenceError(f"#{key}: a clock's reading used")
+            self.holding = True
+            return 0.0
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 1000 <= key < 5000:
             raise ReferenceError(f"system variable #{key} (signals, modal information: the control's state)")
         if isinstance(key, int):
@@ -623,7 +637,12 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
         if c == "#":
             key = ev.param_ref()
             ev.expect("=")
+            common = isinstance(key, int) and key >= 100 and math.isnan(params.unset)
+            params.holding = False if common else None
             sets.append((key, ev.chain(closed=False)))
+            if common:
+                (params.held.add if params.holding else params.held.discard)(key)
+            params.holding = None
         elif c in "@^$" or c.isalpha():
             ev.i += 1
             value = ev.real()
@@ -2428,8 +2447,9 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
                 break
             continue
         if ln.macro is not None:
-            pc = _macro(ln, pc, st, params)
-            continue
+            pc, ln = _macro(ln, pc, st, params, haas=context.dialect.name == "haas")  # ln: a Haas THEN block
+            if ln is None:
+                continue
         if not ln.text:
             pc += 1
             continue
@@ -2536,10 +2556,18 @@ def _m98_start(words: dict, st: dict) -> int:
     return start
 
 
-def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
-    """Run a macro B statement; returns the next line index. GOTO n: the first line numbered Nn
+def _macro(ln: _Line, pc: int, st: dict, params: _Params, *, haas: bool = False) -> tuple[int, _Line | None]:
+    """Run a macro B statement; returns the next line index and None. GOTO n: the first line numbered Nn
     after this one in the same program, else the first from the program's start; IF [c] GOTO n /
-    THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE)."""
+    THEN #i=e; WHILE [c] DO m ... END m (the condition is tested at WHILE). Under ``haas`` an IF whose condition
+    holds gives its own index and the line after THEN, to run as a block (Haas mill operator's manual, "Macros",
+    "Conditional Execution (IF THEN)": "IF [#1 NE #0] THEN G1 X#24 Y#26 F#9")."""
+    nxt = _macro_step(ln, pc, st, params, haas=haas)
+    return (pc, nxt) if isinstance(nxt, _Line) else (nxt, None)
+
+
+def _macro_step(ln: _Line, pc: int, st: dict, params: _Params, *, haas: bool) -> int | _Line:
+    """:func:`_macro`: the next line index, or (Haas) the THEN block to run."""
     kind, rest = ln.macro
     if kind in ("do", "dprnt", "bprnt", "popen", "pclos"):
         return pc + 1
@@ -2553,12 +2581,16 @@ def _macro(ln: _Line, pc: int, st: dict, params: _Params) -> int:
     if kind == "while":
         return pc + 1 if holds else st["ends"][pc] + 1
     rest = ev.s[ev.i:]
+    if rest in ("then", "th"):
+        raise ReferenceError("IF [..] THEN alone: a multi-line IF .. ENDIF block")
     if not holds:
         return pc + 1
     if rest.startswith("goto"):
         return _goto(_Eval(rest[4:], params).chain(closed=False), pc, st)
     if not rest.startswith("then"):
         raise ReferenceError(f"IF without GOTO/THEN: {rest[:20]!r}")
+    if haas:
+        return dataclasses.replace(ln, text=rest[4:], macro=None)
     words, sets = _words(rest[4:], params)
     if words:
         raise ReferenceError("NC words after THEN")

@@ -12,6 +12,7 @@ import pytest
 from interpolators.context import MachineContext
 from interpolators.heidenhain import parse_heidenhain
 from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
+from tests.interpolators.reference_iso import ReferenceError
 from tests.interpolators.reference_match import match_blocks, reader_rows
 from tests.interpolators.tnc_generator import context, generate
 from vcnc.commands.interpolate import blocks_table
@@ -147,3 +148,38 @@ def test_pocket_wall_finishing_starts_where_the_roughing_left_the_tool():
     assert call[k + 1:k + 3] == [("line", [74.5, 50.0, -2.0]), ("line", [74.5, 39.0, -2.0])]
     assert ("line", [50.0, 50.0, -4.0]) in call[k + 3:] and ("line", [74.5, 50.0, -4.0]) in call[k + 3:]
     assert call[-2:] == [("rapid", [50.0, 50.0, 2.0]), ("rapid", [50.0, 50.0, 50.0])]
+
+
+@pytest.mark.parametrize("body", [
+    "L X+10 Y+0\nRND R5\nL X+10 Y+3",  # 90 degrees: R5 takes 5 mm of each line, the second has 3
+    "L X+7 Y+0\nL X+10 Y+0\nRND R5\nL X+10 Y+20",  # the first has 3
+    "L X+10 Y+0\nRND R4\nL X+10 Y+10\nRND R7\nL X+0 Y+10",  # 6 left of the second line after the first rounding
+])
+def test_a_rounding_longer_than_a_line_is_refused_by_the_reference_too(body):
+    # the reference put the fillet where the lines offset by R meet without asking whether its tangent points
+    # lie on the lines (TNC 640 manual, "Rounding corners RND": the arc is tangential to both elements); the
+    # reader refuses (corners.round_corner: "it needs .. mm of each line"), the reference accepted: tnc_generator
+    # seed 1100172 (drive.py tnc 1100000 1500, fuzz39)
+    text = f"0 BEGIN PGM T MM\nL X+0 Y+0 Z+0 R0 F100\n{body}\nEND PGM T MM\n"
+    with pytest.raises(GCodeError, match="rounding radius"):
+        parse_heidenhain(text, source="t.h", context=HOME)
+    with pytest.raises(ReferenceError, match="RND radius does not fit"):
+        heidenhain_reference(text, HOME)
+
+
+def test_a_rounding_that_just_fits_on_the_line_left_by_the_one_before():
+    prog = checked("L X+0 Y+0 Z+0 R0 F100\nL X+10 Y+0\nRND R4\nL X+10 Y+10\nRND R6\nL X+0 Y+10\nRND R4\n"
+                   "L X+0 Y+30", exact=True)
+    assert prog.blocks
+
+
+def test_an_inside_rounding_no_larger_than_the_tool_must_fit_on_its_lines_too():
+    # RL, an inside corner, RND R2 under the tool's R3: the tool centre paths meet without the arc, but the
+    # programmed rounding still takes 2 mm of the 1.5 mm line after it; the reference skipped such roundings before
+    # it asked (tnc_generator seeds 1100805, 1101054)
+    text = ("0 BEGIN PGM T MM\nTOOL DEF 1 L+0 R+3\nTOOL CALL 1 Z S1000\nL X+0 Y-10 Z+0 R0 F100\nL X+10 Y+0 RL\n"
+            "L X+30 Y+0\nRND R2\nL X+30 Y+1.5\nL X+60 Y+1.5\nL X+60 Y-20 R0\nEND PGM T MM\n")
+    with pytest.raises(GCodeError, match="rounding radius 2 mm does not fit"):
+        parse_heidenhain(text, source="t.h", context=HOME)
+    with pytest.raises(ReferenceError, match="RND radius does not fit"):
+        heidenhain_reference(text, HOME)

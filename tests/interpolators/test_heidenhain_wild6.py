@@ -72,14 +72,14 @@ def test_an_iso_block_number_is_named():
 
 
 def test_a_pattern_after_an_old_cycle_names_that_cycle():
-    # a shop's program runs cycle 220 after the old tapping cycle 2 (CYCL DEF 2.0 .. 2.4): which run a pattern
-    # gives the cycles outside the 200 series no manual page found says; the error names the cycle (it said
-    # "without a machining cycle" though one was defined)
+    # a shop's program runs cycle 220 after an old cycle: which run a pattern gives the old pockets, no manual
+    # page found says; the error names the cycle (it said "without a machining cycle" though one was defined).
+    # (The shop's own form, cycle 220 after the old tapping cycle 2, runs since session 39: test_tnc_old39.)
     body = ("1 TOOL DEF 1 L+0 R+2\n2 TOOL CALL 1 Z S1000\n3 L X+0 Y+0 Z+2 R0 FMAX\n"
-            "4 CYCL DEF 2.0 GEWINDEBOHREN\n5 CYCL DEF 2.1 ABST 1\n6 CYCL DEF 2.2 TIEFE -18\n"
-            "7 CYCL DEF 2.3 V.ZEIT 0.1\n8 CYCL DEF 2.4 F100\n"
-            "9 CYCL DEF 220 MUSTER KREIS Q216=+60 Q217=+45 Q244=+48 Q245=+0 Q246=+180 Q247=+180 Q241=+2 "
+            "4 CYCL DEF 5.0 KREISTASCHE\n5 CYCL DEF 5.1 ABST 1\n6 CYCL DEF 5.2 TIEFE -5\n"
+            "7 CYCL DEF 5.3 ZUSTLG 5 F100\n8 CYCL DEF 5.4 RADIUS 8\n9 CYCL DEF 5.5 F200 DR-\n"
+            "10 CYCL DEF 220 MUSTER KREIS Q216=+60 Q217=+45 Q244=+48 Q245=+0 Q246=+180 Q247=+180 Q241=+2 "
             "Q200=+1 Q203=+0 Q204=+1 Q301=+1 Q365=+0")
-    with pytest.raises(GCodeError, match=r"t.h:10:3: cycle 220 with cycle 2: a pattern runs the machining cycles "
-                                         r"of the 200 series here"):
+    with pytest.raises(GCodeError, match=r"t.h:11:4: cycle 220 with cycle 5: a pattern runs the machining cycles "
+                                         r"of the 200 series and the old cycles 1, 2, 17 here"):
         parse_heidenhain("0 BEGIN PGM T MM\n" + body + "\nEND PGM T MM\n", source="t.h", context=ZERO)

@@ -203,3 +203,14 @@ def test_polar_words_under_a_g10_rotation():
             machine("rapid", 11.5911, -3.1058, 5), machine("line", 4.8296, -1.2941, 2)]
     assert [g[0] for g in got] == [w[0] for w in want]
     assert np.allclose([g[1:] for g in got], [w[1:] for w in want], atol=2e-4)
+
+
+def test_every_feed_move_after_a_repeated_g94_has_a_feed():
+    """``chunk_inverse_time`` writes G94 again while G94 is on (LinuxCNC clears the feed: interp_convert.cc
+    ``convert_feed_mode``); the next feed move must carry its F, or rs274 and vcnc both refuse the program ("Cannot
+    do g1 with zero feed rate") and nothing after it is compared. It did not, 1 time in 7 (``linuxcnc_diff.py
+    --generate``: 'both refuse' 354990, 355969, ...; 10 of seeds 0-299 of this chunk alone). The refusal itself is
+    test_reader_fast_g93's "G94 again without F"."""
+    for seed in range(300):
+        text, _ = generate(seed, features=("inverse_time",), chunks=(1, 1))
+        assert parse_program(text, context=LINUXCNC).blocks, seed

@@ -58,8 +58,9 @@ def add_context_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Heidenhain datum table (BEGIN ZEROSHIFT.D MM, columns D X Y Z) whose rows "
                              "CYCL DEF 7.1 #n selects (default: none, and such a block is an error)")
     parser.add_argument("--subroutine-path", metavar="DIR[:DIR]",
-                        help="folders searched for the file <name>.ngc of an o<name> call after the program's own "
-                             "folder (LinuxCNC INI [RS274NGC] SUBROUTINE_PATH; before the machine's)")
+                        help="folders searched for the file <name>.ngc of an o<name> call, and (Fanuc, Haas) for "
+                             "the program file of an M98/G65 P<number> call, after the program's own folder (LinuxCNC "
+                             "INI [RS274NGC] SUBROUTINE_PATH; before the machine's)")
     parser.add_argument("--user-m-path", metavar="DIR[:DIR]",
                         help="folders holding the M100-M199 user programs (LinuxCNC INI [RS274NGC] USER_M_PATH; "
                              "before the machine's)")

@@ -120,6 +120,7 @@ from vcnc.traces.columns import (
 )
 from vcnc.traces.companion import servo_period_hint
 from vcnc.traces.diadem import looks_like_diadem, read_diadem_channels
+from vcnc.traces.fptrace import FpTrace, fp_table, fp_trace
 from vcnc.traces.gcsarray import GcsArrayHeader, gcs_array_header
 from vcnc.traces.halscope import looks_like_halscope, read_halscope
 from vcnc.traces.indraworks import looks_like_oscilloscope, read_oscilloscope_signals
@@ -207,6 +208,10 @@ def read_delimited(path: str | os.PathLike[str], *, columns: Mapping[str, str] |
     if looks_like_diadem(text[:40000]):
         return _diadem(text, Path(path), src, columns=columns, time_unit=time_unit, unit=unit, resample=resample,
                        sample_time=sample_time)
+    fp = fp_trace(text.lstrip("\ufeff").splitlines())
+    if fp is not None:
+        return _panasonic_fp(text.lstrip("\ufeff"), src, fp, columns=columns, time_unit=time_unit, unit=unit,
+                             resample=resample, sample_time=sample_time)
     return _generic(_matrix_literal(text.lstrip("\ufeff")), src, columns=columns, time_unit=time_unit, unit=unit,
                     resample=resample, sample_time=sample_time)
 
@@ -228,6 +233,22 @@ def _diadem(text: str, path: Path, src: str, *, columns: Mapping[str, str] | Non
     except CaptureError as exc:  # the table's lines are not the file's: name the channel headers' line instead
         raise CaptureError(exc.message, file=src, line=channels.header_line, expected=exc.expected) from None
     capture.meta["format"] = f"DIAdem DAT header with {', '.join(channels.files) or 'implicit channels'}"
+    return capture
+
+
+def _panasonic_fp(text: str, src: str, fp: FpTrace, *, columns: Mapping[str, str] | None, time_unit: str | None,
+                  unit: str | None, resample: bool, sample_time: float | None) -> Capture:
+    """A Panasonic FP trace or data logging CSV (:mod:`vcnc.traces.fptrace`): its records as a table under their
+    channels' names, a trace's time the sum of its obtaining intervals and a logging's rows periodic, at the sampling
+    interval given."""
+    if time_unit is not None:
+        raise CaptureError("--time-unit applies to a time column; a Panasonic FP trace or logging CSV has none "
+                           "(--sample-time S gives its sampling interval)", file=src, line=fp.header + 1)
+    capture = _generic(fp_table(text, src, fp, sample_time), src, columns=columns, time_unit=None, unit=unit,
+                       resample=resample, sample_time=None if fp.interval else sample_time)
+    capture.meta["format"] = f"Panasonic FP {'trace' if fp.interval else 'data logging'} CSV"
+    if fp.interval:
+        capture.meta["time_unit"] = f"obtaining intervals, {sample_time:.9g} s given for the commonest"
     return capture
 
 
