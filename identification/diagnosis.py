@@ -1763,8 +1763,8 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
     current loop's, :func:`refit_candidate`, it is kept, 2.12 -> 0.68 um, fold 4 0.58 -> 0.56 um) or by the
     whole record (:func:`_worse_on_the_record`; a
     SINUMERIK trace's position-periodic load, held out 7.27 -> 5.06 um, 3.4 -> 223 um over all samples), or as no
-    physical effect of its name (the round's ``unphysical`` reasons: a mode too near the Nyquist frequency,
-    :func:`_unphysical_mode`). A report
+    physical effect of its name (the round's ``unphysical`` reasons: a mode above the Nyquist frequency or damped
+    beyond 1/sqrt(2), :func:`_unphysical_mode`). A report
     that said no effect lowers the held-out error hid that one did, and why it is not in the model (our reading)."""
     lines = []
     for r in validation.get("rounds") or []:

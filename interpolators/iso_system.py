@@ -184,6 +184,7 @@ class ReaderState(Protocol):
     input_result: float | None  # LinuxCNC #5399 (iso_mcodes, M66)
     input_unknown: str
     tcp: int  # tool centre point control in force (iso_tcp), 0 off
+    after_g80: bool
     arc_incremental: bool
     tool_selected: int | None
     tool_xy: np.ndarray
@@ -405,13 +406,13 @@ def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]
     why)`` for one whose value is the machine's (the pockets: an error naming why), ``(None, "")`` for another name.
 
     overview.adoc "Predefined Named Parameters" and interp_namedparams.cc ``lookup_named_param``: the motion mode
-    and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none; ``_plane`` 170), ``_ccomp`` 400/410/420,
-    1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time`` ``_units_per_minute``
-    ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force), ``_retract_r_plane`` (G99) and
-    ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 .. G59.3, ``_feed`` (F in program
-    units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any), ``_spindle_rpm_mode`` 1 (G97: vcnc has no
-    G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and ``_remap_level`` 0 (no remaps); rs274
-    2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)".
+    and plane as G code x 10 (``_motion_mode`` 10 in G1, 800 with none and after G80; ``_plane`` 170), ``_ccomp``
+    400/410/420, 1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time``
+    ``_units_per_minute`` ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force),
+    ``_retract_r_plane`` (G99) and ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 ..
+    G59.3, ``_feed`` (F in program units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any),
+    ``_spindle_rpm_mode`` 1 (G97: vcnc has no G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and
+    ``_remap_level`` 0 (no remaps); rs274 2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)".
 
     The switches (active_m_codes): ``_spindle_on`` (M3/M4; M5, M19, M6 and the program end stop it), ``_spindle_cw``
     (M3 turning), ``_mist`` (M7) and ``_flood`` (M8) until M9, ``_feed_override`` ``_speed_override`` ``_adaptive_feed``
@@ -427,7 +428,7 @@ def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]
         return LINUXCNC_VERSION[key], ""
     wcs = WORK_OFFSETS.index(st.wcs) + 1 if st.wcs in WORK_OFFSETS else 0
     values = {
-        "_motion_mode": 800.0 if st.motion is None else float(st.motion),
+        "_motion_mode": 800.0 if st.motion is None or st.after_g80 else float(st.motion),
         "_plane": {2: 170.0, 1: 180.0, 0: 190.0}[st.plane],
         "_ccomp": 400.0 if st.comp_side is None else float(st.comp_code[1:3]) * 10.0,
         "_metric": float(not st.inch), "_imperial": float(st.inch),
