@@ -555,15 +555,6 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
     target = _offset_variable(n, st)
     if target is None:
         return False
-    code, j = target
-    v = 0.0 if value is None else float(value)
-    if j < 3:
-        current = st.offsets.get(code)
-        linear = (st.context.offset(code) if current is None else current).copy()
-        linear[j] = v * _stored(st)
-        st.offsets[code] = linear
-    else:
-        extra = st.extra_offsets.get(code, np.zeros(6)).copy()
-        extra[j - 3] = v
-        st.extra_offsets[code] = extra
+    code, j = target  # j < 6: X Y Z and the three rotary axes
+    _write_offset(code, j, 0.0 if value is None else float(value), st)
     return True
