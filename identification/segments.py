@@ -169,7 +169,8 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
         0 when the record starts at rest (the usual case; nothing is cut), else the first sample
         where the reference and the axis both stand still (steps below :data:`REST_STEP_SHARE`
         and :data:`SETTLED_SHARE` of the largest reference step; at the first sample also a move
-        setting off from standstill, :func:`starts_from_standstill`) and the tracking error is at
+        setting off from standstill, :func:`starts_from_standstill`, or an axis standing where it is
+        commanded, :func:`stands_where_commanded`) and the tracking error is at
         its value at rest (there also 0; within 10 robust deviations of the still samples, or
         :data:`SETTLED_SHARE` of its largest excursion). None when the axis does not rest in the
         first :data:`MAX_DROPPED_SHARE` of the record: then the start transient stays.
