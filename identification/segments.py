@@ -24,7 +24,7 @@ from vcnc.core.errors import IdentificationError
 from vcnc.core.metrics import true_runs, widen
 
 __all__ = ["Fold", "FoldPlan", "active_mask", "motion_segments", "folds", "settled_start", "starts_from_standstill",
-           "SETTLED_SHARE", "RAMP_SHARE"]
+           "stands_where_commanded", "measured_count", "SETTLED_SHARE", "RAMP_SHARE"]
 
 #: a reference step smaller than this share of the reference's largest step counts as standing still [-]
 _STILL_SHARE = 1e-6
@@ -110,6 +110,44 @@ def starts_from_standstill(reference: np.ndarray) -> bool:
     return steps.size > 1 and steps[0] <= RAMP_SHARE * steps[1]
 
 
+def measured_count(measured: np.ndarray, scale: float) -> float:
+    """The measured position's quantisation step, as the record shows it: its smallest change between samples larger
+    than :data:`_STILL_SHARE` of ``scale`` (the largest reference step) [mm]; 0 when it never changes. An encoder's
+    count for a quantised record (a 0.25 um encoder logs steps of 0.25 um and its multiples), an upper bound of the
+    resolution otherwise (a noisy or resampled record changes by less)."""
+    steps = np.abs(np.diff(np.asarray(measured, float)))
+    steps = steps[steps > _STILL_SHARE * scale]
+    return float(steps.min()) if steps.size else 0.0
+
+
+def stands_where_commanded(reference: np.ndarray, measured: np.ndarray) -> bool:
+    """Whether the axis stands at the first sample where it is commanded, however the reference sets off there.
+
+    Where it is commanded: the measured position within one count (:func:`measured_count`) of the reference's first
+    sample. Standing: the measured position unchanged over as many samples as it takes a count to fall below
+    :data:`SETTLED_SHARE` of the largest reference step a sample, the bound at rest :func:`settled_start` keeps at
+    every other sample (a coarse encoder hides a slow motion for a sample: a 1 um count shows an axis creeping at
+    0.9 um a sample only every other sample).
+
+    A reference whose first steps look under way (a move of 5 um done in two 2 ms samples of 2.5 um, which
+    :func:`starts_from_standstill` cannot tell from a record triggered mid-move) leaves an axis that stood where it
+    was commanded at rest at the first sample: its loop has not answered yet, or its friction holds it. A record
+    whose reference leads (a loop frame with the first samples of the move cut off) starts with the axis standing
+    too, but several counts behind its command (ident_fuzz seed 111 case 21, a 2 um encoder, 8.9 um behind): that one
+    is no rest at the command's first sample.
+    """
+    xr = np.asarray(reference, float)
+    x = np.asarray(measured, float)
+    big = float(np.max(np.abs(np.diff(xr)))) if xr.size > 1 else 0.0
+    if big == 0.0:
+        return False
+    count = measured_count(x, big)
+    span = max(1, int(np.ceil(count / (SETTLED_SHARE * big))))
+    if x.size <= span or abs(x[0] - xr[0]) > count:
+        return False
+    return bool(np.all(x[1:span + 1] == x[0]))
+
+
 def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     """The first sample at which the axis is at rest, so that a simulation may start there.
 
@@ -131,7 +169,8 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
         0 when the record starts at rest (the usual case; nothing is cut), else the first sample
         where the reference and the axis both stand still (steps below :data:`REST_STEP_SHARE`
         and :data:`SETTLED_SHARE` of the largest reference step; at the first sample also a move
-        setting off from standstill, :func:`starts_from_standstill`) and the tracking error is at
+        setting off from standstill, :func:`starts_from_standstill`, or an axis standing where it is
+        commanded, :func:`stands_where_commanded`) and the tracking error is at
         its value at rest (there also 0; within 10 robust deviations of the still samples, or
         :data:`SETTLED_SHARE` of its largest excursion). None when the axis does not rest in the
         first :data:`MAX_DROPPED_SHARE` of the record: then the start transient stays.
@@ -153,11 +192,13 @@ def settled_start(reference: np.ndarray, measured: np.ndarray) -> int | None:
     tol = max(10.0 * mad, SETTLED_SHARE * float(np.max(np.abs(e - med))))
     still = dxr <= REST_STEP_SHARE * big
     still[0] |= starts_from_standstill(xr)  # a move setting off at the first sample started at rest
+    held = stands_where_commanded(xr, x)  # an axis standing at the first sample where it is commanded rests there
+    still[0] |= held
     # at rest: the tracking error at the record's rest value; at the first sample also none at all
     # (a loop that rests 1 um off at the end of its record, by friction, started where it was commanded;
     # later, an error crossing 0 at a reversal is no rest)
     at_rest = np.abs(e - med) <= tol
-    at_rest[0] |= abs(e[0]) <= tol
+    at_rest[0] |= abs(e[0]) <= tol or held
     ok = still & (dx <= SETTLED_SHARE * big) & at_rest
     hits = np.flatnonzero(ok)
     if hits.size and hits[0] > 0:
