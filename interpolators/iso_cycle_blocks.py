@@ -197,6 +197,9 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if st.context.dialect.name == "fanuc":
         rigid_tap_speed(st, name, where, mw.column, mw.text)
         peck_tap = rigid_tap_peck(st, seen.get("Q"), name, where, notes)
+    elif st.context.dialect.name == "haas" and st.motion in (740, 840) and "Q" in seen and notes is not None:
+        notes.add(f"{name} with Q under haas: the Q is not used, the tap runs in one stroke to Z (no Haas text on a "
+                  "peck tap was found; under fanuc a Q after M29 is the machine's peck rigid tapping)")
     if st.feed is None and st.motion != 0 and st.per_rev:
         per_rev_missing(st, where, name, mw.column, mw.text)
     if st.feed is None and st.motion != 0 and not initial_feed(st, where):

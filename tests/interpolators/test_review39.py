@@ -51,3 +51,15 @@ def test_peck_rigid_tap_with_older_features_agrees_with_the_reference(kind, text
     prog = parse_iso(text, source="t.nc", context=context)
     assert sum(b.kind == "line" for b in prog.blocks) >= 5  # the pecks are there: more than the one stroke in, out
     assert match_blocks(iso_reference(text, context), reader_rows(*blocks_table(prog))).mismatch is None
+
+
+@pytest.mark.parametrize("dialect", ["haas", "fanuc"])
+def test_a_tapping_q_that_is_not_used_is_noted(dialect):
+    # the lead, after review39: under haas a G84 Q ran as one stroke and the Q was dropped without a word (no Haas text
+    # on a peck tap was found); under fanuc a Q without M29 was already noted. The tap runs in one stroke either way.
+    text = "G21 G90 G17\nG0 X0 Y0 Z10.\nS500 M3\nG84 X5. Y5. Z-10. R2. Q3. F500.\nX10.\nG80\nM30\n"
+    prog = parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]), source="t.nc")
+    assert any("Q" in n and "one stroke" in n for n in prog.notes)
+    z = [round(float(b.target[2]), 6) for b in prog.blocks]
+    assert z.count(-10.0) == 2  # one stroke to Z per hole, no peck levels between R and Z
+    assert all(v in (10.0, 2.0, -10.0) for v in z)
