@@ -974,6 +974,7 @@ def _parameters(st: State, dialect: str, plain: PlainMoves) -> Parameters:
     named parameters of the modal state (:mod:`interpolators.iso_system`)."""
     macro_b = dialect in ("fanuc", "haas")
     linuxcnc = dialect == "linuxcnc"
+
     def set_linuxcnc(n, v):
         return set_reference_parameter(n, v, st) or set_work_offset_parameter(n, v, st)
 
@@ -1452,7 +1453,9 @@ def _nonmodal(gcodes, seen, st: State, blocks, used, where: Where, number, notes
             notes.add("G10 L0 tool table reload (table unchanged)")
             return True
         p = int(seen["P"].value) if "P" in seen else -1
-        if p == 0 or 0 < p <= len(WORK_OFFSETS) and WORK_OFFSETS[p - 1] == st.wcs:  # LinuxCNC #5221 .. written
+        sets_system = "L" in seen and seen["L"].value in (2, 20)  # convert_setup: L1/L10/L11 P is a tool number
+        if st.written_offsets and sets_system and (p == 0 or 0 < p <= len(WORK_OFFSETS) and
+                                                   WORK_OFFSETS[p - 1] == st.wcs):  # LinuxCNC #5221 .. written
             take_written_offsets(st)
         notes.add(g10(seen, st, where, w))
         return True

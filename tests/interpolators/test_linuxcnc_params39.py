@@ -121,3 +121,14 @@ def test_a_written_work_offset_is_taken_when_another_system_is_selected():
     xy = [v for b in prog.blocks for v in b.target[:2].tolist()]
     assert xy == pytest.approx([0, 0, 254, 508, 257, 508, 77.2, 508, 76.2, 508, 76.2, 508, 254, 508, 25.4, 508,
                                 254, 508, 254, 1])
+
+
+def test_a_tool_g10_leaves_a_written_work_offset_pending():
+    # rs274 2.9.0~pre1 (benchmarks/linuxcnc_diff.py on this program: match): "#5221 = 10" writes G54's X while G54 is
+    # in force; G10 L1 P1 sets tool 1 (P a tool number, convert_setup_tool), not the system, so the next move still
+    # uses the old X offset, and only re-selecting G54 after G55 takes the write. vcnc took it at the G10 L1.
+    text = "G21 G90 G54\nG0 X0 Y0 Z0\n#5221 = 10\nG10 L1 P1 R1 Z5\nG0 X1\nG55\nG54\nG0 X2\nM2\n"
+    prog = parse_program(text, context=MachineContext(dialect=DIALECTS["linuxcnc"], linear_units="mm"),
+                         source="t.ngc")
+    xs = [round(float(b.target[0]), 6) for b in prog.blocks]
+    assert xs[-2:] == [1.0, 12.0]
