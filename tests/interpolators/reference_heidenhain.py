@@ -195,7 +195,9 @@ def _val(text: str, q: dict) -> float:
     return _Formula(text, q).value()
 
 
-_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCUVW]|R[LR0]|R|FU|F|M)"
+#: ``R0`` is the compensation word only when no number follows it: ``RND R0.5``, ``CR .. R0.5`` (``R0,5`` as a TNC set
+#: to the decimal comma saves it) are radii of 0.5 mm (tncwild40: a compensator maker's ``RND R0,5 F``).
+_WORD = re.compile(r"(IPA|PA|IPR|PR|LEN|CCA|DR|FMAX|MB|[NT][XYZ]|I?[XYZ]|I?[ABCUVW]|R[LR]|R0(?![\d.])|R|FU|F|M)"
                    r"([-+]?(?:Q[LR]?\d+|\d+\.?\d*|\.\d+|MAX|AUTO)?)")
 
 
