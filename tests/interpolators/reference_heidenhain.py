@@ -812,7 +812,7 @@ def _start_corner(t: _Tnc, line: int, kind: str, w: dict) -> None:
     size = w["R"] if kind == "RND" else w["LEN"]
     if t.factors[0] != t.factors[1]:
         raise ReferenceError(f"{kind} under an unequal scaling of the plane")
-    t.rounding = (kind, abs(size) * t.scale * t.scl * float(t.factors[0]), line, len(t.out) - 1)
+    t.rounding = (kind, abs(size) * t.scale * t.scl * float(t.factors[0]), line, len(t.out) - 1, t.comp)
 
 
 def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
@@ -822,8 +822,11 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
     each); CHF the line between the points ``size`` from P on each line (TNC 426/430 manual, "Rounding corners
     RND": "The rounding arc is tangential to the preceding and following contour elements", "Chamfer CHF": the
     chamfer side length, between two straight lines)."""
-    kind, size, line, row = t.rounding
+    kind, size, line, row, comp = t.rounding
     t.rounding = None
+    # the corner is the compensated contour's when RL/RR was in force at the RND/CHF, though the next block
+    # cancels it with R0: that block leaves the contour from the corner's end (the reader's reading, tncwild40)
+    comp = comp or t.comp
     prev = t.out[row]
     p = t.pos.copy()
     d = (end - p)[:2]
@@ -844,7 +847,7 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
             math.atan2(abs(turn), float(a @ b)) / 2) > min(t.last_len, float(np.hypot(*d))) + 1e-9:
         # between lines it takes r tan(theta/2) of each, an inside one no larger than the tool as well
         raise ReferenceError("RND radius does not fit: it needs more of a line than there is")
-    if kind == "RND" and t.comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * side > 0:
+    if kind == "RND" and comp and 0 < t.radius and size <= t.radius + 1e-9 and turn * side > 0:
         return  # an inside rounding no larger than the tool: the tool centre paths meet (the reader's note)
     if kind == "CHF":
         t1, t2 = p.copy(), p.copy()
@@ -858,10 +861,12 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
                                      ("line", prev.element[1], t1.copy()) if prev.element[0] == "line"
                                      else prev.element)
     t.pos = t1
+    now, t.comp = t.comp, comp
     if kind == "CHF":
         t.emit(line, "feed", t2)
-        return
-    t.emit(line, "arc_ccw" if turn > 0 else "arc_cw", t2, centre=np.array([*fc, p[2]]))
+    else:
+        t.emit(line, "arc_ccw" if turn > 0 else "arc_cw", t2, centre=np.array([*fc, p[2]]))
+    t.comp = now
 
 
 def _offset_curve(p: np.ndarray, tangent: np.ndarray, centre, s: float, r: float) -> tuple:

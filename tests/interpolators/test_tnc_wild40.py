@@ -32,3 +32,32 @@ def test_a_rounding_radius_below_one_written_r0_point_is_a_radius():
         assert arc.segment.radius == pytest.approx(0.5)
         assert np.allclose(arc.segment.center[:2], centre, atol=1e-9)
     assert _arc_rows(prog, 8)[0].feed == pytest.approx(300.0 / 60.0)  # 'RND R0,5 F300': its own feed [mm/s]
+
+
+# -- a rounding programmed under RL/RR right before the block that cancels it with R0: the corner is the compensated
+#    contour's (the tool leaves it from the corner's end). The reference took the compensation as off at the corner:
+#    it cut an outside rounding exactly on the programmed contour (the reader: on the tool centre's path, the radius
+#    out) and an inside one no larger than the tool (which the reader leaves to the tool centre paths, as it does
+#    within a contour) as an arc into the wall -------------------------------------------------------------------
+
+def test_an_outside_rounding_before_the_r0_block_is_on_the_tool_centre_path():
+    text = ("0 BEGIN PGM RX MM\n1 TOOL DEF 1 L+0 R+3\n2 TOOL CALL 1 Z S3000 F500\n3 L X+0 Y+0 Z+10 R0 FMAX M3\n"
+            "4 L Z-1 F200\n5 L X+10 Y+0 RL F500\n6 L X+10 Y+20\n7 RND R5\n8 L X+30 Y+20 R0\n9 L X+30 Y+0\n"
+            "10 L Y+10 RR\n11 L X+50\n12 RND R2\n13 L X+50 Y+30 R0\n14 L Z+10 R0 FMAX\n15 END PGM RX MM\n")
+    prog = checked_program(text, CTX, exact=False)  # the reference expected the arc's end at X+15 Y+20
+    (arc,) = _arc_rows(prog, 8)
+    assert arc.segment.radius == pytest.approx(8.0)  # R5 + the tool radius 3, about the corner's centre
+    assert np.allclose(arc.segment.center[:2], (15.0, 15.0)) and np.allclose(arc.target[:2], (15.0, 23.0))
+    (arc,) = _arc_rows(prog, 13)  # RR, turning left: outside too
+    assert arc.segment.radius == pytest.approx(5.0) and np.allclose(arc.segment.center[:2], (48.0, 12.0))
+
+
+def test_an_inside_rounding_no_larger_than_the_tool_before_the_r0_block_is_left_to_the_tool():
+    text = ("0 BEGIN PGM RING MM\n1 TOOL DEF 1 L+0 R+6.97\n2 TOOL CALL 1 Z S2000\n3 L X+0 Y+0 Z+30 R0 FMAX M13\n"
+            "4 CC X+0 Y+0\n5 L Z+25 R0 F MAX M\n6 LP PR+20 PA+0.000 RL F100 M\n7 RND R2 F\n8 CP IPA+360 DR+ RL F M\n"
+            "9 RND R2 F\n10 L X+0.000 Y+0.000 R0 F MAX M\n11 END PGM RING MM\n")
+    prog = checked_program(text, CTX, exact=False)  # the reference cut the second RND R2 on the contour, exactly
+    assert not _arc_rows(prog, 8 - 1) and not _arc_rows(prog, 10)  # no rounding arcs (blocks 7, 9: lines 8, 10)
+    ring = _arc_rows(prog, 9)
+    assert len(ring) == 1 and ring[0].segment.radius == pytest.approx(20.0 - 6.97)
+    assert np.allclose(prog.blocks[-1].target, (0.0, 0.0, 25.0))
