@@ -1689,8 +1689,14 @@ def _set_transform(t: Transform, what: str, m: Machine, where: Where, col: int, 
         where.fail(f"MIRROR IMAGE of the tool axis {'XYZ'[m.plane]}", column=col, text=text.strip(),
                    expected="mirrored axes of the working plane (the TNC cannot mirror the tool axis)")
     if m.comp != "R0" and t != m.transform:
-        where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=text.strip(),
-                   expected="R0 before a coordinate transformation (the TNC cancels RL/RR there)")
+        if what != "cycle 10" or m.pending is not None or m.approach is not None:
+            where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=text.strip(),
+                       expected="R0 before a coordinate transformation (the TNC cancels RL/RR there)")
+        # iTNC 530 / TNC 640 cycle programming manuals, ROTATION (cycle 10): "An active radius compensation is
+        # canceled by defining Cycle 10 and must therefore be reprogrammed, if necessary": the run ends where its
+        # last element's tool centre ends (a proton-therapy workshop's TNC program writer turns its wings so)
+        m.note(f"cycle 10 cancels radius compensation {m.comp} (line {where.line}); the next RL/RR starts anew")
+        finish_compensation(m, open_end=True)
     m.transform = t
 
 

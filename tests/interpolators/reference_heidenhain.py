@@ -1321,6 +1321,14 @@ def _transform(t: _Tnc, number: int, rest: str) -> None:
     if number == 8:
         t.mirror = np.array([-1.0 if a in text else 1.0 for a in "XYZ"])
     elif number == 10:
+        # iTNC 530 / TNC 640 cycle programming manuals, ROTATION (cycle 10): "An active radius compensation is
+        # canceled by defining Cycle 10 and must therefore be reprogrammed": the next RL/RR enters anew; the tool
+        # stays beside the last point (a tool radius off it, as after an SL cycle, until X and Y are both written)
+        if t.comp and t.rounding is not None:
+            raise ReferenceError("cycle 10 with an RND/CHF waiting under RL/RR")
+        if t.comp:
+            t.loose = max(t.loose, t.radius)
+        t.comp = False
         m = re.fullmatch(r"(I?)ROT(.+)", text)
         t.rot = (t.rot if m.group(1) else 0.0) + _val(m.group(2), t.q)
     elif number == 11:

@@ -10,6 +10,7 @@ import pytest
 
 from interpolators.context import MachineContext
 from tests.interpolators.reference_heidenhain import checked_program
+from vcnc.errors import GCodeError
 
 CTX = MachineContext()
 
@@ -61,3 +62,47 @@ def test_an_inside_rounding_no_larger_than_the_tool_before_the_r0_block_is_left_
     ring = _arc_rows(prog, 9)
     assert len(ring) == 1 and ring[0].segment.radius == pytest.approx(20.0 - 6.97)
     assert np.allclose(prog.blocks[-1].target, (0.0, 0.0, 25.0))
+
+
+# -- cycle 10 ROTATION defined while RL/RR is active (the workshop's modulator: a wing under RL, then 'CYCL DEF 10.1
+#    IROT+120' and the next wing's 'LP PR+20 PA+Q5 RL'). iTNC 530 / TNC 640 cycle programming manuals, ROTATION
+#    (cycle 10): "An active radius compensation is canceled by defining Cycle 10 and must therefore be
+#    reprogrammed, if necessary". The reader refused it ('R0 before a coordinate transformation'); now the
+#    compensated run ends where its last element's tool centre ends, and the next RL/RR enters anew --------------
+
+ROTATION_UNDER_RL = """0 BEGIN PGM R MM
+1 TOOL DEF 1 L+0 R+3
+2 TOOL CALL 1 Z S3000 F500
+3 L X+0 Y-20 Z+5 R0 FMAX M3
+4 L Z-2 F200
+5 L X+0 Y+0 RL F500
+6 L X+20 Y+0
+7 CYCL DEF 10.0 ROTATION
+8 CYCL DEF 10.1 ROT+90
+9 L Z+5 R0 FMAX
+10 L X+0 Y+0 R0 FMAX
+11 L Z-2 F200
+12 L X+10 Y+0 RL F500
+13 L X+10 Y+10
+14 L X+20 Y+20 R0
+15 CYCL DEF 10.0 ROTATION
+16 CYCL DEF 10.1 ROT+0
+17 END PGM R MM
+"""
+
+
+def test_cycle_10_under_rl_cancels_the_compensation():
+    prog = checked_program(ROTATION_UNDER_RL, CTX, exact=False)  # refused before: 'cycle 10 while RL is active'
+    at = {b.line: b.target for b in prog.blocks}
+    assert np.allclose(at[7], (20.0, 3.0, -2.0))  # the run's last element ends beside X+20 Y+0, RL: +Y
+    assert np.allclose(at[10], (20.0, 3.0, 5.0))  # no move to the contour's point: the tool stays there
+    assert np.allclose(at[13], (0.0, 7.0, -2.0))  # RL anew under ROT+90: program X+10 Y+0, beside the next line
+    assert np.allclose(at[15], (-20.0, 20.0, -2.0))
+    assert any("cycle 10 cancels radius compensation RL" in n for n in prog.notes)
+
+
+def test_other_transformations_under_rl_are_still_refused():
+    text = ROTATION_UNDER_RL.replace("7 CYCL DEF 10.0 ROTATION\n8 CYCL DEF 10.1 ROT+90",
+                                     "7 CYCL DEF 11.0 SCALING\n8 CYCL DEF 11.1 SCL 0.5")
+    with pytest.raises(GCodeError, match="cycle 11 while radius compensation RL is active"):
+        checked_program(text, CTX, check=False)
