@@ -1691,7 +1691,7 @@ def _set_transform(t: Transform, what: str, m: Machine, where: Where, col: int, 
     if m.comp != "R0" and t != m.transform:
         if what != "cycle 10" or m.pending is not None or m.approach is not None:
             where.fail(f"{what} while radius compensation {m.comp} is active", column=col, text=text.strip(),
-                       expected="R0 before a coordinate transformation (the TNC cancels RL/RR there)")
+                       expected="R0 before a coordinate transformation (only cycle 10 cancels RL/RR on its own)")
         # iTNC 530 / TNC 640 cycle programming manuals, ROTATION (cycle 10): "An active radius compensation is
         # canceled by defining Cycle 10 and must therefore be reprogrammed, if necessary": the run ends where its
         # last element's tool centre ends (a proton-therapy workshop's TNC program writer turns its wings so)
