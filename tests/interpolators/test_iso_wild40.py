@@ -23,3 +23,12 @@ def test_a_cycle_level_error_speaks_the_programs_units():
         parse_program(text, context=FANUC)
     with pytest.raises(GCodeError, match=r"hole bottom Z 5 mm lies above the R plane 1 mm"):
         parse_program(text.replace("G20", "G21").replace("Z.5 R.1", "Z5 R1"), context=FANUC)
+
+
+def test_a_back_boring_level_error_speaks_the_programs_units():
+    """The G87 back-boring levels likewise: an inch program's R.2 above its Z-.5 is named in inch (it read
+    'R 5.08 below Z -12.7 below the initial level 25.4 mm')."""
+    text = "%\nO1\nG20 G90 G0 X1 Y0 Z1\nG98 G87 Z-.5 R.2 Q.01 F5\nM30\n%\n"
+    with pytest.raises(GCodeError, match=r":4:14: G87 back boring cycle: back boring needs R 0\.2 below Z -0\.5 below "
+                                         r"the initial level 1 in \(got 'R\.2'\)"):
+        parse_program(text, context=FANUC)
