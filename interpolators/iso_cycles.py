@@ -226,6 +226,11 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     return [dataclasses.replace(m, target=m.target[back]) for m in moves]
 
 
+def _unit(scale: float) -> str:
+    """The program's length unit for a message: levels are reported as the program writes them (G20: inch)."""
+    return "mm" if scale == 1.0 else "in"
+
+
 def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
               scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
               tap_out_to_r: bool, haas: bool, fanuc_rules: bool,
@@ -250,8 +255,10 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
         return _back_bore(words, cycle=cycle, pos=pos, r=r, top=bottom, offset=offset, scale=scale,
                           incremental=incremental, retract_r=retract_r, feed=feed, dwell=dwell)
     if bottom > r:
-        raise CycleError(f"hole bottom Z {bottom - offset[2]:g} mm lies above the R plane {r - offset[2]:g} mm",
-                         letter="Z" if "Z" in words else "R", expected="Z below R")
+        unit = _unit(scale)
+        raise CycleError(f"hole bottom Z {(bottom - offset[2]) / scale:g} {unit} lies above the R plane "
+                         f"{(r - offset[2]) / scale:g} {unit}", letter="Z" if "Z" in words else "R",
+                         expected="Z below R")
     # LinuxCNC's loop runs in program units: a Q that divides R - Z makes the pecks its rounding makes
     r_p = (cycle.initial - offset[2]) / scale + cycle.r if incremental else cycle.r
     bottom_p = r_p + cycle.z if incremental else cycle.z
@@ -419,8 +426,9 @@ def _back_bore(words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, r
                          expected="G98")
     initial = cycle.initial
     if not r < top < initial:
-        raise CycleError(f"back boring needs R {r - offset[2]:g} below Z {top - offset[2]:g} below the initial "
-                         f"level {initial - offset[2]:g} mm", letter="R" if "R" in words else "Z",
+        raise CycleError(f"back boring needs R {(r - offset[2]) / scale:g} below Z {(top - offset[2]) / scale:g} "
+                         f"below the initial level {(initial - offset[2]) / scale:g} {_unit(scale)}",
+                         letter="R" if "R" in words else "Z",
                          expected="R (bore bottom) < Z (top of the cut) < the initial level")
     repeats = int(words.get("L", words.get("K", 1.0)))
     dx, dy = _shift(cycle, scale)
