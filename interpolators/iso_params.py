@@ -94,6 +94,7 @@ from collections.abc import Callable
 from typing import NoReturn
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
+from interpolators.iso_decimal import address_increment
 from interpolators.iso_words import Word, block_comment, read_words
 
 __all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
@@ -225,12 +226,16 @@ class Parameters:
         ``ATAN[y]/[x]`` is 0 to 360 deg (parameter NAT, No. 6004#0, = 0, its default: ``ATAN[-1]/[-1]`` is 225;
         LinuxCNC's and Haas's atan2 gives -135), and the Series 0i-F/30i forms ``ATAN[y,x]`` and ``POW[a,b]``
         (a to the power b) read.
+    inch : callable, optional
+        ``inch()``: G20 is in force (macro B ``ROUND`` in an address rounds to 0.0001 in, else to 0.001 mm:
+        :meth:`_Reader.address_round`); None: mm.
     """
 
     def __init__(self, *, macro_b: bool = False,
                  system: Callable[[int], tuple[float | None, str]] | None = None,
                  set_system: Callable[[int, float | None], bool] | None = None, fanuc: bool = False,
-                 named_state: Callable[[str], tuple[float | None, str]] | None = None) -> None:
+                 named_state: Callable[[str], tuple[float | None, str]] | None = None,
+                 inch: Callable[[], bool] | None = None) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
@@ -241,6 +246,7 @@ class Parameters:
         self.set_system = set_system
         self.named_state = named_state
         self.fanuc = fanuc
+        self.inch = inch
         self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
         self.plain_alarms: list[tuple[int, int]] = []  # without macro B: #3000 / #3006 set at line, as parameters
         self.joined_comparisons = 0  # macro B brackets that join comparisons without brackets of their own
@@ -461,6 +467,8 @@ class _Reader:
         self.where = where
         self.params = params
         self.logical = False  # this bracket joins comparisons: LinuxCNC's precedence (grouped)
+        self.address: str | None = None  # the NC address whose value is being read (macro B ROUND: address_round)
+        self.rounded: tuple[int, str] | None = None  # the first ROUND read in an address: column, address
 
     def skip(self, pos: int) -> int:
         while pos < len(self.code) and self.code[pos] in " \t\r":
@@ -486,7 +494,9 @@ class _Reader:
                    "a placeholder a sender fills in before it streams the program, as GRBL-Plotter's tool-change "
                    "scripts' #TOAZ: vcnc reads the program as the control receives it")
             self.fail(f"'#{name}' is not a parameter ({why})", pos, "#<number>, #<name> or #[expression]")
+        address, self.address = self.address, None  # a variable's number is no address value (#[ROUND[#1]])
         value, end = self.real(p)
+        self.address = address
         if value != int(value):
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")
         return int(value), end
@@ -621,6 +631,8 @@ class _Reader:
                 self.fail("ATAN needs two arguments", p, "ATAN[y]/[x]" + (" or ATAN[y,x]" if self.params.fanuc else ""))
             x, end = self.real(s + 1)
             return self.atan(arg, x), end
+        if name == "ROUND" and self.params.macro_b and self.address is not None:
+            return self.address_round(arg, p), end
         if self.params.macro_b and name in ("FIX", "FUP"):  # Fanuc: on the absolute value, sign kept
             magnitude = math.floor(abs(arg)) if name == "FIX" else math.ceil(abs(arg))
             return math.copysign(float(magnitude), arg) if magnitude else 0.0, end
@@ -629,6 +641,31 @@ class _Reader:
         except (ValueError, OverflowError):
             self.fail(f"{name}[{arg:g}] is undefined", p, f"an argument in the domain of {name}")
         raise AssertionError("unreachable")
+
+    def address_round(self, arg: float, p: int) -> float:
+        """Macro B ``ROUND`` in an NC address (``G91 X-ROUND[#1]``): ``arg`` rounded to the address's least input
+        increment (:func:`interpolators.iso_decimal.address_increment`), not to a whole number. Fanuc 30i/0i-F
+        "Custom macro", "ROUND function": "When the ROUND function is used in NC statement addresses, the ROUND
+        function rounds off the specified value according to the least input increment of the address" (the text as
+        Machinery's Handbook 31st ed., "CNC subroutines and macros", gives it: ``#101 = 27/32``, ``G91 G00
+        X[ROUND[#101]]`` moves 0.844 mm, where ``#101 = ROUND[27/32]`` is 1.0); Haas mill operator's manual 96-8000,
+        "Macros", "Round": "When round is used in an address expression, 'Round' is rounded to the significant
+        precision. For metric and angle dimensions, three-place precision is the default. For inch, four-place
+        precision", its example ``#1 = 1.00333``, ``G0 X[ROUND[#1] + ROUND[#1]]`` moving to 2.0066. Half an
+        increment rounds away from zero, as ROUND does. An address whose increment is not modelled (F, E) is an
+        error naming it; the block's own checks (:func:`check_address_rounding`) follow the line."""
+        letter = self.address or ""
+        inch = self.params.inch() if self.params.inch is not None else False
+        step = address_increment(letter, inch=inch)
+        if step is None:
+            self.fail(f"ROUND in address {letter}: Fanuc and Haas round it to the least input increment of the "
+                      f"address, which vcnc does not model for {letter}", p,
+                      f"{letter}[..] without ROUND, or ROUND in an assignment (#1 = ROUND[..]), which rounds to a "
+                      "whole number")
+        if self.rounded is None:
+            self.rounded = (p + 1, letter)
+        units = _apply("ROUND", arg / step)
+        return round(units * step, 6) if step < 1.0 else units
 
     def pair(self, q: int) -> tuple[float, float, int] | None:
         """``[a,b]`` at ``q`` (the ``[``): a, b (vacant counts 0) and the end; None when no comma follows a."""
@@ -834,6 +871,30 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
     return (value is not None and value != 0.0), end
 
 
+#: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
+#: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
+#: of the block they are in.
+_ROUND_REFUSED = {650: "a macro call's argument (the manuals give its ROUND no increment)",
+                  660: "a macro call's argument (the manuals give its ROUND no increment)",
+                  661: "a macro call's argument (the manuals give its ROUND no increment)",
+                  200: "a block that changes the unit (the increment is the new unit's)",
+                  210: "a block that changes the unit (the increment is the new unit's)"}
+
+
+def check_address_rounding(words: list[Word], rounded: tuple[int, str], where: Where, params: Parameters) -> None:
+    """Refuse a macro B ``ROUND`` in an address (:meth:`_Reader.address_round`) where its increment is not the one
+    the reader took: in a macro call's arguments (our reading: no manual says what increment their ROUND takes) or
+    in a G20/G21 block that changes the unit."""
+    column, letter = rounded
+    inch = params.inch() if params.inch is not None else False
+    for w in words:
+        code = round(w.value * 10) if w.letter == "G" else None
+        if code in _ROUND_REFUSED and (code not in (200, 210) or (code == 200) != inch):
+            where.fail(f"ROUND in address {letter} of {_ROUND_REFUSED[code]}: not modelled", column=column,
+                       text=f"{letter}[ROUND[..]]", expected="the value rounded in an assignment before the block "
+                       "(#1 = ROUND[#1 * 1000] / 1000)")
+
+
 def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
     """Words of a comment-free line whose values may be parameters or expressions.
 
@@ -862,10 +923,19 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         assignments.append((key, value, i + 1, code[i:end].strip()))
         return end
 
+    def address_value(pos: int, letter: str) -> tuple[float | None, int]:
+        r.address = letter
+        try:
+            return r.operand(pos)
+        finally:
+            r.address = None
+
     try:
-        words = read_words(code, where, value=lambda pos, letter: r.operand(pos), assignment=assign)
+        words = read_words(code, where, value=address_value, assignment=assign)
     except RecursionError:
         _too_deep(where)
+    if r.rounded is not None:
+        check_address_rounding(words, r.rounded, where, params)
     for key, value, column, text in assignments:
         params.assign(key, value, where, column, text)
     return words

@@ -286,6 +286,9 @@ class _Eval:
         self.s = text
         self.i = 0
         self.p = params
+        # macro B: the least input increment of the address being read, which its ROUND rounds to (Fanuc 30i
+        # "ROUND function" in NC statement addresses; Haas 96-8000 "Round": three places in mm and deg, four in inch)
+        self.step: float | None = None
 
     def peek(self, n: int = 1) -> str:
         return self.s[self.i:self.i + n]
@@ -303,7 +306,10 @@ class _Eval:
             name = self.s[self.i + 1:j]
             self.i = j + 1
             return name
-        return int(round(_number(self.real())))
+        step, self.step = self.step, None  # the number of a variable is no address value
+        key = int(round(_number(self.real())))
+        self.step = step
+        return key
 
     def real(self) -> float:
         c = self.peek()
@@ -332,6 +338,8 @@ class _Eval:
             self.expect("]")
             return 1.0 if self.p.exists(key) else 0.0
         a = _number(self.expr())
+        if f == "round" and self.step is not None:
+            return math.copysign(math.floor(abs(a) / self.step + 0.5), a) * self.step
         if f == "atan":
             self.expect("/")
             b = _number(self.expr())
@@ -627,9 +635,15 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False, linuxcnc: bool
 _MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$|[db]prnt\[.*\]$|popen$|pclos$)")
 
 
-def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tuple]]:
-    """Words (letter -> values in order) and parameter settings of a line, values evaluated."""
+#: Macro B least input increments of the addresses (IS-B), for ROUND in an address: distances [mm, in], angles [deg].
+_LENGTH_ADDRESSES, _ANGLE_ADDRESSES = "xyzuvwijkqr", "abc"
+
+
+def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str, list[float]], list[tuple]]:
+    """Words (letter -> values in order) and parameter settings of a line, values evaluated (``inch``: G20 in force,
+    the increment a macro B ROUND in a length address rounds to)."""
     ev = _Eval(line, params)
+    macro_b = math.isnan(params.unset)
     words: dict[str, list[float]] = {}
     sets = []
     while ev.i < len(ev.s):
@@ -645,7 +659,10 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
             params.holding = None
         elif c in "@^$" or c.isalpha():
             ev.i += 1
+            if macro_b and c in _LENGTH_ADDRESSES + _ANGLE_ADDRESSES:
+                ev.step = 0.001 if c in _ANGLE_ADDRESSES or not inch else 0.0001
             value = ev.real()
+            ev.step = None
             if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
                 words.setdefault(c, []).append(value)
         elif c == "%":
@@ -1939,7 +1956,7 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"``, ``"g65"`` or None."""
-    words, sets = _words(ln.text, params)
+    words, sets = _words(ln.text, params, inch=m.scale != 1.0)
     if m.parameter_input:  # Fanuc G10 L50: N<parameter> R<value> lines up to G11
         m.parameter_input = 110 not in _codes(words, "g")
         return None
