@@ -1631,13 +1631,15 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                               and any(k in words for k in "ijk"))
     if not (axes or arc_alone or now) or m.motion is None:
         return
+    rotated = m.g68 is not None and m.g68[0] != {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
     if m.motion // 10 in cycles:
+        if m.ctx.dialect.name == "fanuc" and rotated:  # 15i-MA B-63324EN/03: "G17, G18 or G19 must not be
+            raise ReferenceError(f"line {line}: a canned cycle outside the G68 plane")  # designated" under G68
         _cycle(m, line, words)
         return
     if m.tcp and m.motion in (0, 10):
         _tcp_move(m, line, words)
         return
-    rotated = m.g68 is not None and m.g68[0] != {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
     if m.ctx.dialect.name == "fanuc" and rotated and (m.motion in (20, 30) or m.comp_radius is not None):
         # Fanuc 0i-A B-63503EN-1/01 alarm 144: "The coordinate rotation plane and arc or cutter compensation C plane
         # must be the same"
@@ -1894,6 +1896,9 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         m.move(line, "rapid", at(clear))
     elif code in (74, 84) and m.ctx.dialect.tap_out_to_r:
         m.move(line, "feed", at(r))
+        if m.ctx.dialect.name == "fanuc":  # Fanuc: P is the dwell "at the bottom of the hole and at point R when a
+            # return is made" (0i-MD B-64304EN, 16i-TA/TB A-78549E, tapping): the spindle reverses at both
+            m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
         m.move(line, "rapid", at(clear), optional=True)
     elif code in (74, 84):  # LinuxCNC: "Move the Z-axis at the current feed rate to clear Z"
         m.move(line, "feed", at(clear))

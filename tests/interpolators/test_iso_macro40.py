@@ -52,3 +52,54 @@ def test_round_in_an_address_whose_increment_is_not_modelled_is_refused(line, ma
     text = f"O1\nG20 G90 G0 X0\n#1=1.00333\n{line}\nM30\nO2\nM99\n"
     with pytest.raises(GCodeError, match=match):
         parse_program(text, context=_ctx(), source="t.nc")
+
+
+# --- 2. Fanuc G84/G74 P dwells at the bottom and at point R on the way out ----------------------------------------
+
+TAP = ("O1\nG21 G90 G94 G17 G0 X0 Y0 Z20.\nS500 M3\nG98 G84 X10. Y0 Z-10. R2. P300 F500.\nG99 G74 X20. P0\n"
+       "X30. P200\nG80\nM30\n")
+
+
+def _moves(text: str, dialect: str, line: int) -> list[tuple[str, float, float]]:
+    prog = checked_iso(text, _ctx(dialect))
+    return [(b.kind, round(float(b.target[2]), 6), round(float(getattr(b, "dwell", 0.0)), 6))
+            for b in prog.blocks if b.line == line]
+
+
+def test_fanuc_tap_dwells_p_at_the_bottom_and_again_at_r():
+    # G98: in to -10, dwell 0.3 s, out to R 2, dwell 0.3 s there (the spindle turns forward again), up to 20
+    assert [d for k, _, d in _moves(TAP, "fanuc", 4) if k == "dwell"] == [0.3, 0.3]
+    assert [(k, z) for k, z, _ in _moves(TAP, "fanuc", 4)] == [
+        ("rapid", 20.0), ("rapid", 2.0), ("line", -10.0), ("dwell", -10.0), ("line", 2.0), ("dwell", 2.0),
+        ("rapid", 20.0)]
+    # P0 dwells nowhere; G99 with P200 dwells at the bottom and at R, where it stays
+    assert [k for k, _, _ in _moves(TAP, "fanuc", 5)] == ["rapid", "rapid", "line", "line"]
+    assert [(k, z) for k, z, _ in _moves(TAP, "fanuc", 6)] == [
+        ("rapid", 2.0), ("line", -10.0), ("dwell", -10.0), ("line", 2.0), ("dwell", 2.0)]
+
+
+def test_haas_tap_dwells_at_the_bottom_only():
+    assert [k for k, _, _ in _moves(TAP, "haas", 4)] == ["rapid", "rapid", "line", "dwell", "line", "rapid"]
+
+
+# --- 3. A canned cycle outside the G68 plane is refused under fanuc ------------------------------------------------
+
+ROTATED_G18_CYCLE = ("O1\nG21 G90 G94 G17 G0 X0 Y0 Z20.\nG68 X0 Y0 R30.\nG18\nG81 X10. Z-5. Y-10. R2. F100.\nG80\n"
+                     "G17 G69\nM30\n")
+
+
+def test_fanuc_canned_cycle_in_another_plane_than_g68s_is_refused():
+    # 15i-MA B-63324EN/03: "G17, G18 or G19 must not be designated in the mode of coordinate system rotation"
+    with pytest.raises(GCodeError, match=r"t.nc:5:.*G81 drilling cycle in G18 while G68 rotates the G17 plane"):
+        parse_program(ROTATED_G18_CYCLE, context=_ctx(), source="t.nc")
+
+
+def test_haas_canned_cycle_in_another_plane_than_g68s_drills_along_the_turned_axis():
+    prog = checked_iso(ROTATED_G18_CYCLE, _ctx("haas"))
+    assert any(b.line == 5 and b.kind == "line" for b in prog.blocks)
+
+
+def test_fanuc_canned_cycle_in_the_g68_plane_runs():
+    text = "O1\nG21 G90 G94 G17 G0 X0 Y0 Z20.\nG68 X0 Y0 R90.\nG81 X10. Y0 Z-5. R2. F100.\nG80\nG69\nM30\n"
+    prog = checked_iso(text, _ctx())
+    assert [round(float(v), 6) for v in [b for b in prog.blocks if b.kind == "line"][0].target] == [0.0, 10.0, -5.0]
