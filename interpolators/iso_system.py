@@ -31,7 +31,14 @@ Fanuc and Haas (custom macro B system variables, Fanuc 0i-MD B-64304EN "System v
 mill operator's manual "Macros", "#5001-#5006 block end position", "#5021-#5026 present machine
 coordinate position", "#5041-#5046 present work coordinate position"): under those dialects
 ``#5001``-``#5008`` is the end point of the last block and ``#5041``-``#5048`` the current position,
-both in work coordinates, as ``#5420``.. (the two are the same in a reader that moves block by block).
+both in work coordinates, as ``#5420``.. (the two are the same in a reader that moves block by block), but for
+the tool offsets: ``#5001``.. is the programmed end point, ``#5041``.. the position of the tool with its length
+offset "included" (Fanuc's position-information table: block end point "Not included", current position in the
+workpiece coordinate system "Included", as the Fanuc-compatible YASNAC LX3 manual's table gives it, ABSIO / ABSOT;
+shop macros read the current work Z as ``#735 = #5043 - #[2000 + #4111]``, "current work Z: start point Z", and
+Renishaw's O9816 as ``#27 = #5043 - #116``): after ``G43 H1 Z10.`` with a 20 mm tool ``#5003`` reads 10 and
+``#5043`` 30. Under Haas the same (our reading: Haas's table numbers them as Fanuc's and says nothing of the offsets);
+under tool centre point control both read the tip's position (below).
 
 Under those dialects the modal information reads too (Fanuc 0i-MD "System variables", "Modal
 information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3, ``#4002`` plane
@@ -232,7 +239,10 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     # again does not move (our reading; FANUC 30i A-79348E 1.1: in G43.4 "the tool center point ... is
     # specified" by the program)
     point = part_point(st.context.kinematics, st.extra, st.pos, st.tool_length) if st.tcp else st.pos
-    values = _nine(st.to_program(point), st.extra - st.extra_offset(), st.scale)
+    program = st.to_program(point)
+    if base == 5041 and not st.tcp:  # Fanuc's current position: the tool offsets included (docstring)
+        program = program + np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
+    values = _nine(program, st.extra - st.extra_offset(), st.scale)
     return _rolled(values, st, fanuc)[n - base], ""
 
 

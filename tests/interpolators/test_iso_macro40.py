@@ -103,3 +103,17 @@ def test_fanuc_canned_cycle_in_the_g68_plane_runs():
     text = "O1\nG21 G90 G94 G17 G0 X0 Y0 Z20.\nG68 X0 Y0 R90.\nG81 X10. Y0 Z-5. R2. F100.\nG80\nG69\nM30\n"
     prog = checked_iso(text, _ctx())
     assert [round(float(v), 6) for v in [b for b in prog.blocks if b.kind == "line"][0].target] == [0.0, 10.0, -5.0]
+
+
+# --- 4. Fanuc/Haas #5041.. (current position) include the tool length offset, #5001.. (block end) do not --------
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_current_position_includes_the_tool_length_and_block_end_does_not(dialect):
+    # a shop macro's "current work Z": #735 = #5043 - #[2000 + #4111] (memory A: #2001 is offset 1, 20 mm here)
+    context = MachineContext(dialect=DIALECTS[dialect], tools={1: Tool(number=1, length=20.0)},
+                             tool_offset_memory="A" if dialect == "fanuc" else "C")
+    text = ("O1000\nG21 G90 G94 G17 G0 X0 Y0 Z50.\nG43 H1 Z10.\n#100=#5003\n#101=#5043\n#102=#5043-#[2000+#4111]\n"
+            "G0 X#100 Y#101 Z#102\nM30\n")
+    prog = parse_program(text, context=context, source="t.nc")
+    # X = #5003 = 10 (programmed), Y = #5043 = 30 (10 + the 20 mm length), Z = 30 - 20 = 10 (machine Z 30)
+    assert [round(float(v), 6) for v in prog.blocks[-1].target] == [10.0, 30.0, 30.0]
