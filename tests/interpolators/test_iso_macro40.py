@@ -117,3 +117,18 @@ def test_current_position_includes_the_tool_length_and_block_end_does_not(dialec
     prog = parse_program(text, context=context, source="t.nc")
     # X = #5003 = 10 (programmed), Y = #5043 = 30 (10 + the 20 mm length), Z = 30 - 20 = 10 (machine Z 30)
     assert [round(float(v), 6) for v in prog.blocks[-1].target] == [10.0, 30.0, 30.0]
+
+
+# --- 5. A GOTO may leave a WHILE loop but not enter one -------------------------------------------------------------
+
+def test_goto_into_a_loop_from_outside_is_refused():
+    text = "O1\nG21 G90 G0 X0 Y0 Z0\n#1=0\nGOTO 7\nWHILE[#1 LT 3]DO1\nN7 G0 X1.\n#1=#1+1\nEND1\nM30\n"
+    with pytest.raises(GCodeError, match=r"t.nc:4:.*GOTO 7: N7 lies within the loop DO 1"):
+        parse_program(text, context=_ctx(), source="t.nc")
+
+
+def test_goto_out_of_a_loop_within_it_and_to_its_while_runs():
+    # N5 is the WHILE block itself (the loop starts there); N8 skips within the loop; GOTO 20 leaves it
+    text = ("O1\nG21 G90 G0 X0 Y0 Z0\n#1=0\nGOTO 5\nN5 WHILE[#1 LT 5]DO1\n#1=#1+1\nIF[#1 EQ 2]GOTO 8\nG0 X#1\n"
+            "N8 IF[#1 GE 3]GOTO 20\nEND1\nN20 G0 Y1.\nM30\n")
+    assert _ends(text) == [[0, 0, 0], [1, 0, 0], [3, 0, 0], [3, 1, 0]]
