@@ -71,7 +71,9 @@ manual, "Macros"):
   with a message; neither manual's own text is in our search index): it is kept in :attr:`Parameters.stops` for
   the reader, which ends the path at rest there as at M0,
   other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
-  feed-hold switches), and reading an unmodelled one is an error naming it.
+  feed-hold switches: the virtual machine has no operator to press feed hold and runs at 100 % override), but a
+  ``#3004`` with bit 2 set (Fanuc 0i-MD B-64304EN "System variables": exact stop check suppressed) is noted: the
+  G09/G61 blocks under it still end at rest; reading an unmodelled one is an error naming it.
 * a value vcnc cannot know (a clock, Haas's timers, a jogged or probed position: ``system`` gives the reason)
   may be stored in a common variable (``#100`` up) and is then *held* there (:attr:`Parameters.held`): reading
   that variable, or one set from it, is the error naming the first reading, its line and its reason. A program that
@@ -145,6 +147,9 @@ _FANUC_SYSTEM = range(1000, 5000)
 _FANUC_ALARM = 3000
 #: Fanuc/Haas stop with a message: setting it stops the program as M0 does (:attr:`Parameters.stops`).
 _FANUC_MESSAGE_STOP = 3006
+#: Fanuc/Haas feed hold, feedrate override and exact stop check suppression (bits 0, 1, 2): kept without effect, a
+#: suppressed exact stop check noted (the G09/G61 blocks still end at rest).
+_FANUC_SUPPRESSION = 3004
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
@@ -249,6 +254,7 @@ class Parameters:
         self.inch = inch
         self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
         self.plain_alarms: list[tuple[int, int]] = []  # without macro B: #3000 / #3006 set at line, as parameters
+        self.exact_stop_suppressed: list[int] = []  # macro B: lines whose #3004 write suppresses the exact stop check
         self.joined_comparisons = 0  # macro B brackets that join comparisons without brackets of their own
         #: common variables holding a value vcnc cannot know: #n -> (line, reason) of the first reading
         self.held: dict[int, tuple[int, str]] = {}
@@ -402,6 +408,8 @@ class Parameters:
                 message = block_comment(where.text, where)
                 self.stops.append((where.line, message.strip() if message else ""))
                 return
+            if self.macro_b and key == _FANUC_SUPPRESSION and value is not None and int(value) & 4:
+                self.exact_stop_suppressed.append(where.line)  # noted by the reader (iso_text.expression_notes)
             if self.set_system is not None and self.set_system(key, value):
                 return
             state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")

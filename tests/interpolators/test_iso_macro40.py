@@ -132,3 +132,12 @@ def test_goto_out_of_a_loop_within_it_and_to_its_while_runs():
     text = ("O1\nG21 G90 G0 X0 Y0 Z0\n#1=0\nGOTO 5\nN5 WHILE[#1 LT 5]DO1\n#1=#1+1\nIF[#1 EQ 2]GOTO 8\nG0 X#1\n"
             "N8 IF[#1 GE 3]GOTO 20\nEND1\nN20 G0 Y1.\nM30\n")
     assert _ends(text) == [[0, 0, 0], [1, 0, 0], [3, 0, 0], [3, 1, 0]]
+
+
+# --- 6. #3004 bit 2 (exact stop check suppressed) is noted --------------------------------------------------------
+
+def test_exact_stop_check_suppression_is_noted_and_feed_hold_alone_is_not():
+    text = "O1\nG21 G90 G94 G0 X0 Y0 Z0\n#3004=3\n#3004=7\nG61 G1 X1. F100.\n#3004=0\nM30\n"
+    prog = checked_iso(text, _ctx())
+    assert [n for n in prog.notes if "#3004" in n] == [
+        "#3004 at line 4 suppresses the exact stop check (bit 2): not modelled, G09/G61 blocks still end at rest"]
