@@ -879,6 +879,13 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
     return (value is not None and value != 0.0), end
 
 
+#: Macro B addresses of whole numbers (tool, offsets, M code) that round a variable's or expression's value: Haas
+#: mill operator's manual 96-8000, "Macros", "Round": "D[1.67] (Diameter 2 is made current)"; S. K. Sinha, "CNC
+#: Programming Using Fanuc Custom Macro B" (McGraw-Hill 2010), "Real versus integer values": a real number "used in
+#: place of integer numbers [is] automatically rounded", ``#1 = 3.5`` ``M#1`` is M04, "M3.0" written as a number
+#: stays illegal, and so for all addresses but the G codes. S, P and L keep their values (a spindle speed with a
+#: fraction is close enough; P and L are checked by the blocks that read them).
+_WHOLE_ADDRESSES = frozenset("DHMT")
 #: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
 #: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
 #: of the block they are in.
@@ -934,9 +941,13 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
     def address_value(pos: int, letter: str) -> tuple[float | None, int]:
         r.address = letter
         try:
-            return r.operand(pos)
+            value, end = r.operand(pos)
         finally:
             r.address = None
+        if value is not None and params.macro_b and letter in _WHOLE_ADDRESSES and value != int(value) \
+                and not _NUMBER.fullmatch(code[pos:end].strip()):
+            value = _apply("ROUND", value)  # macro B: a variable's value at a whole-number address is rounded
+        return value, end
 
     try:
         words = read_words(code, where, value=address_value, assignment=assign)

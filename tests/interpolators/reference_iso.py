@@ -661,8 +661,13 @@ def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str,
             ev.i += 1
             if macro_b and c in _LENGTH_ADDRESSES + _ANGLE_ADDRESSES:
                 ev.step = 0.001 if c in _ANGLE_ADDRESSES or not inch else 0.0001
+            start = ev.i
             value = ev.real()
             ev.step = None
+            if macro_b and c in "dhmt" and not math.isnan(value) and not _NUMBER.fullmatch(ev.s[start:ev.i]):
+                # Haas 96-8000 "Round": "D[1.67] (Diameter 2 is made current)": a computed tool, offset or M number
+                # is rounded (half away from zero)
+                value = math.copysign(math.floor(abs(value) + 0.5), value)
             if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
                 words.setdefault(c, []).append(value)
         elif c == "%":

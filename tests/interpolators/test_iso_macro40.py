@@ -141,3 +141,18 @@ def test_exact_stop_check_suppression_is_noted_and_feed_hold_alone_is_not():
     prog = checked_iso(text, _ctx())
     assert [n for n in prog.notes if "#3004" in n] == [
         "#3004 at line 4 suppresses the exact stop check (bit 2): not modelled, G09/G61 blocks still end at rest"]
+
+
+# --- 7. A computed tool, offset or M number is rounded ------------------------------------------------------------
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_computed_d_h_t_and_m_numbers_are_rounded(dialect):
+    # Haas 96-8000 "Round": "D[1.67] (Diameter 2 is made current)"; Sinha: #1 = 3.5, M#1 is M04; H#2 with #2 = 1.6 is
+    # H2 (the 40 mm tool: G43 H2 Z10. ends at machine Z 50); T#3 with #3 = 0.6 is T1
+    context = MachineContext(dialect=DIALECTS[dialect], tools={1: Tool(number=1, length=20.0, radius=3.0),
+                                                               2: Tool(number=2, length=40.0, radius=0.0)})
+    text = ("O1\nG21 G90 G94 G0 X0 Y0 Z50.\n#1=3.5\n#2=1.6\n#3=0.6\nM#1 S1000\nT#3 M6\nG43 H#2 Z10.\n"
+            "G41 D[1.67] G1 X10. F100.\nG40 X20.\nM30\n")
+    prog = checked_iso(text, context)
+    assert [round(float(b.target[2]), 6) for b in prog.blocks if b.line == 8] == [50.0]
+    assert [round(float(b.target[1]), 6) for b in prog.blocks if b.line == 9] == [0.0]  # D2: radius 0
