@@ -90,6 +90,7 @@ manual, "Macros"):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Callable
@@ -99,7 +100,7 @@ from interpolators._words import MAX_MAGNITUDE, Where, token_at
 from interpolators.iso_decimal import address_increment
 from interpolators.iso_words import Word, block_comment, read_words
 
-__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
+__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters", "whole_addresses"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
@@ -886,6 +887,19 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
 #: stays illegal, and so for all addresses but the G codes. S, P and L keep their values (a spindle speed with a
 #: fraction is close enough; P and L are checked by the blocks that read them).
 _WHOLE_ADDRESSES = frozenset("DHMT")
+_LITERAL_WORD = re.compile(r"[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
+
+
+def whole_addresses(words: list[Word]) -> list[Word]:
+    """The words of a macro B NC block (not a macro call's arguments: G65, G66, a G66.1 call) with the computed
+    values of the whole-number addresses D, H, M and T rounded (half away from zero), as Fanuc and Haas round them
+    (:data:`_WHOLE_ADDRESSES`); a number written with a fraction (``H1.5``) stays as written, for the block's own
+    checks."""
+    if not any(w.letter in _WHOLE_ADDRESSES and w.value != int(w.value) for w in words):
+        return words
+    return [dataclasses.replace(w, value=_apply("ROUND", w.value))
+            if w.letter in _WHOLE_ADDRESSES and w.value != int(w.value) and not _LITERAL_WORD.fullmatch(w.text)
+            else w for w in words]
 #: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
 #: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
 #: of the block they are in.
@@ -941,13 +955,9 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
     def address_value(pos: int, letter: str) -> tuple[float | None, int]:
         r.address = letter
         try:
-            value, end = r.operand(pos)
+            return r.operand(pos)
         finally:
             r.address = None
-        if value is not None and params.macro_b and letter in _WHOLE_ADDRESSES and value != int(value) \
-                and not _NUMBER.fullmatch(code[pos:end].strip()):
-            value = _apply("ROUND", value)  # macro B: a variable's value at a whole-number address is rounded
-        return value, end
 
     try:
         words = read_words(code, where, value=address_value, assignment=assign)

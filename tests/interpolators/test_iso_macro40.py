@@ -156,3 +156,10 @@ def test_computed_d_h_t_and_m_numbers_are_rounded(dialect):
     prog = checked_iso(text, context)
     assert [round(float(b.target[2]), 6) for b in prog.blocks if b.line == 8] == [50.0]
     assert [round(float(b.target[1]), 6) for b in prog.blocks if b.line == 9] == [0.0]  # D2: radius 0
+
+
+def test_a_macro_calls_computed_h_and_d_arguments_are_not_rounded():
+    # G65 P2000 H#2 D#3: #11 = 1.6 and #7 = 0.4 as passed (arguments are values, not offset numbers)
+    text = "O1\nG21 G90 G0 X0 Y0 Z0\n#2=1.6\n#3=0.4\nG65 P2000 H#2 D#3\nM30\nO2000\nG0 X#11 Y#7\nM99\n"
+    prog = parse_program(text, context=_ctx(), source="t.nc")
+    assert [round(float(v), 6) for v in prog.blocks[-1].target] == [1.6, 0.4, 0.0]
