@@ -163,3 +163,13 @@ def test_a_macro_calls_computed_h_and_d_arguments_are_not_rounded():
     text = "O1\nG21 G90 G0 X0 Y0 Z0\n#2=1.6\n#3=0.4\nG65 P2000 H#2 D#3\nM30\nO2000\nG0 X#11 Y#7\nM99\n"
     prog = parse_program(text, context=_ctx(), source="t.nc")
     assert [round(float(v), 6) for v in prog.blocks[-1].target] == [1.6, 0.4, 0.0]
+
+
+# --- 8. #4001 in a canned cycle reads the group 01 code the cycle left in force -----------------------------------
+
+def test_group_01_modal_information_in_a_canned_cycle():
+    # G01 before the series: #4001 = 1 while G81 (#4009 = 81) is in force; it was refused as not modelled
+    text = ("O1\nG21 G90 G94 G0 X0 Y0 Z10.\nG1 X1. F100.\nG81 X2. Z-1. R1.\n#1=#4001\n#2=#4009\nG80\n"
+            "G0 X#1 Y#2\nM30\n")
+    prog = parse_program(text, context=_ctx(), source="t.nc")
+    assert [round(float(v), 6) for v in prog.blocks[-1].target] == [1.0, 81.0, 10.0]
