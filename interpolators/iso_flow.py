@@ -812,7 +812,9 @@ def _block(prog: _Program, pc: int, words: list[Word], where: Where, modal: Moda
     call it is due instead of running (the call takes its words); returns the next line's index."""
     due = None if modal is None else modal.due(words, _modal_limit(frames))
     if due is None or not modal.calls[due].each_block:
-        yield FlowLine(where.line, where.text, whole_addresses(words) if params.macro_b else words, where.file)
+        if params.macro_b:  # Fanuc/Haas round a computed address value to its increment
+            words = whole_addresses(words, inch=bool(params.inch and params.inch()))
+        yield FlowLine(where.line, where.text, words, where.file)
     if due is None:
         return pc + 1
     return _modal_call(prog, pc, words, modal, due, params, frames, decimal_point_input, on_note)

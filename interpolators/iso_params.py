@@ -887,19 +887,41 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
 #: stays illegal, and so for all addresses but the G codes. S, P and L keep their values (a spindle speed with a
 #: fraction is close enough; P and L are checked by the blocks that read them).
 _WHOLE_ADDRESSES = frozenset("DHMT")
-_LITERAL_WORD = re.compile(r"[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
+_LITERAL_WORD = re.compile(r",?\s*[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
 
 
-def whole_addresses(words: list[Word]) -> list[Word]:
-    """The words of a macro B NC block (not a macro call's arguments: G65, G66, a G66.1 call) with the computed
-    values of the whole-number addresses D, H, M and T rounded (half away from zero), as Fanuc and Haas round them
-    (:data:`_WHOLE_ADDRESSES`); a number written with a fraction (``H1.5``) stays as written, for the block's own
-    checks."""
-    if not any(w.letter in _WHOLE_ADDRESSES and w.value != int(w.value) for w in words):
+#: G codes x 10 of blocks whose computed words keep their values: scaling factors (G51), the look-ahead switches
+#: (G05, G05.1, G08), tool axis vectors (G43.4, G43.5), NURBS knots and weights (G06.2), macro calls (G65, G66).
+_UNROUNDED_BLOCKS = frozenset({510, 50, 51, 80, 434, 435, 62, 650, 660, 661})
+
+
+def whole_addresses(words: list[Word], *, inch: bool) -> list[Word]:
+    """The words of a macro B NC block (not a macro call's arguments: G65, G66, a G66.1 call) as Fanuc and Haas read
+    a variable or expression in an address: rounded to the address's least input increment (``inch``: G20 in force
+    before the block). Haas "Address substitution" (haascnc.com, mill macros): "When a variable or expression is used
+    in place of an address value, the value is rounded to the least significant digit. If #1=.123456, then G01 X#1
+    would move the machine tool to .1235 on the X axis. If the control is in the metric mode, the machine would be
+    moved to .123"; Fanuc's "ROUND function" example (30i/0i-F "Custom macro"): with #1 = 1.2345 and #2 = 2.3456,
+    ``G00 X[#1+#2]`` travels 3.580 (3.5801 rounded), not the 1.235 + 2.346 that ``G91 X-#1`` and ``X-#2`` moved.
+    The distances and angles (:func:`interpolators.iso_decimal.address_increment`) go to 0.001 mm, 0.0001 in or
+    0.001 deg; D, H, M and T to whole numbers (:data:`_WHOLE_ADDRESSES`); a number written out (``X1.23456``,
+    ``H1.5``) stays as written, for the block's own checks, and so do the words of :data:`_UNROUNDED_BLOCKS`."""
+    codes = {round(w.value * 10) for w in words if w.letter == "G"}
+    if codes & _UNROUNDED_BLOCKS:
         return words
-    return [dataclasses.replace(w, value=_apply("ROUND", w.value))
-            if w.letter in _WHOLE_ADDRESSES and w.value != int(w.value) and not _LITERAL_WORD.fullmatch(w.text)
-            else w for w in words]
+    inch = 200 in codes or inch and 210 not in codes
+    out = words
+    for i, w in enumerate(words):
+        step = 1.0 if w.letter in _WHOLE_ADDRESSES else address_increment(w.letter, inch=inch) \
+            if w.letter not in "DFGHLMNOPSTE" else None
+        if step is None or _LITERAL_WORD.fullmatch(w.text):
+            continue
+        units = _apply("ROUND", w.value / step)
+        value = units if step == 1.0 else round(units * step, 6)
+        if value != w.value:
+            out = list(out) if out is words else out
+            out[i] = dataclasses.replace(w, value=value)
+    return out
 #: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
 #: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
 #: of the block they are in.

@@ -644,6 +644,7 @@ def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str,
     the increment a macro B ROUND in a length address rounds to)."""
     ev = _Eval(line, params)
     macro_b = math.isnan(params.unset)
+    computed: list[tuple[str, int, float]] = []  # computed address values to round: letter, index, increment
     words: dict[str, list[float]] = {}
     sets = []
     while ev.i < len(ev.s):
@@ -663,11 +664,14 @@ def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str,
                 ev.step = 0.001 if c in _ANGLE_ADDRESSES or not inch else 0.0001
             start = ev.i
             value = ev.real()
+            if macro_b and not math.isnan(value) and not _NUMBER.fullmatch(ev.s[start:ev.i]):
+                # Fanuc/Haas round a variable or expression in an address to the address's least significant digit
+                # (haascnc.com "Address substitution": "#1=.123456, then G01 X#1 would move ... to .1235"; Haas
+                # 96-8000 "Round": "D[1.67] (Diameter 2 is made current)"); kept for the blocks named below
+                step = 1.0 if c in "dhmt" else ev.step
+                if step is not None:
+                    computed.append((c, len(words.get(c, [])), step))
             ev.step = None
-            if macro_b and c in "dhmt" and not math.isnan(value) and not _NUMBER.fullmatch(ev.s[start:ev.i]):
-                # Haas 96-8000 "Round": "D[1.67] (Diameter 2 is made current)": a computed tool, offset or M number
-                # is rounded (half away from zero)
-                value = math.copysign(math.floor(abs(value) + 0.5), value)
             if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
                 words.setdefault(c, []).append(value)
         elif c == "%":
@@ -677,6 +681,15 @@ def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str,
             words.setdefault("," + ev.s[ev.i - 1], []).append(ev.real())
         else:
             raise ReferenceError(f"unexpected {ev.s[ev.i:ev.i + 20]!r}")
+    codes = {round(v * 10) for v in words.get("g", [])}
+    if not codes & {510, 50, 51, 80, 434, 435, 62, 650, 660, 661}:  # scaling factors, vectors, knots, calls keep theirs
+        for c, i, step in computed:
+            if step == 0.0001 and 210 in codes:  # G21 in the block: the mm increment
+                step = 0.001
+            elif step == 0.001 and 200 in codes and c not in _ANGLE_ADDRESSES:
+                step = 0.0001
+            v = words[c][i]
+            words[c][i] = math.copysign(math.floor(abs(v) / step + 0.5), v) * step
     return words, sets
 
 

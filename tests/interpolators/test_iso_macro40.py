@@ -33,8 +33,9 @@ ROUND_MM = ("O1000\nG21 G90 G94 G17 G0 X0 Y0 Z0\n#1=1.2345\n#2=27/32\nG00 G91 X-
 @pytest.mark.parametrize("dialect", ["fanuc", "haas"])
 def test_round_in_an_address_rounds_to_the_least_input_increment(dialect):
     # X-ROUND[1.2345] = -1.235 (not -1); 27/32 = 0.84375 rounds to 0.844 in the address (Machinery's Handbook's
-    # example), to 1 in an assignment; a variable's number #[ROUND[1.4]] stays whole (#1 = 1.2345)
-    assert _ends(ROUND_MM, dialect) == [[0, 0, 0], [-1.235, 0, 0], [-0.391, 1.688, 0], [1.0, 1.2345, 0]]
+    # example), to 1 in an assignment; a variable's number #[ROUND[1.4]] stays whole (#1 = 1.2345, which Y#1 rounds
+    # to the increment as any computed address value)
+    assert _ends(ROUND_MM, dialect) == [[0, 0, 0], [-1.235, 0, 0], [-0.391, 1.688, 0], [1.0, 1.235, 0]]
 
 
 def test_round_in_an_inch_address_keeps_four_places_haas_example():
@@ -173,3 +174,21 @@ def test_group_01_modal_information_in_a_canned_cycle():
             "G0 X#1 Y#2\nM30\n")
     prog = parse_program(text, context=_ctx(), source="t.nc")
     assert [round(float(v), 6) for v in prog.blocks[-1].target] == [1.0, 81.0, 10.0]
+
+
+# --- 9. Any computed address value is rounded to the address's least input increment ------------------------------
+
+def test_fanuc_round_example_does_not_return_to_the_start():
+    # Fanuc "ROUND function": #1 = 1.2345, #2 = 2.3456; G91 X-#1 moves 1.235, X-#2 2.346, X[#1+#2] 3.580: 0.001 short
+    text = "O1\nG21 G90 G94 G0 X0 Y0 Z0\n#1=1.2345\n#2=2.3456\nG91 G00 X-#1\nG01 X-#2 F300.\nG00 X[#1+#2]\nG90\nM30\n"
+    assert [e[0] for e in _ends(text)] == [0.0, -1.235, -3.581, -0.001]
+
+
+@pytest.mark.parametrize(("units", "x"), [("G20", 0.1235 * 25.4), ("G21", 0.123)])
+def test_haas_address_substitution_rounds_to_the_least_significant_digit(units, x):
+    # haascnc.com "Address substitution": "#1=.123456, then G01 X#1 would move ... to .1235 ... metric ... .123";
+    # a number written out keeps its digits
+    text = f"O1\n{units} G90 G94 G0 X0 Y0 Z0\n#1=.123456\nG01 X#1 Y.123456 F10.\nM30\n"
+    end = [float(v) for v in checked_iso(text, _ctx("haas")).blocks[-1].target]
+    assert end[0] == pytest.approx(x, abs=1e-9)
+    assert end[1] == pytest.approx(0.123456 * (25.4 if units == "G20" else 1.0), abs=1e-9)
