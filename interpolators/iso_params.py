@@ -100,7 +100,7 @@ from interpolators._words import MAX_MAGNITUDE, Where, token_at
 from interpolators.iso_decimal import address_increment
 from interpolators.iso_words import Word, block_comment, read_words
 
-__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters", "whole_addresses"]
+__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters", "address_values"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
@@ -895,7 +895,7 @@ _LITERAL_WORD = re.compile(r",?\s*[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
 _UNROUNDED_BLOCKS = frozenset({510, 50, 51, 80, 434, 435, 62, 650, 660, 661})
 
 
-def whole_addresses(words: list[Word], *, inch: bool) -> list[Word]:
+def address_values(words: list[Word], *, inch: bool) -> list[Word]:
     """The words of a macro B NC block (not a macro call's arguments: G65, G66, a G66.1 call) as Fanuc and Haas read
     a variable or expression in an address: rounded to the address's least input increment (``inch``: G20 in force
     before the block). Haas "Address substitution" (haascnc.com, mill macros): "When a variable or expression is used
