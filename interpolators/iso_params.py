@@ -38,6 +38,10 @@ manual, "Macros"):
   functions vacant counts 0 (``#1 + 10`` is 10, ``#1 * 5`` is 0); in comparisons ``EQ`` and ``NE``
   tell vacant from 0 (``#1 EQ #0`` holds, ``#1 EQ 0`` does not) while ``GT GE LT LE`` take it as 0;
   a vacant condition is false.
+* under the ``fanuc`` and ``haas`` dialects a variable or expression in an NC address is rounded to the address's
+  least input increment (0.001 mm, 0.0001 in, 0.001 deg; D H M T to whole numbers: :func:`address_values`), and a
+  ``ROUND`` inside it rounds to that increment, not to a whole number (:meth:`_Reader.address_round`); in an
+  assignment ``#1 = ROUND[..]`` rounds to a whole number.
 * ``AND``, ``OR`` and ``XOR`` work bit by bit on the integer parts of their operands under the ``fanuc`` and
   ``haas`` dialects (Fanuc 0i-MD B-64304EN "Arithmetic and logic operation": "Logical operations are performed
   on binary numbers bit by bit"; Haas mill operator's manual, "Macros", "Logical operations": "only the integer
