@@ -979,7 +979,7 @@ def _parameters(st: State, dialect: str, plain: PlainMoves) -> Parameters:
         return set_reference_parameter(n, v, st) or set_work_offset_parameter(n, v, st)
 
     return Parameters(macro_b=macro_b, system=lambda n: system_parameter(n, st, fanuc=macro_b),
-                      fanuc=dialect == "fanuc",
+                      fanuc=dialect == "fanuc", inch=lambda: st.inch,
                       set_system=(lambda n, v: plain.reset() or set_system_parameter(n, v, st)) if macro_b else
                       set_linuxcnc if linuxcnc else None,
                       named_state=(lambda k: named_state_parameter(k, st)) if linuxcnc else None)

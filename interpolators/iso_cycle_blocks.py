@@ -13,6 +13,7 @@ import numpy as np
 
 from interpolators._words import Where
 from interpolators.arcs import arc_from_center
+from interpolators.iso_arcs import off_plane
 from interpolators.iso_codes import DIALECT_G, G_CODES, G_UNSUPPORTED, PLANE_CODES
 from interpolators.iso_cycles import cycle_moves, tap_spindle_error
 from interpolators.iso_frames import framed_initial
@@ -37,6 +38,22 @@ if TYPE_CHECKING:
     from interpolators.iso import Notes, State
 
 __all__ = ["cycle_block", "pattern_or_pocket"]
+
+def _cycle_plane_refused(st: State, name: str, where: Where, mw: Word) -> None:
+    """A canned cycle in a plane other than the G68 rotation's, under ``fanuc``: refused. Fanuc says the plane is not
+    to change under a rotation (Series 15i/150i-MA operator's manual B-63324EN/03 and 16i-LA B-63194EN/02,
+    "Coordinate system rotation": "The G code for selecting a plane (G17, G18, or G19) can be specified before the
+    block containing the G code for coordinate system rotation (G68). G17, G18 or G19 must not be designated in the
+    mode of coordinate system rotation"), so what a hole drilled along an axis the rotation turns would do is not
+    given (the arcs and cutter compensation of another plane are its alarm 144, :func:`rotation_plane_alarm`). The
+    plane code itself is taken, as for the arcs; Haas (no Haas text found) and LinuxCNC's G10 R drill along the turned
+    axis."""
+    planes = {2: "G17", 1: "G18", 0: "G19"}
+    where.fail(f"{name} in {planes[st.plane]} while G68 rotates the {planes[st.frame.rotation.plane]} plane: Fanuc "
+               "does not define it (FANUC 15i-MA B-63324EN/03 'Coordinate system rotation': G17, G18 or G19 must not "
+               "be designated in the mode of coordinate system rotation)", column=mw.column, text=mw.text,
+               expected=f"{planes[st.frame.rotation.plane]} for canned cycles under this G68, or G69 first")
+
 
 
 def cycle_block(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes, moves: bool,
@@ -193,6 +210,8 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
     if st.inverse_time:
         where.fail(f"{name} in inverse time (G93): not supported", column=mw.column, text=mw.text,
                    expected="G94 before a canned cycle")
+    if st.context.dialect.name == "fanuc" and off_plane(st):
+        _cycle_plane_refused(st, name, where, mw)
     peck_tap = None
     if st.context.dialect.name == "fanuc":
         rigid_tap_speed(st, name, where, mw.column, mw.text)
@@ -230,7 +249,8 @@ def _canned_cycle(seen, gcodes, st: State, blocks, used, where: Where, number, n
                             feed=st.feed, dwell_p_ms=st.context.dialect.dwell_p_unit == "ms",
                             tap_out_to_r=st.context.dialect.tap_out_to_r, plane=st.plane,
                             haas=st.context.dialect.name == "haas" or st.fadal and code in (73, 83),
-                            fanuc_rules=st.context.dialect.name in ("fanuc", "haas"), peck_tap=peck_tap)
+                            fanuc_rules=st.context.dialect.name in ("fanuc", "haas"), peck_tap=peck_tap,
+                            tap_dwell_at_r=st.context.dialect.name == "fanuc")
     except WordError as exc:
         fail_words(where, name, exc, seen, mw)
     framed_initial(st, to_program=False)

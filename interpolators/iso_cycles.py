@@ -21,7 +21,9 @@ XY plane (G17) and run in G18 / G19 on the axes permuted (:data:`CYCLE_AXES`: dr
   ``convert_cycle_g74_g84``, ``convert_cycle_g89``; g-code.adoc G89: "Retract the Z-axis at the current
   feed rate to clear Z"), to R and then rapid to the clear level in Fanuc and Haas (Haas "G84 Tapping
   Canned Cycle": feed to the R plane, rapid to the starting plane), as the dialect says
-  (:attr:`interpolators.context.Dialect.tap_out_to_r`).
+  (:attr:`interpolators.context.Dialect.tap_out_to_r`). Under ``fanuc`` a G84/G74 with P dwells P again at R,
+  where the spindle turns forward again (``tap_dwell_at_r``; Fanuc "Dwell time at the bottom of the hole and at
+  point R when a return is made"); a peck rigid tap's returns to R between its cuts do not (our reading).
 
 The words R, Z, Q and P are sticky within the series of cycles, as in LinuxCNC.
 
@@ -157,7 +159,8 @@ CYCLE_AXES = {2: (0, 1, 2), 1: (2, 0, 1), 0: (1, 2, 0)}
 def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
                 scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
                 tap_out_to_r: bool = False, plane: int = 2, haas: bool = False,
-                fanuc_rules: bool = False, peck_tap: tuple[str, float] | None = None) -> list[HoleMove]:
+                fanuc_rules: bool = False, peck_tap: tuple[str, float] | None = None,
+                tap_dwell_at_r: bool = False) -> list[HoleMove]:
     """The moves of one canned-cycle block, in any plane: in G18 (ZX) the holes are drilled along Y
     (Z X position them, Y is the bottom, R a Y level), in G19 (YZ) along X (LinuxCNC "Canned Cycles":
     "the cycle is performed in the plane selected"). The cycle runs on the axes permuted to X Y Z.
@@ -198,6 +201,10 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
         A G84/G74 with a Q in force runs Fanuc's peck rigid tapping (:func:`_tap_pecks`): the kind
         (``"high-speed"`` or ``"standard"``, :attr:`interpolators.context.Dialect.peck_tapping`) and d [mm];
         None: the tap runs in one stroke, a Q unused.
+    tap_dwell_at_r : bool
+        G84/G74 dwell P also at the R plane on the way out, where the spindle turns forward again (Fanuc: 0i-MD
+        B-64304EN and 16i-TA/TB A-78549E, rigid tapping, "P_: Dwell time at the bottom of the hole and at point R when
+        a return is made"; the tapping cycles' figures show "P" at both reversals); else at the bottom only.
 
     Raises
     ------
@@ -208,7 +215,7 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     if axes == (0, 1, 2):
         return _xy_cycle(g, words, cycle=cycle, pos=pos, offset=offset, scale=scale, incremental=incremental,
                          retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms, tap_out_to_r=tap_out_to_r,
-                         haas=haas, fanuc_rules=fanuc_rules, peck_tap=peck_tap)
+                         haas=haas, fanuc_rules=fanuc_rules, peck_tap=peck_tap, tap_dwell_at_r=tap_dwell_at_r)
     if "@" in words or "^" in words:
         raise CycleError("polar coordinates @ ^ are only in the XY plane (G17)",
                          letter="@" if "@" in words else "^", expected="G17 for polar words")
@@ -218,7 +225,8 @@ def cycle_moves(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.n
     try:
         moves = _xy_cycle(g, permuted, cycle=cycle, pos=pos[list(axes)], offset=offset[list(axes)], scale=scale,
                           incremental=incremental, retract_r=retract_r, feed=feed, dwell_p_ms=dwell_p_ms,
-                          tap_out_to_r=tap_out_to_r, haas=haas, fanuc_rules=fanuc_rules, peck_tap=peck_tap)
+                          tap_out_to_r=tap_out_to_r, haas=haas, fanuc_rules=fanuc_rules, peck_tap=peck_tap,
+                          tap_dwell_at_r=tap_dwell_at_r)
     except CycleError as exc:
         exc.letter = letters.get(exc.letter, exc.letter)
         raise
@@ -234,7 +242,7 @@ def _unit(scale: float) -> str:
 def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.ndarray, offset: np.ndarray,
               scale: float, incremental: bool, retract_r: bool, feed: float, dwell_p_ms: bool,
               tap_out_to_r: bool, haas: bool, fanuc_rules: bool,
-              peck_tap: tuple[str, float] | None = None) -> list[HoleMove]:
+              peck_tap: tuple[str, float] | None = None, tap_dwell_at_r: bool = False) -> list[HoleMove]:
     """:func:`cycle_moves` in the XY plane (drilling along Z)."""
     if cycle.initial is None:
         cycle.initial = float(pos[2])
@@ -327,6 +335,8 @@ def _xy_cycle(g: int, words: dict[str, float], *, cycle: CycleWords, pos: np.nda
             go("line", x, y, clear, feed)
         elif g in (74, 84, 85, 89):
             go("line", x, y, r, feed)
+            if g in (74, 84) and tap_dwell_at_r and dwell > 0:  # the spindle turns forward again at R (Fanuc)
+                out.append(HoleMove("dwell", cur.copy(), 0.0, dwell))
         go("rapid", x, y, clear)
     return out
 

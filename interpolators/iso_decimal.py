@@ -36,7 +36,7 @@ from interpolators.iso_corners import CORNER_LETTERS
 from interpolators.iso_words import Word
 
 __all__ = ["DECIMAL_POINT_INPUTS", "DECIMAL_LETTERS", "integer_literal", "decimal_literal", "decimal_point_words",
-           "decimal_point_note"]
+           "decimal_point_note", "address_increment", "WHOLE_LETTERS"]
 
 #: Values of ``MachineContext.decimal_point_input``: Fanuc DPI = 1 and DPI = 0.
 DECIMAL_POINT_INPUTS: tuple[str, ...] = ("calculator", "increment")
@@ -45,10 +45,25 @@ DECIMAL_LETTERS = frozenset("XYZUVWABCIJKQR")
 
 #: Least input increment of IS-B [program unit]: mm, inch, and deg (rotary axes, angles).
 _INCREMENT = {"mm": 0.001, "inch": 0.0001, "deg": 0.001}
+#: Addresses counted in whole units (codes, numbers and counts, spindle speed): their least input increment is 1.
+WHOLE_LETTERS = frozenset("DGHLMNOPST")
 _CYCLE_CODES = {73, 74, 76, 77, 81, 82, 83, 84, 85, 86, 87, 88, 89}
 #: Blocks whose words are no distances: G65 macro arguments and G51 scaling factors (their own rules),
 #: the look-ahead switches G05 P10000, G05.1 Q1, G08 P1 (:mod:`interpolators.iso_smoothing`).
 _OWN_RULES = {65, 51, 5, 5.1, 8}
+
+
+def address_increment(letter: str, *, inch: bool) -> float | None:
+    """The least input increment of address ``letter`` (IS-B, as :data:`_INCREMENT`) [program unit]: 0.001 mm,
+    0.0001 in or 0.001 deg for the distances and angles (:data:`DECIMAL_LETTERS`, the corner words ``,R`` ``,C``),
+    1 for the addresses of :data:`WHOLE_LETTERS`; None for the others (F, E), whose increment is not modelled.
+    What Fanuc's and Haas's ``ROUND`` rounds to in an NC address (:mod:`interpolators.iso_params`)."""
+    letter = letter.upper()
+    if letter in ("A", "B", "C"):
+        return _INCREMENT["deg"]
+    if letter in DECIMAL_LETTERS or letter in CORNER_LETTERS:
+        return _INCREMENT["inch" if inch else "mm"]
+    return 1.0 if letter in WHOLE_LETTERS else None
 
 
 def integer_literal(word: Word) -> bool:

@@ -66,7 +66,14 @@ from interpolators.iso_macro import MAX_LOOP_PASSES, MacroFlow
 from interpolators.iso_macro_args import macro_arguments
 from interpolators.iso_messages import active_comment, comment_output, expand
 from interpolators.iso_modal_call import MODAL_CALL_CODES, ModalCall, ModalCalls
-from interpolators.iso_params import Parameters, evaluate_at, evaluate_condition, has_parameters, read_line
+from interpolators.iso_params import (
+    Parameters,
+    address_values,
+    evaluate_at,
+    evaluate_condition,
+    has_parameters,
+    read_line,
+)
 from interpolators.iso_words import PLAIN_NUMBER, Word, block_comment, plain_words, read_words, strip_comments
 from vcnc.core.errors import GCodeError
 from vcnc.core.text import BinaryDataError
@@ -805,6 +812,8 @@ def _block(prog: _Program, pc: int, words: list[Word], where: Where, modal: Moda
     call it is due instead of running (the call takes its words); returns the next line's index."""
     due = None if modal is None else modal.due(words, _modal_limit(frames))
     if due is None or not modal.calls[due].each_block:
+        if params.macro_b:  # Fanuc/Haas round a computed address value to its increment
+            words = address_values(words, inch=bool(params.inch and params.inch()))
         yield FlowLine(where.line, where.text, words, where.file)
     if due is None:
         return pc + 1

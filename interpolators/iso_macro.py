@@ -22,7 +22,12 @@ https://www.haascnc.com/service/online-operator-s-manuals/mill-operator-s-manual
   (tested at ``WHILE`` on each pass); ``DO m`` without ``WHILE`` repeats without end (left only
   by a ``GOTO``). ``m`` is 1, 2 or 3; loops nest up to three deep and must not cross (``END m``
   closes the innermost open ``DO``, which must carry the same ``m``); numbers may be reused one
-  after another. A block ``XX [..] DO m`` whose keyword is not ``WHILE`` is an error naming it.
+  after another. A block ``XX [..] DO m`` whose keyword is not ``WHILE`` is an error naming it. A ``GOTO``
+  may leave a loop but not enter one: a target between a loop's ``WHILE`` (or ``DO``) and its ``END`` reached
+  from outside the loop is an error (Fanuc 0i/16i operator's manuals, "Repetition (WHILE statement)",
+  "Nesting": "Branches cannot be made to a location within a loop", as we remember it: the text is not in our
+  search index; a GOTO to the ``WHILE`` block itself starts the loop). vcnc ran such an ``END`` as if the loop
+  had been entered at its top.
 * Abbreviations (``fanuc`` dialect only: :attr:`interpolators.iso_params.Parameters.fanuc`): a Fanuc
   control takes the first two characters of a macro word for the word (Fanuc 0i/16i/30i operator's manuals,
   "Custom macro", "Arithmetic and logic operation", "Abbreviations of macro statements": "ROUND -> RO, FIX ->
@@ -183,6 +188,7 @@ class MacroFlow:
         self.span_of: list[int] = []
         self.numbers: dict[int, dict[int, list[int]]] = {}  # span -> sequence number -> lines
         self.partner: dict[int, int] = {}  # DO/WHILE line -> END line and back
+        self.loops: list[tuple[int, int]] = []  # (DO/WHILE line, END line) of every loop
         self.passes: dict[int, int] = {}
 
     def add_line(self, i: int, code: str | None, span: int, where: Where) -> Statement | None:
@@ -214,6 +220,7 @@ class MacroFlow:
         """Pair each ``DO m`` with its ``END m`` within its program; crossing, unclosed and too
         deep loops are errors (``where_of(i)`` gives the :class:`Where` of line ``i``)."""
         self.partner.clear()
+        self.loops.clear()
         open_: list[int] = []
         span = None
         for i in sorted(self.statements):
@@ -237,6 +244,7 @@ class MacroFlow:
             head = open_.pop()
             self.partner[head] = i
             self.partner[i] = head
+            self.loops.append((head, i))
         self._unclosed(open_, where_of)
 
     def _unclosed(self, open_: list[int], where_of) -> None:
@@ -315,6 +323,13 @@ class MacroFlow:
         if target is None:
             where.fail(f"GOTO {n}: no block N{n} in this program", column=pos + 1, text=code.strip(),
                        expected=f"a block numbered N{n} in the same program")
+        entered = next(((h, e) for h, e in self.loops if h < target <= e and not h < pc < e), None)
+        if entered is not None:
+            loop = self.statements[entered[0]].loop
+            where.fail(f"GOTO {n}: N{n} lies within the loop DO {loop} (line {where.line + entered[0] - pc} to "
+                       f"{where.line + entered[1] - pc}), which the GOTO enters from outside: Fanuc macro B does not "
+                       "branch into a loop", column=pos + 1, text=code.strip(),
+                       expected="a GOTO to the loop's WHILE block or to a block outside it")
         if target <= pc:
             self._count(pc, where, f"GOTO {n}")
         return target

@@ -38,6 +38,10 @@ manual, "Macros"):
   functions vacant counts 0 (``#1 + 10`` is 10, ``#1 * 5`` is 0); in comparisons ``EQ`` and ``NE``
   tell vacant from 0 (``#1 EQ #0`` holds, ``#1 EQ 0`` does not) while ``GT GE LT LE`` take it as 0;
   a vacant condition is false.
+* under the ``fanuc`` and ``haas`` dialects a variable or expression in an NC address is rounded to the address's
+  least input increment (0.001 mm, 0.0001 in, 0.001 deg; D H M T to whole numbers: :func:`address_values`), and a
+  ``ROUND`` inside it rounds to that increment, not to a whole number (:meth:`_Reader.address_round`); in an
+  assignment ``#1 = ROUND[..]`` rounds to a whole number.
 * ``AND``, ``OR`` and ``XOR`` work bit by bit on the integer parts of their operands under the ``fanuc`` and
   ``haas`` dialects (Fanuc 0i-MD B-64304EN "Arithmetic and logic operation": "Logical operations are performed
   on binary numbers bit by bit"; Haas mill operator's manual, "Macros", "Logical operations": "only the integer
@@ -71,7 +75,9 @@ manual, "Macros"):
   with a message; neither manual's own text is in our search index): it is kept in :attr:`Parameters.stops` for
   the reader, which ends the path at rest there as at M0,
   other writes are kept without effect (output signals, ``#3003``/``#3004`` single-block and
-  feed-hold switches), and reading an unmodelled one is an error naming it.
+  feed-hold switches: the virtual machine has no operator to press feed hold and runs at 100 % override), but a
+  ``#3004`` with bit 2 set (Fanuc 0i-MD B-64304EN "System variables": exact stop check suppressed) is noted: the
+  G09/G61 blocks under it still end at rest; reading an unmodelled one is an error naming it.
 * a value vcnc cannot know (a clock, Haas's timers, a jogged or probed position: ``system`` gives the reason)
   may be stored in a common variable (``#100`` up) and is then *held* there (:attr:`Parameters.held`): reading
   that variable, or one set from it, is the error naming the first reading, its line and its reason. A program that
@@ -88,15 +94,17 @@ manual, "Macros"):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Callable
 from typing import NoReturn
 
 from interpolators._words import MAX_MAGNITUDE, Where, token_at
+from interpolators.iso_decimal import address_increment
 from interpolators.iso_words import Word, block_comment, read_words
 
-__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters"]
+__all__ = ["Parameters", "read_line", "evaluate_at", "evaluate_condition", "has_parameters", "address_values"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)")
 _NAME = re.compile(r"<([^>]*)>")
@@ -144,6 +152,9 @@ _FANUC_SYSTEM = range(1000, 5000)
 _FANUC_ALARM = 3000
 #: Fanuc/Haas stop with a message: setting it stops the program as M0 does (:attr:`Parameters.stops`).
 _FANUC_MESSAGE_STOP = 3006
+#: Fanuc/Haas feed hold, feedrate override and exact stop check suppression (bits 0, 1, 2): kept without effect, a
+#: suppressed exact stop check noted (the G09/G61 blocks still end at rest).
+_FANUC_SUPPRESSION = 3004
 #: Locals of a LinuxCNC O-word call (#1-#30) and of a Fanuc/Haas G65 macro call (#1-#33).
 OWORD_LOCALS = 30
 MACRO_LOCALS = 33
@@ -225,12 +236,16 @@ class Parameters:
         ``ATAN[y]/[x]`` is 0 to 360 deg (parameter NAT, No. 6004#0, = 0, its default: ``ATAN[-1]/[-1]`` is 225;
         LinuxCNC's and Haas's atan2 gives -135), and the Series 0i-F/30i forms ``ATAN[y,x]`` and ``POW[a,b]``
         (a to the power b) read.
+    inch : callable, optional
+        ``inch()``: G20 is in force (macro B ``ROUND`` in an address rounds to 0.0001 in, else to 0.001 mm:
+        :meth:`_Reader.address_round`); None: mm.
     """
 
     def __init__(self, *, macro_b: bool = False,
                  system: Callable[[int], tuple[float | None, str]] | None = None,
                  set_system: Callable[[int, float | None], bool] | None = None, fanuc: bool = False,
-                 named_state: Callable[[str], tuple[float | None, str]] | None = None) -> None:
+                 named_state: Callable[[str], tuple[float | None, str]] | None = None,
+                 inch: Callable[[], bool] | None = None) -> None:
         self.numbered: dict[int, float] = {}
         self.named: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}  # LinuxCNC's predefined ones
         self.frames: list[tuple[dict[int, float], dict[str, float], int]] = []
@@ -241,8 +256,10 @@ class Parameters:
         self.set_system = set_system
         self.named_state = named_state
         self.fanuc = fanuc
+        self.inch = inch
         self.stops: list[tuple[int, str]] = []  # #3006 message stops reached: line, message
         self.plain_alarms: list[tuple[int, int]] = []  # without macro B: #3000 / #3006 set at line, as parameters
+        self.exact_stop_suppressed: list[int] = []  # macro B: lines whose #3004 write suppresses the exact stop check
         self.joined_comparisons = 0  # macro B brackets that join comparisons without brackets of their own
         #: common variables holding a value vcnc cannot know: #n -> (line, reason) of the first reading
         self.held: dict[int, tuple[int, str]] = {}
@@ -396,6 +413,8 @@ class Parameters:
                 message = block_comment(where.text, where)
                 self.stops.append((where.line, message.strip() if message else ""))
                 return
+            if self.macro_b and key == _FANUC_SUPPRESSION and value is not None and int(value) & 4:
+                self.exact_stop_suppressed.append(where.line)  # noted by the reader (iso_text.expression_notes)
             if self.set_system is not None and self.set_system(key, value):
                 return
             state, why = self.system(key) if self.system is not None and self._is_system(key) else (None, "")
@@ -461,6 +480,8 @@ class _Reader:
         self.where = where
         self.params = params
         self.logical = False  # this bracket joins comparisons: LinuxCNC's precedence (grouped)
+        self.address: str | None = None  # the NC address whose value is being read (macro B ROUND: address_round)
+        self.rounded: tuple[int, str] | None = None  # the first ROUND read in an address: column, address
 
     def skip(self, pos: int) -> int:
         while pos < len(self.code) and self.code[pos] in " \t\r":
@@ -486,7 +507,9 @@ class _Reader:
                    "a placeholder a sender fills in before it streams the program, as GRBL-Plotter's tool-change "
                    "scripts' #TOAZ: vcnc reads the program as the control receives it")
             self.fail(f"'#{name}' is not a parameter ({why})", pos, "#<number>, #<name> or #[expression]")
+        address, self.address = self.address, None  # a variable's number is no address value (#[ROUND[#1]])
         value, end = self.real(p)
+        self.address = address
         if value != int(value):
             self.fail(f"parameter number {value:g} is not a whole number", pos, "#<whole number>")
         return int(value), end
@@ -621,6 +644,8 @@ class _Reader:
                 self.fail("ATAN needs two arguments", p, "ATAN[y]/[x]" + (" or ATAN[y,x]" if self.params.fanuc else ""))
             x, end = self.real(s + 1)
             return self.atan(arg, x), end
+        if name == "ROUND" and self.params.macro_b and self.address is not None:
+            return self.address_round(arg, p), end
         if self.params.macro_b and name in ("FIX", "FUP"):  # Fanuc: on the absolute value, sign kept
             magnitude = math.floor(abs(arg)) if name == "FIX" else math.ceil(abs(arg))
             return math.copysign(float(magnitude), arg) if magnitude else 0.0, end
@@ -629,6 +654,31 @@ class _Reader:
         except (ValueError, OverflowError):
             self.fail(f"{name}[{arg:g}] is undefined", p, f"an argument in the domain of {name}")
         raise AssertionError("unreachable")
+
+    def address_round(self, arg: float, p: int) -> float:
+        """Macro B ``ROUND`` in an NC address (``G91 X-ROUND[#1]``): ``arg`` rounded to the address's least input
+        increment (:func:`interpolators.iso_decimal.address_increment`), not to a whole number. Fanuc 30i/0i-F
+        "Custom macro", "ROUND function": "When the ROUND function is used in NC statement addresses, the ROUND
+        function rounds off the specified value according to the least input increment of the address" (the text as
+        Machinery's Handbook 31st ed., "CNC subroutines and macros", gives it: ``#101 = 27/32``, ``G91 G00
+        X[ROUND[#101]]`` moves 0.844 mm, where ``#101 = ROUND[27/32]`` is 1.0); Haas mill operator's manual 96-8000,
+        "Macros", "Round": "When round is used in an address expression, 'Round' is rounded to the significant
+        precision. For metric and angle dimensions, three-place precision is the default. For inch, four-place
+        precision", its example ``#1 = 1.00333``, ``G0 X[ROUND[#1] + ROUND[#1]]`` moving to 2.0066. Half an
+        increment rounds away from zero, as ROUND does. An address whose increment is not modelled (F, E) is an
+        error naming it; the block's own checks (:func:`check_address_rounding`) follow the line."""
+        letter = self.address or ""
+        inch = self.params.inch() if self.params.inch is not None else False
+        step = address_increment(letter, inch=inch)
+        if step is None:
+            self.fail(f"ROUND in address {letter}: Fanuc and Haas round it to the least input increment of the "
+                      f"address, which vcnc does not model for {letter}", p,
+                      f"{letter}[..] without ROUND, or ROUND in an assignment (#1 = ROUND[..]), which rounds to a "
+                      "whole number")
+        if self.rounded is None:
+            self.rounded = (p + 1, letter)
+        units = _apply("ROUND", arg / step)
+        return round(units * step, 6) if step < 1.0 else units
 
     def pair(self, q: int) -> tuple[float, float, int] | None:
         """``[a,b]`` at ``q`` (the ``[``): a, b (vacant counts 0) and the end; None when no comma follows a."""
@@ -834,6 +884,72 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
     return (value is not None and value != 0.0), end
 
 
+#: Macro B addresses of whole numbers (tool, offsets, M code) that round a variable's or expression's value: Haas
+#: mill operator's manual 96-8000, "Macros", "Round": "D[1.67] (Diameter 2 is made current)"; S. K. Sinha, "CNC
+#: Programming Using Fanuc Custom Macro B" (McGraw-Hill 2010), "Real versus integer values": a real number "used in
+#: place of integer numbers [is] automatically rounded", ``#1 = 3.5`` ``M#1`` is M04, "M3.0" written as a number
+#: stays illegal, and so for all addresses but the G codes. S, P and L keep their values (a spindle speed with a
+#: fraction is close enough; P and L are checked by the blocks that read them).
+_WHOLE_ADDRESSES = frozenset("DHMT")
+_LITERAL_WORD = re.compile(r",?\s*[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
+
+
+#: G codes x 10 of blocks whose computed words keep their values: scaling factors (G51), the look-ahead switches
+#: (G05, G05.1, G08), tool axis vectors (G43.4, G43.5), NURBS knots and weights (G06.2), macro calls (G65, G66).
+_UNROUNDED_BLOCKS = frozenset({510, 50, 51, 80, 434, 435, 62, 650, 660, 661})
+
+
+def address_values(words: list[Word], *, inch: bool) -> list[Word]:
+    """The words of a macro B NC block (not a macro call's arguments: G65, G66, a G66.1 call) as Fanuc and Haas read
+    a variable or expression in an address: rounded to the address's least input increment (``inch``: G20 in force
+    before the block). Haas "Address substitution" (haascnc.com, mill macros): "When a variable or expression is used
+    in place of an address value, the value is rounded to the least significant digit. If #1=.123456, then G01 X#1
+    would move the machine tool to .1235 on the X axis. If the control is in the metric mode, the machine would be
+    moved to .123"; Fanuc's "ROUND function" example (30i/0i-F "Custom macro"): with #1 = 1.2345 and #2 = 2.3456,
+    ``G00 X[#1+#2]`` travels 3.580 (3.5801 rounded), not the 1.235 + 2.346 that ``G91 X-#1`` and ``X-#2`` moved.
+    The distances and angles (:func:`interpolators.iso_decimal.address_increment`) go to 0.001 mm, 0.0001 in or
+    0.001 deg; D, H, M and T to whole numbers (:data:`_WHOLE_ADDRESSES`); a number written out (``X1.23456``,
+    ``H1.5``) stays as written, for the block's own checks, and so do the words of :data:`_UNROUNDED_BLOCKS`."""
+    codes = {round(w.value * 10) for w in words if w.letter == "G"}
+    if codes & _UNROUNDED_BLOCKS:
+        return words
+    inch = 200 in codes or inch and 210 not in codes
+    out = words
+    for i, w in enumerate(words):
+        step = 1.0 if w.letter in _WHOLE_ADDRESSES else address_increment(w.letter, inch=inch) \
+            if w.letter not in "DFGHLMNOPSTE" else None
+        if step is None or _LITERAL_WORD.fullmatch(w.text):
+            continue
+        units = _apply("ROUND", w.value / step)
+        value = units if step == 1.0 else round(units * step, 6)
+        if value != w.value:
+            out = list(out) if out is words else out
+            out[i] = dataclasses.replace(w, value=value)
+    return out
+#: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
+#: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
+#: of the block they are in.
+_ROUND_REFUSED = {650: "a macro call's argument (the manuals give its ROUND no increment)",
+                  660: "a macro call's argument (the manuals give its ROUND no increment)",
+                  661: "a macro call's argument (the manuals give its ROUND no increment)",
+                  200: "a block that changes the unit (the increment is the new unit's)",
+                  210: "a block that changes the unit (the increment is the new unit's)"}
+
+
+def check_address_rounding(words: list[Word], rounded: tuple[int, str], where: Where, params: Parameters) -> None:
+    """Refuse a macro B ``ROUND`` in an address (:meth:`_Reader.address_round`) where its increment is not the one
+    the reader took: in a macro call's arguments (our reading: no manual says what increment their ROUND takes) or
+    in a G20/G21 block that changes the unit."""
+    column, letter = rounded
+    inch = params.inch() if params.inch is not None else False
+    for w in words:
+        code = round(w.value * 10) if w.letter == "G" else None
+        if code in _ROUND_REFUSED and (code not in (200, 210) or (code == 200) != inch):
+            where.fail(f"ROUND in address {letter} of {_ROUND_REFUSED[code]}: not modelled", column=column,
+                       text=f"{letter}[ROUND[..]]", expected="the value rounded in an assignment before the block "
+                       "(#1 = ROUND[#1 * 1000] / 1000)")
+
+
 def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
     """Words of a comment-free line whose values may be parameters or expressions.
 
@@ -862,10 +978,19 @@ def read_line(code: str, where: Where, params: Parameters) -> list[Word]:
         assignments.append((key, value, i + 1, code[i:end].strip()))
         return end
 
+    def address_value(pos: int, letter: str) -> tuple[float | None, int]:
+        r.address = letter
+        try:
+            return r.operand(pos)
+        finally:
+            r.address = None
+
     try:
-        words = read_words(code, where, value=lambda pos, letter: r.operand(pos), assignment=assign)
+        words = read_words(code, where, value=address_value, assignment=assign)
     except RecursionError:
         _too_deep(where)
+    if r.rounded is not None:
+        check_address_rounding(words, r.rounded, where, params)
     for key, value, column, text in assignments:
         params.assign(key, value, where, column, text)
     return words

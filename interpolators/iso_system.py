@@ -31,10 +31,18 @@ Fanuc and Haas (custom macro B system variables, Fanuc 0i-MD B-64304EN "System v
 mill operator's manual "Macros", "#5001-#5006 block end position", "#5021-#5026 present machine
 coordinate position", "#5041-#5046 present work coordinate position"): under those dialects
 ``#5001``-``#5008`` is the end point of the last block and ``#5041``-``#5048`` the current position,
-both in work coordinates, as ``#5420``.. (the two are the same in a reader that moves block by block).
+both in work coordinates, as ``#5420``.. (the two are the same in a reader that moves block by block), but for
+the tool offsets: ``#5001``.. is the programmed end point, ``#5041``.. the position of the tool with its length
+offset "included" (Fanuc's position-information table: block end point "Not included", current position in the
+workpiece coordinate system "Included", as the Fanuc-compatible YASNAC LX3 manual's table gives it, ABSIO / ABSOT;
+shop macros read the current work Z as ``#735 = #5043 - #[2000 + #4111]``, "current work Z: start point Z", and
+Renishaw's O9816 as ``#27 = #5043 - #116``): after ``G43 H1 Z10.`` with a 20 mm tool ``#5003`` reads 10 and
+``#5043`` 30. Under Haas the same (our reading: Haas's table numbers them as Fanuc's and says nothing of the offsets);
+under tool centre point control both read the tip's position (below).
 
 Under those dialects the modal information reads too (Fanuc 0i-MD "System variables", "Modal
-information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3, ``#4002`` plane
+information"; Haas "#4001-#4021 last block group codes"): ``#4001`` motion G0-G3 (in a canned cycle, group 09,
+the group 01 code the cycle left in force), ``#4002`` plane
 17/18/19, ``#4003`` 90/91, ``#4005`` 94/93/95, ``#4006`` 20/21, ``#4007`` 40/41/42, ``#4008``
 43/43.1/44/49, ``#4009`` 80 or the cycle, ``#4010`` 98/99, ``#4011`` 50/51 (scaling), ``#4012`` 66/66.1/67
 (:mod:`interpolators.iso_modal_call`, ``fanuc`` only: 67 under ``haas``), ``#4013`` 97 (no G96 on a mill),
@@ -113,6 +121,7 @@ from interpolators.rotary_wrap import within_turn
 from interpolators.tcp import part_point
 
 if TYPE_CHECKING:
+    from interpolators.iso_cycles import CycleWords
     from interpolators.iso_modal_call import ModalCalls
     from interpolators.iso_transforms import Frame
 
@@ -179,6 +188,7 @@ class ReaderState(Protocol):
     comp_number: int
     spindle_speed: float
     modal_calls: ModalCalls | None  # Fanuc G66/G66.1 in force
+    cycle: CycleWords  # the canned-cycle series (its motion_before: the group 01 code it left)
     parts_counters: dict[int, float]  # Fanuc/Haas #3901, #3902 as the program set them
     parts_read: bool  # the program read a parts counter
     input_result: float | None  # LinuxCNC #5399 (iso_mcodes, M66)
@@ -232,7 +242,10 @@ def _position(n: int, st: ReaderState, fanuc: bool) -> tuple[float | None, str]:
     # again does not move (our reading; FANUC 30i A-79348E 1.1: in G43.4 "the tool center point ... is
     # specified" by the program)
     point = part_point(st.context.kinematics, st.extra, st.pos, st.tool_length) if st.tcp else st.pos
-    values = _nine(st.to_program(point), st.extra - st.extra_offset(), st.scale)
+    program = st.to_program(point)
+    if base == 5041 and not st.tcp:  # Fanuc's current position: the tool offsets included (docstring)
+        program = program + np.array([st.tool_xy[0], st.tool_xy[1], st.tool_length])
+    values = _nine(program, st.extra - st.extra_offset(), st.scale)
     return _rolled(values, st, fanuc)[n - base], ""
 
 
@@ -308,8 +321,9 @@ def _tool_offset(register: ToolRegister, st: ReaderState) -> tuple[float | None,
 
 def _fanuc_modal(n: int, st: ReaderState) -> float | None:
     """Fanuc/Haas modal information #4001.. (the G code of each group in effect, F and T)."""
-    if n == 4001:
-        return st.motion / 10 if st.motion in (0, 10, 20, 30) else None
+    if n == 4001:  # group 01; a canned cycle (group 09) leaves it as it was (G80 or a group 01 code ends the cycle)
+        motion = st.cycle.motion_before if st.motion is not None and st.motion >= 730 else st.motion
+        return motion / 10 if motion in (0, 10, 20, 30) else None
     if n == 4009:
         return st.motion / 10 if st.motion is not None and st.motion >= 730 else 80.0
     extended = extended_number(st.wcs)

@@ -275,6 +275,9 @@ def expression_notes(text: str, params: Parameters, dialect: str, notes: Notes,
         what = "raises macro alarm n there and stops" if n == 3000 else "stops there with its message"
         notes.add(f"#{n} set at line {line} as a plain parameter (a Fanuc or Haas control {what}: --dialect fanuc "
                   "or haas)")
+    for line in params.exact_stop_suppressed:  # Fanuc/Haas #3004 bit 2
+        notes.add(f"#3004 at line {line} suppresses the exact stop check (bit 2): not modelled, G09/G61 blocks still "
+                  "end at rest")
     for _ in range(params.joined_comparisons):
         notes.add("comparisons joined by AND/OR/XOR in one bracket read comparisons first, [a GT b] AND [c LT d] "
                   "(Fanuc writes each in its own brackets)")

@@ -286,6 +286,9 @@ class _Eval:
         self.s = text
         self.i = 0
         self.p = params
+        # macro B: the least input increment of the address being read, which its ROUND rounds to (Fanuc 30i
+        # "ROUND function" in NC statement addresses; Haas 96-8000 "Round": three places in mm and deg, four in inch)
+        self.step: float | None = None
 
     def peek(self, n: int = 1) -> str:
         return self.s[self.i:self.i + n]
@@ -303,7 +306,10 @@ class _Eval:
             name = self.s[self.i + 1:j]
             self.i = j + 1
             return name
-        return int(round(_number(self.real())))
+        step, self.step = self.step, None  # the number of a variable is no address value
+        key = int(round(_number(self.real())))
+        self.step = step
+        return key
 
     def real(self) -> float:
         c = self.peek()
@@ -332,6 +338,8 @@ class _Eval:
             self.expect("]")
             return 1.0 if self.p.exists(key) else 0.0
         a = _number(self.expr())
+        if f == "round" and self.step is not None:
+            return math.copysign(math.floor(abs(a) / self.step + 0.5), a) * self.step
         if f == "atan":
             self.expect("/")
             b = _number(self.expr())
@@ -627,9 +635,16 @@ def _lines(text: str, *, grbl: bool = False, fanuc: bool = False, linuxcnc: bool
 _MACRO = re.compile(r"^(if\[|goto|while\[.*\]do\d$|do\d$|end\d$|[db]prnt\[.*\]$|popen$|pclos$)")
 
 
-def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tuple]]:
-    """Words (letter -> values in order) and parameter settings of a line, values evaluated."""
+#: Macro B least input increments of the addresses (IS-B), for ROUND in an address: distances [mm, in], angles [deg].
+_LENGTH_ADDRESSES, _ANGLE_ADDRESSES = "xyzuvwijkqr", "abc"
+
+
+def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str, list[float]], list[tuple]]:
+    """Words (letter -> values in order) and parameter settings of a line, values evaluated (``inch``: G20 in force,
+    the increment a macro B ROUND in a length address rounds to)."""
     ev = _Eval(line, params)
+    macro_b = math.isnan(params.unset)
+    computed: list[tuple[str, int, float]] = []  # computed address values to round: letter, index, increment
     words: dict[str, list[float]] = {}
     sets = []
     while ev.i < len(ev.s):
@@ -645,7 +660,18 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
             params.holding = None
         elif c in "@^$" or c.isalpha():
             ev.i += 1
+            if macro_b and c in _LENGTH_ADDRESSES + _ANGLE_ADDRESSES:
+                ev.step = 0.001 if c in _ANGLE_ADDRESSES or not inch else 0.0001
+            start = ev.i
             value = ev.real()
+            if macro_b and not math.isnan(value) and not _NUMBER.fullmatch(ev.s[start:ev.i]):
+                # Fanuc/Haas round a variable or expression in an address to the address's least significant digit
+                # (haascnc.com "Address substitution": "#1=.123456, then G01 X#1 would move ... to .1235"; Haas
+                # 96-8000 "Round": "D[1.67] (Diameter 2 is made current)"); kept for the blocks named below
+                step = 1.0 if c in "dhmt" else ev.step
+                if step is not None:
+                    computed.append((c, len(words.get(c, [])), step))
+            ev.step = None
             if not math.isnan(value):  # Fanuc: a word whose value is vacant is left out
                 words.setdefault(c, []).append(value)
         elif c == "%":
@@ -655,6 +681,15 @@ def _words(line: str, params: _Params) -> tuple[dict[str, list[float]], list[tup
             words.setdefault("," + ev.s[ev.i - 1], []).append(ev.real())
         else:
             raise ReferenceError(f"unexpected {ev.s[ev.i:ev.i + 20]!r}")
+    codes = {round(v * 10) for v in words.get("g", [])}
+    if not codes & {510, 50, 51, 80, 434, 435, 62, 650, 660, 661}:  # scaling factors, vectors, knots, calls keep theirs
+        for c, i, step in computed:
+            if step == 0.0001 and 210 in codes:  # G21 in the block: the mm increment
+                step = 0.001
+            elif step == 0.001 and 200 in codes and c not in _ANGLE_ADDRESSES:
+                step = 0.0001
+            v = words[c][i]
+            words[c][i] = math.copysign(math.floor(abs(v) / step + 0.5), v) * step
     return words, sets
 
 
@@ -1614,13 +1649,15 @@ def _motion(m: _Machine, line: int, g: list[int], words: dict, axes: bool) -> No
                               and any(k in words for k in "ijk"))
     if not (axes or arc_alone or now) or m.motion is None:
         return
+    rotated = m.g68 is not None and m.g68[0] != {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
     if m.motion // 10 in cycles:
+        if m.ctx.dialect.name == "fanuc" and rotated:  # 15i-MA B-63324EN/03: "G17, G18 or G19 must not be
+            raise ReferenceError(f"line {line}: a canned cycle outside the G68 plane")  # designated" under G68
         _cycle(m, line, words)
         return
     if m.tcp and m.motion in (0, 10):
         _tcp_move(m, line, words)
         return
-    rotated = m.g68 is not None and m.g68[0] != {17: (0, 1), 18: (2, 0), 19: (1, 2)}[m.plane]
     if m.ctx.dialect.name == "fanuc" and rotated and (m.motion in (20, 30) or m.comp_radius is not None):
         # Fanuc 0i-A B-63503EN-1/01 alarm 144: "The coordinate rotation plane and arc or cutter compensation C plane
         # must be the same"
@@ -1877,6 +1914,9 @@ def _hole(m: _Machine, line: int, code: int, xy: np.ndarray, r: float, bottom: f
         m.move(line, "rapid", at(clear))
     elif code in (74, 84) and m.ctx.dialect.tap_out_to_r:
         m.move(line, "feed", at(r))
+        if m.ctx.dialect.name == "fanuc":  # Fanuc: P is the dwell "at the bottom of the hole and at point R when a
+            # return is made" (0i-MD B-64304EN, 16i-TA/TB A-78549E, tapping): the spindle reverses at both
+            m.out.append(Expected(line=line, kind="dwell", end=m.pos.copy(), rows="one" if dwell > 0 else "optional"))
         m.move(line, "rapid", at(clear), optional=True)
     elif code in (74, 84):  # LinuxCNC: "Move the Z-axis at the current feed rate to clear Z"
         m.move(line, "feed", at(clear))
@@ -1939,7 +1979,7 @@ def _back_bore(m: _Machine, line: int, words: dict, cur: np.ndarray, r: float, t
 
 def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     """Run one ordinary line; returns ``"end"`` (M2/M30), ``"m97"``/``"m98"``/``"m99"``, ``"g65"`` or None."""
-    words, sets = _words(ln.text, params)
+    words, sets = _words(ln.text, params, inch=m.scale != 1.0)
     if m.parameter_input:  # Fanuc G10 L50: N<parameter> R<value> lines up to G11
         m.parameter_input = 110 not in _codes(words, "g")
         return None

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
@@ -94,7 +95,9 @@ ABBREVIATED_LOOP = ("G21 G90 G54 G0 X0 Y0 Z5\n#1 = 0\nWH [#1 LT 3] DO1\nG1 X[#1 
 
 def test_fanuc_reads_abbreviated_macro_words():
     prog = checked_iso(ABBREVIATED_LOOP, _in_dialect("fanuc"))  # and as the reference reads it
-    assert _xy(prog) == [[100.0, 50.0], [100.0, 50.0], [110.0, 52.0], [120.0, 53.0], [120.0, 53.0], [120.0, 57.0]]
+    # RO[..] in the address Y rounds to the least input increment (0.001 mm), not to a whole number (isomacro40)
+    assert np.allclose(_xy(prog), [[100.0, 50.0], [100.0, 50.0], [110.0, 51.6], [120.0, 53.2], [120.0, 53.2],
+                                   [120.0, 57.0]], atol=1e-9)
     assert prog.blocks[-2].target[2] == -16.0  # Z4 (SQ[16]) plus the G54 offset -20; the GO 20 skipped X99
 
 

@@ -74,8 +74,9 @@ def test_unknown_g_code_names_the_dialect():
 
 
 @pytest.mark.parametrize("name, dwell, out", [
-    # Fanuc / Haas: feed out to R (-18), then rapid to the initial level (-10) under G98
-    ("fanuc", "P100", [("line", -18), ("rapid", -10)]),
+    # Fanuc: feed out to R (-18), dwell P there too ("dwell time at the bottom of the hole and at point R when a
+    # return is made", isomacro40), then rapid to the initial level (-10) under G98
+    ("fanuc", "P100", [("line", -18), ("dwell", -18), ("rapid", -10)]),
     # LinuxCNC g-code.adoc "G84": "Move the Z-axis at the current feed rate to clear Z"
     ("linuxcnc", "P0.1", [("line", -10)]),
 ])
@@ -87,7 +88,7 @@ def test_g84_tapping_ends_against_the_reference(name, dwell, out):
     tap = [(b.kind, b.target.tolist()) for b in prog.blocks if b.line == 4]
     assert tap == [("rapid", [110, 55, -10]), ("rapid", [110, 55, -18]), ("line", [110, 55, -25]),
                    ("dwell", [110, 55, -25]), *((k, [110, 55, z]) for k, z in out)]
-    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [pytest.approx(0.1)]
+    assert [b.dwell for b in prog.blocks if b.kind == "dwell"] == [pytest.approx(0.1)] * (2 if name == "fanuc" else 1)
 
 
 def test_m98_names_a_file_of_the_number_that_does_not_number_its_program(tmp_path):
