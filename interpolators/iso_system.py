@@ -47,7 +47,8 @@ are not modelled: reading one is an error naming it.
 Under those dialects a program may also write the work offsets (Fanuc 0i-MD "System variables":
 "workpiece zero point offset value ... read/write"; Haas "Macros", "Offsets": "all tool work offsets
 can be read and set within a macro expression"): ``#5221``-``#5326`` (G54-G59: X Y Z A B C, 20 per
-system), the additional ones below; the offset changes at once, as ``G10 L2`` would
+system), the additional ones below, and the external offset ``#5201``-``#5206`` (as ``G10 L2 P0``; Haas: its G52
+entry; fuzz40); the offset changes at once, as ``G10 L2`` would
 (:func:`set_system_parameter`). LinuxCNC's stay read-only here (its #5221.. back the offsets and change
 with G10, not the other way round).
 
@@ -105,6 +106,7 @@ from interpolators.iso_offsets import (
     extended_number,
     fanuc_tool_variable,
     offset_parameter,
+    set_external_axis,
     tool_offset,
     tool_offset_variable,
     with_tool_offset,
@@ -147,6 +149,7 @@ class ReaderState(Protocol):
     extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
     g92: np.ndarray
+    g92_extra: np.ndarray
     g92_saved: np.ndarray
     g92_applied: bool
     tool_length: float
@@ -551,6 +554,10 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
         tool = st.tool(register.number) or Tool(number=register.number)
         amount = 0.0 if value is None else float(value) * _stored(st)
         st.tools[register.number] = with_tool_offset(tool, register, amount)
+        return True
+    if 5201 <= n <= 5206:  # the external workpiece zero offset (Fanuc 0i-MD "System variables": read/write; Haas: G52)
+        v = 0.0 if value is None else float(value)
+        set_external_axis(st, n - 5201, v * _stored(st) if n <= 5203 else v)
         return True
     target = _offset_variable(n, st)
     if target is None:
