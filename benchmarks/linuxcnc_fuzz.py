@@ -581,12 +581,46 @@ def chunk_tool_table(w: _Writer) -> None:
     w.emit("G90")
 
 
+#: Predefined named parameters that read the modal state (overview.adoc "Predefined Named Parameters"), each
+#: with a factor that keeps its part of a coordinate small [program units per unit of the parameter].
+STATE_PARAMETERS = {"_motion_mode": 0.01, "_plane": 0.001, "_ccomp": 0.001, "_metric": 1.0, "_imperial": 1.0,
+                    "_absolute": 1.0, "_incremental": 1.0, "_inverse_time": 1.0, "_units_per_minute": 1.0,
+                    "_units_per_rev": 1.0, "_coord_system": 0.001, "_tool_offset": 1.0, "_retract_r_plane": 1.0,
+                    "_retract_old_z": 1.0, "_feed": 0.001, "_rpm": 0.0001, "_spindle_on": 1.0, "_spindle_cw": 1.0,
+                    "_mist": 1.0, "_flood": 1.0, "_current_tool": 0.1, "_selected_tool": 0.1, "_x": 0.1, "_z": 0.1}
+
+
+def chunk_state(w: _Writer) -> None:
+    """The modal state read through the predefined named parameters (:data:`STATE_PARAMETERS`) into the coordinates
+    of feed moves, and work offsets written through their numbered parameters (overview.adoc "Numbered
+    Parameters": "5221-5230 Coordinate System 1, G54 (X Y Z A B C U V W R)", 20 apart up to G59.3), then a system
+    selected (LinuxCNC takes the written values at the selection, interp_convert.cc ``convert_coordinate_system``)
+    and moves in it."""
+    rng = w.rng
+    w.start(w.coord(), w.coord(), w.coord(0, 10), distance="G90")
+    w.emit(rng.choice(["G17", "G18", "G19", "G98", "G99", "M8", "M7", "M9", "S1000 M3", "S500 M4", "M5"]))
+    for _ in range(rng.randint(1, 3)):
+        names = rng.sample(sorted(STATE_PARAMETERS), 2)
+        parts = [f"#<{n}> * {STATE_PARAMETERS[n]:g}" for n in names]
+        w.emit(f"G1 X[{w.num(w.coord())} + {parts[0]}] Y[{w.num(w.coord())} + {parts[1]}] {w.feed()}")
+    if rng.random() < 0.6:
+        k = rng.randint(0, 8)
+        base = 5221 + 20 * k
+        for j in rng.sample(range(3), rng.randint(1, 3)):
+            w.emit(f"#{base + j} = [#{base + j} + {rng.randint(-20, 20)}]" if rng.random() < 0.5
+                   else f"#{base + j} = {rng.randint(-50, 50)}")
+        w.emit(["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"][k])
+    w.emit("G17")
+    w.start(w.coord(), w.coord(), w.coord(0, 20), distance="G90", units=False)
+    w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]])} {w.feed()}")
+
+
 #: Feature groups and the chunk that writes one.
 FEATURES = {"arcs": chunk_arcs, "offsets": chunk_offsets, "tools": chunk_tools, "home": chunk_home,
             "compensation": chunk_compensation, "cycles": chunk_cycles, "tapping": chunk_tapping,
             "splines": chunk_splines, "blending": chunk_blending, "inverse_time": chunk_inverse_time,
             "parameters": chunk_parameters, "owords": chunk_owords, "mcodes": chunk_mcodes, "polar": chunk_polar,
-            "rotary": chunk_rotary, "tool_table": chunk_tool_table}
+            "rotary": chunk_rotary, "tool_table": chunk_tool_table, "state": chunk_state}
 
 
 def generate(seed: int, *, features: tuple[str, ...] = tuple(FEATURES), chunks: tuple[int, int] = (3, 8)

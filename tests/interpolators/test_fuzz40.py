@@ -41,3 +41,23 @@ def test_reference_takes_the_external_offset_variable_as_g10_l2_p0():
     assert np.allclose(rows[0].end, (-300.0, -200.0, -400.0))
     assert np.allclose(rows[1].end, (-289.0, -204.0, -396.5))
     assert np.allclose(rows[2].end, (-299.0, -204.0, -396.5))
+
+
+# --- 2. LinuxCNC #<_feed>: the F number as written, whatever G20/G21 came since -----------------------------------
+
+FEED_UNITS = "G21 G90 G94\nG1 X1 F600\nG20\nG1 X[#<_feed> / 1000]\nG94 F50\nG21\nG1 X[#<_feed> / 10]\nM2\n"
+
+
+def test_linuxcnc_feed_parameter_keeps_the_number_across_a_change_of_units():
+    # rs274 2.9.0~pre1: "(debug, #<_feed>)" after "F600" then G20 prints 600 (interp's feed_rate is the F as written;
+    # the canon converted it to mm when it was set), after "F50" in inch then G21 prints 50: X 0.6 in, then X 5 mm;
+    # the reader converted the number (23.62, 1270)
+    ctx = MachineContext(dialect=DIALECTS["linuxcnc"])
+    assert _ends(FEED_UNITS, ctx, 4) == [(15.24, 0.0, 0.0)]  # 0.6 in
+    assert _ends(FEED_UNITS, ctx, 7) == [(5.0, 0.0, 0.0)]
+
+
+def test_linuxcnc_feed_parameter_under_g95_is_the_feed_per_revolution():
+    # rs274 2.9.0~pre1: "G95 S1000 M3 G1 X3 F0.01" then "(debug, #<_feed>)" prints 0.010000 (the reader: F x S, 10)
+    text = "G21 G90 G95 S1000 M3\nG1 X1 F0.25\nG1 X[#<_feed> * 10]\nM2\n"
+    assert _ends(text, MachineContext(dialect=DIALECTS["linuxcnc"]), 3) == [(2.5, 0.0, 0.0)]
