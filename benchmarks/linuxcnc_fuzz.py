@@ -292,7 +292,7 @@ def _contour(w: _Writer) -> list[tuple[str, list[float], float]]:
 
 def chunk_compensation(w: _Writer) -> None:
     """Cutter radius compensation: G41/G42 with D or the tool's own, G41.1/G42.1 D (L), an entry move, a closed
-    contour of lines and arcs, G40 and an exit move."""
+    contour of lines and arcs (some of them helical), G40 and an exit move."""
     rng = w.rng
     w.units()
     if rng.random() < 0.5:
@@ -308,8 +308,13 @@ def chunk_compensation(w: _Writer) -> None:
     w.emit(f"{side}{how}")
     contour = _contour(w)
     for kind, end, r in contour:
+        end = [end[0], end[1], w.pos[2]]  # at the Z the helices before left
         if kind in ("start", "line"):
             w.emit(f"G1 {w.axes(end, 'XY')}")
+        elif rng.random() < 0.3:  # a helix: the compensation offsets its XY projection (g-code.adoc "G41, G42")
+            z = w.pos[2] - rng.choice([0.5, 1.0, 2.0])
+            z = w.coord(z, z)  # on the grid of the units in force
+            w.emit(f"{kind} {w.axes([end[0], end[1], z], 'XY')} Z{w.num(z)} R{w.num(r)}")
         else:
             w.emit(f"{kind} {w.axes(end, 'XY')} R{w.num(r)}")
     w.emit("G40")

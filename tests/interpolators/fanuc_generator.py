@@ -465,13 +465,17 @@ class _Gen:
             self.emit(self.r.choice(("G04 P1.5", "G04 P500", "G4 P0.5")))
 
     def g91_arcs_section(self) -> None:
-        self.start()
-        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        """Arcs with incremental end points (G91): in G17, sometimes helical, or in G18/G19 (fuzz40: the plane's
+        axes other than X Y, and a helix's third axis, as increments)."""
+        plane_code, plane = self.r.choice((("G17", (0, 1)), ("G17", (0, 1)), ("G18", (2, 0)), ("G19", (1, 2))))
+        self.start(20 if plane_code != "G17" else 10)
+        self.emit(f"{plane_code} G1 {self.xyz(z=15 if plane_code != 'G17' else -1)} {self.feed()}")
         self.emit("G91")
         for _ in range(self.r.randint(1, 3)):
             before, dpi0 = list(self.pos), self.dpi0
             self.dpi0 = False  # the absolute words are read back below
-            text = self.arc(self.r.choice(("G2", "G3")), full=self.r.random() < 0.2)
+            helix = self.pos[2] - self.r.choice((1, 2)) if plane_code == "G17" and self.r.random() < 0.3 else None
+            text = self.arc(self.r.choice(("G2", "G3")), plane=plane, helix=helix, full=self.r.random() < 0.2)
             self.dpi0 = dpi0
             code, rest = text.split(" ", 1)
             words = []
@@ -481,8 +485,8 @@ class _Gen:
                     w = w[0] + self.v(float(w[1:]) / self.unit - before[k])
                 words.append(w)
             self.emit(f"{code} {' '.join(words)}")
-        self.emit("G90")
-        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G90 G17")
+        self.emit(f"G0 {self.xyz(z=40 if plane_code != 'G17' else 10)}")
 
     def comp_rotated_section(self) -> None:
         kind = self.r.choice(("G68", "mirror", "G52", "G51"))

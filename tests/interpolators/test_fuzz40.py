@@ -61,3 +61,45 @@ def test_linuxcnc_feed_parameter_under_g95_is_the_feed_per_revolution():
     # rs274 2.9.0~pre1: "G95 S1000 M3 G1 X3 F0.01" then "(debug, #<_feed>)" prints 0.010000 (the reader: F x S, 10)
     text = "G21 G90 G95 S1000 M3\nG1 X1 F0.25\nG1 X[#<_feed> * 10]\nM2\n"
     assert _ends(text, MachineContext(dialect=DIALECTS["linuxcnc"]), 3) == [(2.5, 0.0, 0.0)]
+
+
+# --- 3. The reference's new pieces, on hand-written inputs ---------------------------------------------------------
+
+G66_PROGRAM = """G21 G90 G54 G0 X0. Y0. Z10.
+G66 P9500 Z5. F100. L2
+G0 X10.
+Y5.
+G67
+G0 X0.
+M30
+O9500
+G91 G1 Z-#26 F#9
+G0 Z#26
+G90
+M99
+"""
+
+
+def test_reference_g66_calls_the_macro_after_each_move_until_g67():
+    # Fanuc 0i-MD B-64304EN "Modal call (G66)": after X10. and after Y5. the macro runs twice (L2): down 5 and up
+    # again; the G66 block and the G67 block call nothing, nor do the macro's own moves
+    rows = iso_reference(G66_PROGRAM, _ctx("fanuc"))
+    ends = [tuple(np.round(r.end - np.array(G54), 6)) for r in rows]
+    down, up = (10.0, 0.0, 5.0), (10.0, 0.0, 10.0)
+    assert ends == [(0.0, 0.0, 10.0), (10.0, 0.0, 10.0), down, up, down, up,
+                    (10.0, 5.0, 10.0), (10.0, 5.0, 5.0), (10.0, 5.0, 10.0), (10.0, 5.0, 5.0), (10.0, 5.0, 10.0),
+                    (0.0, 5.0, 10.0)]
+    prog = parse_program(G66_PROGRAM, context=_ctx("fanuc"), source="t.nc")
+    assert [tuple(np.round(b.target - np.array(G54), 6)) for b in prog.blocks if b.kind != "dwell"] == ends
+
+
+def test_reference_work_offset_variables_write_the_offset_at_once():
+    # Fanuc 0i-MD "System variables": #5241-#5243 G55 X Y Z, #7001.. G54.1 P1; a write to the system in force moves
+    # the next block's end
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], work_offsets={"G54": G54, "G55": (0.0, 0.0, 0.0)})
+    text = "G21 G90 G54 G0 X0. Y0. Z0.\n#5241=-100.\n#5242=#5241+20.\nG55 G0 X1. Y1.\n#5243=-50.\nG0 Z1.\n" \
+           "#7001=5.\nG54.1 P1 G0 X0.\nM30\n"
+    rows = iso_reference(text, ctx)
+    assert np.allclose(rows[1].end, (-99.0, -79.0, -400.0))  # Z stays where G54 Z0 put it
+    assert np.allclose(rows[2].end, (-99.0, -79.0, -49.0))
+    assert np.isclose(rows[3].end[0], 5.0)
