@@ -49,7 +49,7 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
             "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch",
             "length_block", "length_reference", "length_cycle", "rigid_tap_end", "arc3d", "offset_vars",
-            "haas_then", "peck_tap", "g66", "inverse_time")
+            "haas_then", "peck_tap", "g66", "inverse_time", "frames")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -726,6 +726,25 @@ class _Gen:
         self.emit("G69")
         self.emit("G52 X0. Y0.")
 
+    def frames_section(self) -> None:
+        """A G92 shift with a mirror and a rotation inside it (Fanuc 0i-MF "Programmable mirror image", "Coordinate
+        system rotation": mirror, then rotation, nested, the centres in the G92 system; Haas "G92", "G101", "G68"):
+        lines and an arc, the frames cancelled in reverse order, then the G92 shift taken back."""
+        self.start()
+        px, py = self.pos[0], self.pos[1]
+        self.emit("G92 X0. Y0.")
+        self.pos[0] = self.pos[1] = 0.0
+        self.emit(f"G51.1 X{self.v(self.r.randint(-2, 2) * 5)}" if self.fanuc else "G101 X0.")
+        self.emit(f"G68 X{self.v(self.r.randint(-2, 2) * 5)} Y{self.v(self.r.randint(-2, 2) * 5)} "
+                  f"R{self.r.choice((15, 30, 45, 90, -30))}.")
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
+        self.emit(self.arc(self.r.choice(("G2", "G3"))))
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G69")
+        self.emit("G50.1 X0." if self.fanuc else "G100 X0.")
+        self.emit(f"G92 X{self.v(self.pos[0] + px)} Y{self.v(self.pos[1] + py)}")
+
     def g28_shifted_section(self) -> None:
         """G28 through a point written in the local system (G52) in G90, and G30 in G91 (0i-MF "Reference
         position return": the intermediate point in the workpiece system)."""
@@ -1181,7 +1200,7 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "length_cycle": g.length_cycle_section, "rigid_tap_end": g.rigid_tap_end_section,
              "arc3d": g.arc3d_section, "offset_vars": g.offset_vars_section, "haas_then": g.haas_then_section,
              "peck_tap": lambda: g.rigid_tap_section(peck=g.fanuc), "g66": g.g66_section,
-             "inverse_time": g.inverse_time_section}
+             "inverse_time": g.inverse_time_section, "frames": g.frames_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")
