@@ -225,12 +225,14 @@ class _Gen:
 
     def comp_section(self, d: int | None = None) -> None:
         """A rectangle (sharp or rounded corners) climb- or conventional-cut inside or outside, with offset ``D<d>``
-        (else a random one)."""
+        (else a random one); rounded corners are sometimes helical, each 0.5 lower (Fanuc 0i-MF "Helical
+        interpolation": "Cutter compensation is applied only for a circular arc"; fuzz40)."""
         if not self.tool:
             self.tool_change()
         x0, y0 = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
         w, h = self.r.choice((20, 30, 40)), self.r.choice((20, 30))
         rc = self.r.choice((0, 0, 5))
+        helical = self.r.random() < 0.3
         ccw = self.r.random() < 0.5
         side = self.r.choice(("G41", "G42"))
         d = self.r.randint(1, 6) if d is None else d
@@ -253,11 +255,12 @@ class _Gen:
                 el = max(abs(ex), abs(ey))
                 ax, ay = px + ex / el * rc, py + ey / el * rc
                 code = "G3" if ccw else "G2"
+                z = self.pos[2] - 0.5 if helical else None
                 if self.r.random() < 0.5:
-                    self.emit(f"{code} {self.xyz(ax, ay)} R{self.v(rc)}")
+                    self.emit(f"{code} {self.xyz(ax, ay, z)} R{self.v(rc)}")
                 else:
                     ci, cj = bx + ex / el * rc - self.pos[0], by + ey / el * rc - self.pos[1]
-                    self.emit(f"{code} {self.xyz(ax, ay)} I{self.v(ci)} J{self.v(cj)}")
+                    self.emit(f"{code} {self.xyz(ax, ay, z)} I{self.v(ci)} J{self.v(cj)}")
             else:
                 self.emit(f"G1 {self.xyz(px, py)}")
         self.emit(f"G1 {self.xyz(*pts[-1])}")
