@@ -389,12 +389,13 @@ class _Gen:
     def g10_section(self) -> None:
         p = self.r.randint(1, 6)
         vals = " ".join(f"{a}{_num(self.r.randint(-40, 40) * 5.0 * self.unit)}" for a in "XYZ")
+        mode = self.r.choice(("G90", "G90", "G91"))  # G91: added to the offset (Fanuc 0i-MF "G10 L2", fuzz40)
         if self.r.random() < 0.5:
-            self.emit(f"G90 G10 L2 P{p} {vals}")
+            self.emit(f"{mode} G10 L2 P{p} {vals}")
         else:
-            self.emit(f"G90 G10 L20 P{p} {vals}")
+            self.emit(f"{mode} G10 L20 P{p} {vals}")
             p = 0
-        self.emit(f"G{53 + p}" if p else self.extended_code(1))
+        self.emit(f"G90 G{53 + p}" if p else "G90 " + self.extended_code(1))
         self.lines_section()
 
     def external_section(self) -> None:
