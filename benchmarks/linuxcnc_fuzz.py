@@ -604,8 +604,11 @@ def chunk_state(w: _Writer) -> None:
     rng = w.rng
     w.start(w.coord(), w.coord(), w.coord(0, 10), distance="G90")
     w.emit(rng.choice(["G17", "G18", "G19", "G98", "G99", "M8", "M7", "M9", "S1000 M3", "S500 M4", "M5"]))
+    # not #<_current_tool> after M61: rs274's standalone canon leaves it 0 ("M61 Q5" then "(debug,
+    # #<_current_tool>)" prints 0; saicanon.cc CHANGE_TOOL_NUMBER, as chunk_tools says), LinuxCNC's task and vcnc 5
+    known = sorted(n for n in STATE_PARAMETERS if not (w.m61 and n == "_current_tool"))
     for _ in range(rng.randint(1, 3)):
-        names = rng.sample(sorted(STATE_PARAMETERS), 2)
+        names = rng.sample(known, 2)
         parts = [f"#<{n}> * {STATE_PARAMETERS[n]:g}" for n in names]
         w.emit(f"G1 X[{w.num(w.coord())} + {parts[0]}] Y[{w.num(w.coord())} + {parts[1]}] {w.feed()}")
     if rng.random() < 0.6:
