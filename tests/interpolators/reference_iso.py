@@ -116,6 +116,12 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   o100 call", o-code.adoc "Fanuc-Style Numbered Programs"): its other words do not run; Fanuc and Haas run
   them before the call. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
   Return or Loop"), found as a GOTO finds it from the call.
+  Fanuc ``G66 P<program> L<count> <arguments>`` (0i-MD B-64304EN "Modal call (G66)"): after each later block with
+  axis words the program runs L times with the G66 block's arguments as a G65's, until ``G67``; the called
+  program's own moves call nothing; nested G66, moves of an M98/G65 call under G66 and a G28/G92/G10 block under
+  it are not modelled (ReferenceError). Fanuc/Haas work offset variables written by the program (0i-MD "System
+  variables"; Haas "Macros"): ``#5201``-``#5203`` the external offset (as G10 L2 P0), ``#5221``.. G54-G59 and
+  ``#7001``.. G54.1 P<n> / G154 P<n> (20 apart), X Y Z, in the machine's length unit, at once (fuzz40).
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
   between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
@@ -1952,6 +1958,8 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
     g, mc = _codes(words, "g"), _codes(words, "m")
     m.block_moves = m.block_nonmodal = False
     if 660 in g and m.ctx.dialect.name == "fanuc":  # Fanuc G66 modal macro call: its words are the arguments
+        if m.ctx.decimal_point_input == "increment":
+            _least_increments(m, g, words, ln.text)
         return "g66"
     if 670 in g and m.ctx.dialect.name == "fanuc":
         m.modal_call = None
@@ -2068,13 +2076,13 @@ def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None
     """Fanuc DPI = 0 (0i-MF operator's manual B-64604EN "Decimal point programming", parameter No. 3401#0): a
     distance or angle written without a decimal point counts least input increments of IS-B, 0.001 mm / deg or
     0.0001 in (X Y Z U V W A B C I J K Q R and the corner words ,R ,C; ``G04 X`` 0.001 s; K of a cycle block is
-    its repeat count); in a G51 block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 arguments
-    without a decimal point are not modelled (ReferenceError)."""
+    its repeat count); in a G51 block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 and G66
+    arguments without a decimal point are not modelled (ReferenceError)."""
     # G51: the centre, its factors have their own rule; ",r" ",c": corner lengths, as r (our reading)
     letters = set("xyz") if 510 in g else {*"xyzuvwabcijkqr", ",r", ",c"}
-    if 650 in g:
+    if 650 in g or 660 in g:
         if re.search(r"(?<![a-z#])[xyzuvwabcijkqr][+-]?\d+(?![\d.])", text):
-            raise ReferenceError("G65 arguments without a decimal point under DPI = 0")
+            raise ReferenceError("G65/G66 arguments without a decimal point under DPI = 0")
         return
     inch = 200 in g or 210 not in g and m.scale != 1.0
     cycle = any(c is not None and c % 10 == 0 and c // 10 in _CYCLES + _MILL_CYCLES for c in [m.motion, *g])
