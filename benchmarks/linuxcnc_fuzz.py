@@ -592,7 +592,9 @@ STATE_PARAMETERS = {"_motion_mode": 0.01, "_plane": 0.001, "_ccomp": 0.001, "_me
                     "_absolute": 1.0, "_incremental": 1.0, "_inverse_time": 1.0, "_units_per_minute": 1.0,
                     "_units_per_rev": 1.0, "_coord_system": 0.001, "_tool_offset": 1.0, "_retract_r_plane": 1.0,
                     "_retract_old_z": 1.0, "_feed": 0.001, "_rpm": 0.0001, "_spindle_on": 1.0, "_spindle_cw": 1.0,
-                    "_mist": 1.0, "_flood": 1.0, "_current_tool": 0.1, "_selected_tool": 0.1, "_x": 0.1, "_z": 0.1}
+                    "_mist": 1.0, "_flood": 1.0, "_current_tool": 0.1, "_selected_tool": 0.1, "_x": 0.1, "_y": 0.1,
+                    "_z": 0.1, "_a": 0.001, "_abs_x": 0.01, "_abs_y": 0.01, "_abs_z": 0.01, "_ijk_absolute_mode": 1.0,
+                    "_spindle_rpm_mode": 1.0}
 
 
 def chunk_state(w: _Writer) -> None:
