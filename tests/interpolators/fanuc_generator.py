@@ -49,7 +49,7 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
             "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch",
             "length_block", "length_reference", "length_cycle", "rigid_tap_end", "arc3d", "offset_vars",
-            "haas_then", "peck_tap", "g66", "inverse_time", "frames")
+            "haas_then", "peck_tap", "g66", "inverse_time", "frames", "modal_info")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -749,6 +749,27 @@ class _Gen:
         self.emit("G50.1 X0." if self.fanuc else "G100 X0.")
         self.emit(f"G92 X{self.v(self.pos[0] + px)} Y{self.v(self.pos[1] + py)}")
 
+    def modal_info_section(self) -> None:
+        """The modal information read into coordinates (Fanuc 0i-MD B-64304EN "System variables", "Modal
+        information": ``#4001`` G00-G03, ``#4002`` the plane, ``#4003`` 90/91, ``#4006`` 20/21, ``#4014`` the work
+        system, Fanuc only here; Haas "Macros", "#4001-#4021 last block group codes"): in G17 G90 after a G01."""
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        for k, code in enumerate(("4001", "4003", "4006", "4002")):
+            self.emit(f"#{131 + k}=#{code}")
+        x, y = self.pos[0], self.pos[1]
+        inch = self.unit != 1.0
+        self.emit(f"G1 X[{self.v(x, plain=False)}+#131*{self.v(5, plain=False)}] Y[{self.v(y, plain=False)}+[#132-90]*"
+                  f"{self.v(3, plain=False)}+[#134-17]*{self.v(3, plain=False)}+[21-#133]*{self.v(2, plain=False)}]")
+        self.pos[0], self.pos[1] = x + 5, y + (2 if inch else 0)
+        if self.fanuc:
+            self.emit("#135=#4014")
+            self.emit("#136=0")
+            self.emit("IF [#135 GE 54] THEN #136=1")
+            self.emit(f"G1 X[{self.v(self.pos[0], plain=False)}+#136*{self.v(2, plain=False)}]")
+            self.pos[0] += 2
+        self.emit(f"G0 {self.xyz(z=10)}")
+
     def g28_shifted_section(self) -> None:
         """G28 through a point written in the local system (G52) in G90, and G30 in G91 (0i-MF "Reference
         position return": the intermediate point in the workpiece system)."""
@@ -1204,7 +1225,8 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "length_cycle": g.length_cycle_section, "rigid_tap_end": g.rigid_tap_end_section,
              "arc3d": g.arc3d_section, "offset_vars": g.offset_vars_section, "haas_then": g.haas_then_section,
              "peck_tap": lambda: g.rigid_tap_section(peck=g.fanuc), "g66": g.g66_section,
-             "inverse_time": g.inverse_time_section, "frames": g.frames_section}
+             "inverse_time": g.inverse_time_section, "frames": g.frames_section,
+             "modal_info": g.modal_info_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")

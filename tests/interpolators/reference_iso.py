@@ -416,10 +416,15 @@ class _Params:
         # not used; ``holding`` is set while an assignment's value is read (False: no clock read yet, True: one was)
         self.held: set[int] = set()
         self.holding: bool | None = None
+        self.system = None  # Fanuc/Haas: the modal information #4001.. the machine gives (_modal_information)
 
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
+        if self.system is not None and isinstance(key, int) and 4001 <= key <= 4022:
+            value = self.system(key)
+            if value is not None:
+                return value
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
         if isinstance(key, int) and math.isnan(self.unset) and (key in _CLOCKS or key in self.held):
@@ -2442,6 +2447,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     st = _structure(lines)
     m, params = _Machine(context), _Params(vacant=context.dialect.name in ("fanuc", "haas"))
     m.fadal = fadal
+    if context.dialect.name in ("fanuc", "haas"):
+        params.system = lambda key: _modal_information(m, key)
     frames: list[dict] = []
     counters: dict[int, int] = {}
     percent = 0
@@ -2576,6 +2583,26 @@ def _g65_call(ln: _Line, pc: int, st: dict, params: _Params) -> dict:
         if letter in words:
             params.numbered[number] = words[letter][-1]
     return {"kind": "g65", "ret": pc + 1, "start": start, "saved": saved}
+
+
+def _modal_information(m: _Machine, key: int) -> float | None:
+    """Fanuc/Haas modal information of the blocks run so far (Fanuc 0i-MD B-64304EN "System variables", "Modal
+    information": ``#4001`` group 01 G00-G03, ``#4002`` 17/18/19, ``#4003`` 90/91, ``#4006`` 20/21, ``#4014`` the
+    work system 54-59 (Fanuc 54.1 for G54.1 P); Haas "Macros", "#4001-#4021 last block group codes"); None for the
+    others (not modelled here)."""
+    if key == 4001 and m.linear in (0, 10, 20, 30):
+        return m.linear / 10.0
+    if key == 4002:
+        return float(m.plane)
+    if key == 4003:
+        return 91.0 if m.incremental else 90.0
+    if key == 4006:
+        return 20.0 if m.scale != 1.0 else 21.0
+    if key == 4014 and m.wcs in list(_WCS.values())[:6]:
+        return float(m.wcs[1:])
+    if key == 4014 and m.wcs.startswith("G54.1") and m.ctx.dialect.name == "fanuc":
+        return 54.1
+    return None
 
 
 def _g66_words(ln: _Line, params: _Params) -> dict:

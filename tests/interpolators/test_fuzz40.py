@@ -103,3 +103,15 @@ def test_reference_work_offset_variables_write_the_offset_at_once():
     assert np.allclose(rows[1].end, (-99.0, -79.0, -400.0))  # Z stays where G54 Z0 put it
     assert np.allclose(rows[2].end, (-99.0, -79.0, -49.0))
     assert np.isclose(rows[3].end[0], 5.0)
+
+
+def test_reference_reads_the_modal_information():
+    # Fanuc 0i-MD "System variables", "Modal information": after G1 in G17 G90 G21 G55, #4001 = 1, #4002 = 17,
+    # #4003 = 90, #4006 = 21, #4014 = 55
+    ctx = MachineContext(dialect=DIALECTS["fanuc"], work_offsets={"G55": (0.0, 0.0, 0.0)})
+    text = "G21 G17 G90 G55 G0 X0. Y0. Z0.\nG1 X1. F100.\n#1=#4001\n#2=#4002\n#3=#4003\n#4=#4006\n#5=#4014\n" \
+           "G1 X[#1+#5-55] Y[#2-17+#3-90] Z[#4-21]\nM30\n"
+    rows = iso_reference(text, ctx)
+    assert np.allclose(rows[-1].end, (1.0, 0.0, 0.0))
+    prog = parse_program(text, context=ctx, source="t.nc")
+    assert np.allclose(prog.blocks[-1].target, (1.0, 0.0, 0.0))
