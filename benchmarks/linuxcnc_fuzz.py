@@ -292,7 +292,7 @@ def _contour(w: _Writer) -> list[tuple[str, list[float], float]]:
 
 def chunk_compensation(w: _Writer) -> None:
     """Cutter radius compensation: G41/G42 with D or the tool's own, G41.1/G42.1 D (L), an entry move, a closed
-    contour of lines and arcs, G40 and an exit move."""
+    contour of lines and arcs (some of them helical), G40 and an exit move."""
     rng = w.rng
     w.units()
     if rng.random() < 0.5:
@@ -308,8 +308,13 @@ def chunk_compensation(w: _Writer) -> None:
     w.emit(f"{side}{how}")
     contour = _contour(w)
     for kind, end, r in contour:
+        end = [end[0], end[1], w.pos[2]]  # at the Z the helices before left
         if kind in ("start", "line"):
             w.emit(f"G1 {w.axes(end, 'XY')}")
+        elif rng.random() < 0.3:  # a helix: the compensation offsets its XY projection (g-code.adoc "G41, G42")
+            z = w.pos[2] - rng.choice([0.5, 1.0, 2.0])
+            z = w.coord(z, z)  # on the grid of the units in force
+            w.emit(f"{kind} {w.axes([end[0], end[1], z], 'XY')} Z{w.num(z)} R{w.num(r)}")
         else:
             w.emit(f"{kind} {w.axes(end, 'XY')} R{w.num(r)}")
     w.emit("G40")
@@ -581,12 +586,51 @@ def chunk_tool_table(w: _Writer) -> None:
     w.emit("G90")
 
 
+#: Predefined named parameters that read the modal state (overview.adoc "Predefined Named Parameters"), each
+#: with a factor that keeps its part of a coordinate small [program units per unit of the parameter].
+STATE_PARAMETERS = {"_motion_mode": 0.01, "_plane": 0.001, "_ccomp": 0.001, "_metric": 1.0, "_imperial": 1.0,
+                    "_absolute": 1.0, "_incremental": 1.0, "_inverse_time": 1.0, "_units_per_minute": 1.0,
+                    "_units_per_rev": 1.0, "_coord_system": 0.001, "_tool_offset": 1.0, "_retract_r_plane": 1.0,
+                    "_retract_old_z": 1.0, "_feed": 0.001, "_rpm": 0.0001, "_spindle_on": 1.0, "_spindle_cw": 1.0,
+                    "_mist": 1.0, "_flood": 1.0, "_current_tool": 0.1, "_selected_tool": 0.1, "_x": 0.1, "_y": 0.1,
+                    "_z": 0.1, "_a": 0.001, "_abs_x": 0.01, "_abs_y": 0.01, "_abs_z": 0.01, "_ijk_absolute_mode": 1.0,
+                    "_spindle_rpm_mode": 1.0}
+
+
+def chunk_state(w: _Writer) -> None:
+    """The modal state read through the predefined named parameters (:data:`STATE_PARAMETERS`) into the coordinates
+    of feed moves, and work offsets written through their numbered parameters (overview.adoc "Numbered
+    Parameters": "5221-5230 Coordinate System 1, G54 (X Y Z A B C U V W R)", 20 apart up to G59.3), then a system
+    selected (LinuxCNC takes the written values at the selection, interp_convert.cc ``convert_coordinate_system``)
+    and moves in it."""
+    rng = w.rng
+    w.start(w.coord(), w.coord(), w.coord(0, 10), distance="G90")
+    w.emit(rng.choice(["G17", "G18", "G19", "G98", "G99", "M8", "M7", "M9", "S1000 M3", "S500 M4", "M5"]))
+    # not #<_current_tool> after M61: rs274's standalone canon leaves it 0 ("M61 Q5" then "(debug,
+    # #<_current_tool>)" prints 0; saicanon.cc CHANGE_TOOL_NUMBER, as chunk_tools says), LinuxCNC's task and vcnc 5
+    known = sorted(n for n in STATE_PARAMETERS if not (w.m61 and n == "_current_tool"))
+    for _ in range(rng.randint(1, 3)):
+        names = rng.sample(known, 2)
+        parts = [f"#<{n}> * {STATE_PARAMETERS[n]:g}" for n in names]
+        w.emit(f"G1 X[{w.num(w.coord())} + {parts[0]}] Y[{w.num(w.coord())} + {parts[1]}] {w.feed()}")
+    if rng.random() < 0.6:
+        k = rng.randint(0, 8)
+        base = 5221 + 20 * k
+        for j in rng.sample(range(3), rng.randint(1, 3)):
+            w.emit(f"#{base + j} = [#{base + j} + {rng.randint(-20, 20)}]" if rng.random() < 0.5
+                   else f"#{base + j} = {rng.randint(-50, 50)}")
+        w.emit(["G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"][k])
+    w.emit("G17")
+    w.start(w.coord(), w.coord(), w.coord(0, 20), distance="G90", units=False)
+    w.emit(f"G1 {w.axes([w.coord(), w.coord(), w.pos[2]])} {w.feed()}")
+
+
 #: Feature groups and the chunk that writes one.
 FEATURES = {"arcs": chunk_arcs, "offsets": chunk_offsets, "tools": chunk_tools, "home": chunk_home,
             "compensation": chunk_compensation, "cycles": chunk_cycles, "tapping": chunk_tapping,
             "splines": chunk_splines, "blending": chunk_blending, "inverse_time": chunk_inverse_time,
             "parameters": chunk_parameters, "owords": chunk_owords, "mcodes": chunk_mcodes, "polar": chunk_polar,
-            "rotary": chunk_rotary, "tool_table": chunk_tool_table}
+            "rotary": chunk_rotary, "tool_table": chunk_tool_table, "state": chunk_state}
 
 
 def generate(seed: int, *, features: tuple[str, ...] = tuple(FEATURES), chunks: tuple[int, int] = (3, 8)

@@ -89,7 +89,8 @@ if TYPE_CHECKING:
 __all__ = ["EXTENDED_CODES", "P_SELECT_CODES", "MAX_EXTENDED", "selected_offset", "set_work_offset", "extended_number",
            "offset_parameter", "g54_takes_p", "set_tool_offset", "TOOL_LEVELS", "ToolRegister", "tool_offset_variable",
            "fanuc_tool_variable", "tool_offset", "with_tool_offset", "length_compensation", "h_alone", "length_travel",
-           "length_moves_now", "length_cancelled", "length_in_cycle", "reference_p", "local_offset", "g10"]
+           "length_moves_now", "length_cancelled", "length_in_cycle", "reference_p", "local_offset", "g10",
+           "set_external_axis"]
 
 #: G10 L words that write the tool offsets under the ``fanuc`` and ``haas`` dialects.
 TOOL_LEVELS = frozenset({1, 10, 11, 12, 13})
@@ -223,14 +224,24 @@ def set_work_offset(level: int, p: float | None, words: dict[str, float], st: Of
     return code
 
 
+def set_external_axis(st: OffsetState, axis: int, value: float) -> None:
+    """Axis ``axis`` (0-5: X Y Z A B C) of the external workpiece zero offset becomes ``value`` [mm, deg]; the shift
+    every system shares (``g92``) moves with it. G10 L2 P0 and the Fanuc/Haas variables ``#5201``-``#5206``
+    (:func:`interpolators.iso_system.set_system_parameter`) set it."""
+    if axis < 3:
+        st.g92[axis] += value - st.external[axis]
+        st.external[axis] = value
+    else:
+        st.g92_extra[axis - 3] += value - st.external_extra[axis - 3]
+        st.external_extra[axis - 3] = value
+
+
 def _set_external(words: dict[str, float], st: OffsetState) -> None:
     """G10 L2 P0: the external offset of the named axes (X Y Z and A-W alike, module docstring) becomes the
     value (G90) or moves by it (G91); the shift every system shares moves with it."""
     for i, a in enumerate("XYZ"):
         if a in words:
-            value = (st.external[i] if st.incremental else 0.0) + words[a] * st.scale
-            st.g92[i] += value - st.external[i]
-            st.external[i] = value
+            set_external_axis(st, i, (st.external[i] if st.incremental else 0.0) + words[a] * st.scale)
     v = word_values({a: words[a] for a in EXTRA_LETTERS if a in words}, scale=st.scale)
     given = ~np.isnan(v)
     value = (st.external_extra if st.incremental else np.zeros(6)) + np.where(given, v, 0.0)

@@ -55,7 +55,8 @@ are not modelled: reading one is an error naming it.
 Under those dialects a program may also write the work offsets (Fanuc 0i-MD "System variables":
 "workpiece zero point offset value ... read/write"; Haas "Macros", "Offsets": "all tool work offsets
 can be read and set within a macro expression"): ``#5221``-``#5326`` (G54-G59: X Y Z A B C, 20 per
-system), the additional ones below; the offset changes at once, as ``G10 L2`` would
+system), the additional ones below, and the external offset ``#5201``-``#5206`` (as ``G10 L2 P0``; Haas: its G52
+entry; fuzz40); the offset changes at once, as ``G10 L2`` would
 (:func:`set_system_parameter`). LinuxCNC's stay read-only here (its #5221.. back the offsets and change
 with G10, not the other way round).
 
@@ -113,6 +114,7 @@ from interpolators.iso_offsets import (
     extended_number,
     fanuc_tool_variable,
     offset_parameter,
+    set_external_axis,
     tool_offset,
     tool_offset_variable,
     with_tool_offset,
@@ -156,6 +158,7 @@ class ReaderState(Protocol):
     extra: np.ndarray  # a, b, c [deg], u, v, w [mm], machine positions
     wcs: str
     g92: np.ndarray
+    g92_extra: np.ndarray
     g92_saved: np.ndarray
     g92_applied: bool
     tool_length: float
@@ -181,6 +184,8 @@ class ReaderState(Protocol):
     retract_r: bool
     exact_stop: bool
     feed: float | None
+    feed_rotary: float | None  # the F word as written / 60
+    feed_per_rev_word: float | None  # the F word as written under G95
     per_rev: bool
     frame: Frame | None
     length_code: float
@@ -415,6 +420,17 @@ _UNKNOWN_NAMED = {
 }
 
 
+def _feed_word(st: ReaderState) -> float:
+    """LinuxCNC ``#<_feed>``: the F number as last written (interp's ``feed_rate``), 0 before one and after the
+    G94/G95 that clears it: a change of units since does not convert it (rs274 2.9.0~pre1: ``F600`` then ``G20``
+    reads 600, the canon having taken 600 mm/min when F was set), under G95 the feed per revolution (``F0.01``
+    reads 0.01). Under G93 rs274 reads the feed it worked out for the last inverse-time move, which is not modelled
+    here: the last F of G94/G95 is read (fuzz40)."""
+    if st.per_rev:
+        return 0.0 if st.feed_per_rev_word is None else float(st.feed_per_rev_word)
+    return 0.0 if st.feed_rotary is None else st.feed_rotary * 60.0
+
+
 def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]:
     """LinuxCNC's predefined named parameter ``#<key>`` (lower case) of the modal state: ``(value, "")``, ``(None,
     why)`` for one whose value is the machine's (the pockets: an error naming why), ``(None, "")`` for another name.
@@ -424,7 +440,7 @@ def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]
     400/410/420, 1 or 0 for ``_metric`` ``_imperial`` ``_absolute`` ``_incremental`` ``_inverse_time``
     ``_units_per_minute`` ``_units_per_rev`` ``_ijk_absolute_mode`` ``_tool_offset`` (an offset in force),
     ``_retract_r_plane`` (G99) and ``_retract_old_z`` (G98), ``_coord_system`` 540 .. 590, 591 .. 593 for G59.1 ..
-    G59.3, ``_feed`` (F in program units) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any),
+    G59.3, ``_feed`` (:func:`_feed_word`) and ``_rpm`` (S), ``_selected_tool`` (the last T, 0 before any),
     ``_spindle_rpm_mode`` 1 (G97: vcnc has no G96), ``_lathe_radius_mode`` 1 (G8), ``_lathe_diameter_mode`` 0 and
     ``_remap_level`` 0 (no remaps); rs274 2.9.0~pre1 prints these for "G21 G0 X0" / "(DEBUG, #<_plane> ...)".
 
@@ -453,7 +469,7 @@ def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]
         "_tool_offset": float(bool(st.tool_length) or bool(np.any(st.tool_xy))),
         "_retract_r_plane": float(st.retract_r), "_retract_old_z": float(not st.retract_r),
         "_coord_system": float(530 + 10 * wcs if wcs < 7 else 584 + wcs) if wcs else None,
-        "_feed": 0.0 if st.feed is None else st.feed * 60.0 / st.scale, "_rpm": abs(st.spindle_speed),
+        "_feed": _feed_word(st), "_rpm": abs(st.spindle_speed),
         "_selected_tool": float(st.tool_selected or 0), "_spindle_rpm_mode": 1.0, "_spindle_css_mode": 0.0,
         "_lathe_radius_mode": 1.0, "_lathe_diameter_mode": 0.0, "_remap_level": 0.0,
         "_spindle_on": float(st.spindle_turning), "_spindle_cw": float(st.spindle_turning and not st.spindle_ccw),
@@ -565,6 +581,10 @@ def set_system_parameter(n: int, value: float | None, st: ReaderState) -> bool:
         tool = st.tool(register.number) or Tool(number=register.number)
         amount = 0.0 if value is None else float(value) * _stored(st)
         st.tools[register.number] = with_tool_offset(tool, register, amount)
+        return True
+    if 5201 <= n <= 5206:  # the external workpiece zero offset (Fanuc 0i-MD "System variables": read/write; Haas: G52)
+        v = 0.0 if value is None else float(value)
+        set_external_axis(st, n - 5201, v * _stored(st) if n <= 5203 else v)
         return True
     target = _offset_variable(n, st)
     if target is None:

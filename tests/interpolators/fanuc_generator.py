@@ -32,7 +32,7 @@ import dataclasses
 import math
 import random
 
-from interpolators.context import DIALECTS, MachineContext, Tool
+from interpolators.context import DIALECTS, Dialect, MachineContext, Tool
 from interpolators.tilted import Kinematics, RotaryAxis
 
 __all__ = ["generate", "context", "FEATURES"]
@@ -48,7 +48,8 @@ FEATURES = ("lines", "arcs", "helix", "planes", "comp", "cycles", "cycles_g91", 
             "tool_length", "haas_pattern", "haas_pocket", "haas_peck", "m97", "polar", "comp_arcs", "macro_system",
             "cycle_modal", "g28_shifted", "depth_passes", "scaling_ijk", "block_delete", "corner_arc", "g10_tools",
             "cycle_sub", "g52_rotated", "external", "tcp", "length_motion", "rigid_tap", "haas_g73k", "m99_branch",
-            "length_block", "length_reference", "length_cycle", "rigid_tap_end", "arc3d")
+            "length_block", "length_reference", "length_cycle", "rigid_tap_end", "arc3d", "offset_vars",
+            "haas_then", "peck_tap", "g66", "inverse_time", "frames", "modal_info")
 
 
 def context(seed: int, dialect: str) -> MachineContext:
@@ -59,7 +60,7 @@ def context(seed: int, dialect: str) -> MachineContext:
     offsets.update({f"G54.1 P{k}": (-250.0 + k, -150.0 - k, -350.0) for k in range(1, 21)})
     tools = {n: Tool(number=n, length=10.0 * n, radius=0.5 + 0.25 * n) for n in range(1, 7)}
     five = five_axis(seed, dialect)
-    return MachineContext(work_offsets=offsets, tools=tools, home=(0.0, 0.0, 0.0), dialect=DIALECTS[dialect],
+    return MachineContext(work_offsets=offsets, tools=tools, home=(0.0, 0.0, 0.0), dialect=_dialect(seed, dialect),
                           extra_axes=("a", "c") if five else ("b",), kinematics=_AC_TABLE if five else None,
                           decimal_point_input="increment" if _increments(seed, dialect) else "calculator")
 
@@ -67,6 +68,16 @@ def context(seed: int, dialect: str) -> MachineContext:
 #: The tilting table of the five-axis seeds: A about X round (0, 0, -80), C about Z through (5, 0, 0).
 _AC_TABLE = Kinematics(axes=(RotaryAxis(name="a", pivot=(0.0, 0.0, -80.0), limits=(-120.0, 120.0)),
                              RotaryAxis(name="c", pivot=(5.0, 0.0, 0.0))))
+
+
+def _dialect(seed: int, dialect: str) -> Dialect:
+    """The dialect, and for a Fanuc program with a ``peck_tap`` section the machine's peck rigid tapping (PCP, No.
+    5200#5: high-speed or standard; d, No. 5213 [mm]; Fanuc 16i-TA/TB A-78549E 3.4)."""
+    if dialect != "fanuc" or "peck_tap" not in features(seed, dialect):
+        return DIALECTS[dialect]
+    r = random.Random(f"{seed}:peck_tapping")
+    return dataclasses.replace(DIALECTS[dialect], peck_tapping=r.choice(("high-speed", "standard")),
+                               peck_tapping_d=r.choice((0.5, 1.0, 2.0)))
 
 
 def five_axis(seed: int, dialect: str) -> bool:
@@ -214,12 +225,14 @@ class _Gen:
 
     def comp_section(self, d: int | None = None) -> None:
         """A rectangle (sharp or rounded corners) climb- or conventional-cut inside or outside, with offset ``D<d>``
-        (else a random one)."""
+        (else a random one); rounded corners are sometimes helical, each 0.5 lower (Fanuc 0i-MF "Helical
+        interpolation": "Cutter compensation is applied only for a circular arc"; fuzz40)."""
         if not self.tool:
             self.tool_change()
         x0, y0 = self.r.randint(-4, 4) * 5, self.r.randint(-4, 4) * 5
         w, h = self.r.choice((20, 30, 40)), self.r.choice((20, 30))
         rc = self.r.choice((0, 0, 5))
+        helical = self.r.random() < 0.3
         ccw = self.r.random() < 0.5
         side = self.r.choice(("G41", "G42"))
         d = self.r.randint(1, 6) if d is None else d
@@ -242,11 +255,12 @@ class _Gen:
                 el = max(abs(ex), abs(ey))
                 ax, ay = px + ex / el * rc, py + ey / el * rc
                 code = "G3" if ccw else "G2"
+                z = self.pos[2] - 0.5 if helical else None
                 if self.r.random() < 0.5:
-                    self.emit(f"{code} {self.xyz(ax, ay)} R{self.v(rc)}")
+                    self.emit(f"{code} {self.xyz(ax, ay, z)} R{self.v(rc)}")
                 else:
                     ci, cj = bx + ex / el * rc - self.pos[0], by + ey / el * rc - self.pos[1]
-                    self.emit(f"{code} {self.xyz(ax, ay)} I{self.v(ci)} J{self.v(cj)}")
+                    self.emit(f"{code} {self.xyz(ax, ay, z)} I{self.v(ci)} J{self.v(cj)}")
             else:
                 self.emit(f"G1 {self.xyz(px, py)}")
         self.emit(f"G1 {self.xyz(*pts[-1])}")
@@ -375,12 +389,13 @@ class _Gen:
     def g10_section(self) -> None:
         p = self.r.randint(1, 6)
         vals = " ".join(f"{a}{_num(self.r.randint(-40, 40) * 5.0 * self.unit)}" for a in "XYZ")
+        mode = self.r.choice(("G90", "G90", "G91"))  # G91: added to the offset (Fanuc 0i-MF "G10 L2", fuzz40)
         if self.r.random() < 0.5:
-            self.emit(f"G90 G10 L2 P{p} {vals}")
+            self.emit(f"{mode} G10 L2 P{p} {vals}")
         else:
-            self.emit(f"G90 G10 L20 P{p} {vals}")
+            self.emit(f"{mode} G10 L20 P{p} {vals}")
             p = 0
-        self.emit(f"G{53 + p}" if p else self.extended_code(1))
+        self.emit(f"G90 G{53 + p}" if p else "G90 " + self.extended_code(1))
         self.lines_section()
 
     def external_section(self) -> None:
@@ -454,13 +469,17 @@ class _Gen:
             self.emit(self.r.choice(("G04 P1.5", "G04 P500", "G4 P0.5")))
 
     def g91_arcs_section(self) -> None:
-        self.start()
-        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        """Arcs with incremental end points (G91): in G17, sometimes helical, or in G18/G19 (fuzz40: the plane's
+        axes other than X Y, and a helix's third axis, as increments)."""
+        plane_code, plane = self.r.choice((("G17", (0, 1)), ("G17", (0, 1)), ("G18", (2, 0)), ("G19", (1, 2))))
+        self.start(20 if plane_code != "G17" else 10)
+        self.emit(f"{plane_code} G1 {self.xyz(z=15 if plane_code != 'G17' else -1)} {self.feed()}")
         self.emit("G91")
         for _ in range(self.r.randint(1, 3)):
             before, dpi0 = list(self.pos), self.dpi0
             self.dpi0 = False  # the absolute words are read back below
-            text = self.arc(self.r.choice(("G2", "G3")), full=self.r.random() < 0.2)
+            helix = self.pos[2] - self.r.choice((1, 2)) if plane_code == "G17" and self.r.random() < 0.3 else None
+            text = self.arc(self.r.choice(("G2", "G3")), plane=plane, helix=helix, full=self.r.random() < 0.2)
             self.dpi0 = dpi0
             code, rest = text.split(" ", 1)
             words = []
@@ -470,8 +489,8 @@ class _Gen:
                     w = w[0] + self.v(float(w[1:]) / self.unit - before[k])
                 words.append(w)
             self.emit(f"{code} {' '.join(words)}")
-        self.emit("G90")
-        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G90 G17")
+        self.emit(f"G0 {self.xyz(z=40 if plane_code != 'G17' else 10)}")
 
     def comp_rotated_section(self) -> None:
         kind = self.r.choice(("G68", "mirror", "G52", "G51"))
@@ -711,6 +730,46 @@ class _Gen:
         self.emit("G69")
         self.emit("G52 X0. Y0.")
 
+    def frames_section(self) -> None:
+        """A G92 shift with a mirror and a rotation inside it (Fanuc 0i-MF "Programmable mirror image", "Coordinate
+        system rotation": mirror, then rotation, nested, the centres in the G92 system; Haas "G92", "G101", "G68"):
+        lines and an arc, the frames cancelled in reverse order, then the G92 shift taken back."""
+        self.start()
+        px, py = self.pos[0], self.pos[1]
+        self.emit("G92 X0. Y0.")
+        self.pos[0] = self.pos[1] = 0.0
+        self.emit(f"G51.1 X{self.v(self.r.randint(-2, 2) * 5)}" if self.fanuc else "G101 X0.")
+        self.emit(f"G68 X{self.v(self.r.randint(-2, 2) * 5)} Y{self.v(self.r.randint(-2, 2) * 5)} "
+                  f"R{self.r.choice((15, 30, 45, 90, -30))}.")
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
+        self.emit(self.arc(self.r.choice(("G2", "G3"))))
+        self.emit(f"G0 {self.xyz(z=10)}")
+        self.emit("G69")
+        self.emit("G50.1 X0." if self.fanuc else "G100 X0.")
+        self.emit(f"G92 X{self.v(self.pos[0] + px)} Y{self.v(self.pos[1] + py)}")
+
+    def modal_info_section(self) -> None:
+        """The modal information read into coordinates (Fanuc 0i-MD B-64304EN "System variables", "Modal
+        information": ``#4001`` G00-G03, ``#4002`` the plane, ``#4003`` 90/91, ``#4006`` 20/21, ``#4014`` the work
+        system, Fanuc only here; Haas "Macros", "#4001-#4021 last block group codes"): in G17 G90 after a G01."""
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        for k, code in enumerate(("4001", "4003", "4006", "4002")):
+            self.emit(f"#{131 + k}=#{code}")
+        x, y = self.pos[0], self.pos[1]
+        inch = self.unit != 1.0
+        self.emit(f"G1 X[{self.v(x, plain=False)}+#131*{self.v(5, plain=False)}] Y[{self.v(y, plain=False)}+[#132-90]*"
+                  f"{self.v(3, plain=False)}+[#134-17]*{self.v(3, plain=False)}+[21-#133]*{self.v(2, plain=False)}]")
+        self.pos[0], self.pos[1] = x + 5, y + (2 if inch else 0)
+        if self.fanuc:
+            self.emit("#135=#4014")
+            self.emit("#136=0")
+            self.emit("IF [#135 GE 54] THEN #136=1")
+            self.emit(f"G1 X[{self.v(self.pos[0], plain=False)}+#136*{self.v(2, plain=False)}]")
+            self.pos[0] += 2
+        self.emit(f"G0 {self.xyz(z=10)}")
+
     def g28_shifted_section(self) -> None:
         """G28 through a point written in the local system (G52) in G90, and G30 in G91 (0i-MF "Reference
         position return": the intermediate point in the workpiece system)."""
@@ -818,11 +877,14 @@ class _Gen:
         self.tool = self.tool or t
         self.emit(f"G43 H{self.tool} {self.xyz(z=50)}")
 
-    def rigid_tap_section(self) -> None:
+    def rigid_tap_section(self, *, peck: bool = False) -> None:
         """Tapping fed per revolution, the feed the thread's pitch: Fanuc ``M29 S..`` then ``G84 .. F<pitch>``
         under G95 (0i-B connection manual B-63833EN "Rigid tapping": "G99 ; M29 S1000 ; G84 Z-100. R-20. F1. ;",
-        as Fusion's fanuc.cps writes it, ``P0``), Haas ``G84`` under G95 (haas.cps); ``G80``, ``G94`` after."""
+        as Fusion's fanuc.cps writes it, ``P0``), Haas ``G84`` under G95 (haas.cps); ``G80``, ``G94`` after.
+        With ``peck`` (Fanuc) a ``Q`` each cut: peck rigid tapping (16i-TA/TB A-78549E 3.4 "Peck rigid tapping
+        cycle": "G84 X_ Y_ Z_ R_ P_ Q_ F_ K_"), on the machine :func:`_dialect` sets up for it."""
         self.start(20)
+        q = f" Q{self.v(self.r.choice((2, 3, 4)))}" if peck else ""
         pitch = self.r.choice((0.8, 1.0, 1.25, 1.5)) * (0.04 if self.unit < 1 else 1)
         self.emit("G95")
         if self.fanuc:
@@ -831,12 +893,12 @@ class _Gen:
         dwell = " P0" if self.fanuc and self.r.random() < 0.5 else ""
         if self.r.random() < 0.3:  # a row of holes in G91, repeated (Fanuc K, Haas L)
             count = self.r.randint(2, 3)
-            self.emit(f"G91 {ret} G84 X{self.v(5)} Y0. Z{self.v(-13)} R{self.v(-17)}{dwell} "
+            self.emit(f"G91 {ret} G84 X{self.v(5)} Y0. Z{self.v(-13)} R{self.v(-17)}{dwell}{q} "
                       f"{'K' if self.fanuc else 'L'}{count} F{_num(pitch)}")
             self.emit("G90")
             self.pos[0] += 5 * count
         else:
-            self.emit(f"{ret} G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)}{dwell} "
+            self.emit(f"{ret} G84 {self.xyz(self.pos[0] + 5, self.pos[1])} Z{self.v(-10)} R{self.v(3)}{dwell}{q} "
                       f"F{_num(pitch)}")
             for _ in range(self.r.randint(0, 2)):
                 self.emit(self.xyz(self.pos[0] + self.r.randint(-2, 2) * 5, self.pos[1] + 5))
@@ -1029,6 +1091,94 @@ class _Gen:
         self.emit(f"G0 {self.xyz(z=self.pos[2] + 20)}")
         self.emit(f"G0 {self.xyz(z=40)}")
 
+    def offset_vars_section(self) -> None:
+        """Work offsets written through the system variables (Fanuc 0i-MD B-64304EN "System variables": ``#5221``-
+        ``#5223`` G54 X Y Z, 20 apart up to G59, ``#7001``.. G54.1 P1, 20 apart, ``#5201``.. the external offset,
+        "read/write"; Haas "Macros": ``#5221``.. G54-G59, ``#7001``.. G110 = G154 P1, ``#5201``.. G52), a value
+        read back, the system selected (or written while in force), moves in it; the external offset back to 0.
+        Metric programs only: the variables hold the machine's unit (mm here), which G20 does not change."""
+        if self.unit != 1.0:
+            self.lines_section()
+            return
+        extended = self.r.random() < 0.3
+        k = self.r.randint(1, 20 if extended else 6)
+        base = 7001 + 20 * (k - 1) if extended else 5221 + 20 * (k - 1)
+        code = self.extended_code(k) if extended else f"G5{3 + k}"
+        before = self.r.random() < 0.7
+        if not before:
+            self.emit(code)
+        self.emit(f"#{base}={_num(-300.0 + 5 * self.r.randint(-10, 10))}")
+        self.emit(f"#{base + 1}=#{base}+{_num(5.0 * self.r.randint(0, 20))}")
+        self.emit(f"#{base + 2}={_num(-400.0 + 5 * self.r.randint(-4, 4))}")
+        external = self.r.random() < 0.3
+        if external:
+            for i in range(3):
+                self.emit(f"#{5201 + i}={_num(2.5 * self.r.randint(-4, 4))}")
+        if before:
+            self.emit(code)
+        self.lines_section()
+        if external:
+            self.emit("#5201=0.")
+            self.emit("#5202=0.")
+            self.emit("#5203=0.")
+
+    def haas_then_section(self) -> None:
+        """Haas ``IF [..] THEN <NC words>`` (Haas mill operator's manual, "Macros", "Conditional Execution (IF
+        THEN)": "IF [#1 NE #0] THEN G1 X#24 Y#26 F#9"): two such moves of which the condition lets one run; Fanuc
+        and Fadal (THEN only before an assignment) plain lines."""
+        if self.dialect != "haas":
+            self.lines_section()
+            return
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        which = self.r.randint(1, 2)
+        self.emit(f"#106={which}")
+        for k in (1, 2):
+            x, y = self.pos[0] + self.r.randint(-3, 3) * 5, self.pos[1] + self.r.randint(1, 3) * 5
+            if k == which:
+                words = self.xyz(x, y)
+            else:
+                words = f"X{self.v(x)} Y{self.v(y)}"
+            op = self.r.choice(("EQ", "NE"))
+            cond = f"#106 EQ {k}" if op == "EQ" else f"#106 NE {3 - k}"
+            self.emit(f"IF [{cond}] THEN G1 {words}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
+    def g66_section(self) -> None:
+        """Fanuc ``G66 P<program> Z F [L]`` (0i-MD B-64304EN "Modal call: call after the move command (G66)"):
+        after each positioning the macro drills by its arguments, incrementally (``G91 G1 Z-#26 F#9``, back
+        ``G0 Z#26``), until ``G67``; Haas and Fadal (no G66) plain lines."""
+        if not self.fanuc:
+            self.lines_section()
+            return
+        prog = 9500 + len(self.subs)
+        self.subs.append([f"O{prog} (MODAL DRILL)", "G91 G1 Z-#26 F#9", "G0 Z#26", "G90", "M99"])
+        self.start()
+        count = f" L{self.r.randint(2, 3)}" if self.r.random() < 0.3 else ""
+        self.emit(f"G66 P{prog} Z{self.v(self.r.randint(4, 12), plain=False)} "
+                  f"F{_num(100 * (0.04 if self.unit < 1 else 1))}{count}")
+        for _ in range(self.r.randint(1, 4)):
+            x, y = self.pos[0] + self.r.randint(-3, 3) * 5, self.pos[1] + self.r.randint(1, 3) * 5
+            self.emit(f"G0 {self.xyz(x, y)}" if self.r.random() < 0.7 else self.xyz(x, y))
+        self.emit("G67")
+        self.emit(f"G0 {self.xyz(z=15)}")
+
+    def inverse_time_section(self) -> None:
+        """``G93`` inverse time feed (Fanuc 0i-MF "Inverse time feed (G93)": F the reciprocal of the block's time
+        [1/min], on every G01/G02/G03 block; Haas "G93 Inverse Time Feed Mode") on lines and arcs, ``G94`` and a
+        feed back."""
+        self.start()
+        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
+        self.emit("G93")
+        for _ in range(self.r.randint(1, 4)):
+            if self.r.random() < 0.5:
+                text = self.arc(self.r.choice(("G2", "G3")))
+            else:
+                text = f"G1 {self.xyz(self.pos[0] + self.r.randint(-3, 3) * 5, self.pos[1] + 5)}"
+            self.emit(f"{text} F{self.r.randint(1, 60)}.")
+        self.emit(f"G94 G1 {self.xyz(self.pos[0] + 5, self.pos[1])} {self.feed()}")
+        self.emit(f"G0 {self.xyz(z=10)}")
+
     def tool_change(self) -> None:
         self.tool = self.r.randint(1, 6)
         self.emit("G91 G28 Z0.")
@@ -1073,7 +1223,10 @@ def generate(seed: int, dialect: str = "fanuc") -> str:
              "haas_g73k": g.haas_g73k_section, "m99_branch": g.m99_branch_section,
              "length_block": g.length_block_section, "length_reference": g.length_reference_section,
              "length_cycle": g.length_cycle_section, "rigid_tap_end": g.rigid_tap_end_section,
-             "arc3d": g.arc3d_section}
+             "arc3d": g.arc3d_section, "offset_vars": g.offset_vars_section, "haas_then": g.haas_then_section,
+             "peck_tap": lambda: g.rigid_tap_section(peck=g.fanuc), "g66": g.g66_section,
+             "inverse_time": g.inverse_time_section, "frames": g.frames_section,
+             "modal_info": g.modal_info_section}
     for name in chosen:
         table[name]()
     g.emit("G91 G28 Z0.")

@@ -116,6 +116,12 @@ Fanuc/Haas subprogram rules (Haas mill operator's manual, "M98 Subprogram Call")
   o100 call", o-code.adoc "Fanuc-Style Numbered Programs"): its other words do not run; Fanuc and Haas run
   them before the call. ``M99 P<n>`` returns to the block ``N<n>`` of the calling program (Haas "M99 Subprogram
   Return or Loop"), found as a GOTO finds it from the call.
+  Fanuc ``G66 P<program> L<count> <arguments>`` (0i-MD B-64304EN "Modal call (G66)"): after each later block with
+  axis words the program runs L times with the G66 block's arguments as a G65's, until ``G67``; the called
+  program's own moves call nothing; nested G66, moves of an M98/G65 call under G66 and a G28/G92/G10 block under
+  it are not modelled (ReferenceError). Fanuc/Haas work offset variables written by the program (0i-MD "System
+  variables"; Haas "Macros"): ``#5201``-``#5203`` the external offset (as G10 L2 P0), ``#5221``.. G54-G59 and
+  ``#7001``.. G54.1 P<n> / G154 P<n> (20 apart), X Y Z, in the machine's length unit, at once (fuzz40).
 - Fanuc/Haas ``,R r`` / ``,C c`` at the end of a G01 block (Fanuc 0i-MF operator's manual "Optional
   chamfering and corner R"; Haas mill operator's manual "G01 Corner Rounding and Chamfering"), here
   between two straight feed moves only: a rounding arc tangent to both, touching each ``r tan(t/2)``
@@ -418,10 +424,15 @@ class _Params:
         # not used; ``holding`` is set while an assignment's value is read (False: no clock read yet, True: one was)
         self.held: set[int] = set()
         self.holding: bool | None = None
+        self.system = None  # Fanuc/Haas: the modal information #4001.. the machine gives (_modal_information)
 
     def get(self, key: str | int) -> float:
         if key == 0:
             return math.nan  # Fanuc's #0: always vacant
+        if self.system is not None and isinstance(key, int) and 4001 <= key <= 4022:
+            value = self.system(key)
+            if value is not None:
+                return value
         if isinstance(key, int) and key not in self.numbered and math.isnan(self.unset) and 5000 <= key < 5400:
             raise ReferenceError(f"system variable #{key} (position, offsets: the machine's state)")
         if isinstance(key, int) and math.isnan(self.unset) and (key in _CLOCKS or key in self.held):
@@ -832,6 +843,8 @@ class _Machine:
         self.factors, self.scale_centre = np.ones(3), np.zeros(3)  # G51
         self.polar16 = False  # Fanuc G16 polar coordinate command
         self.corner: tuple[str, float, np.ndarray] | None = None  # a ,R / ,C: word, size [mm], its block's start
+        self.modal_call: dict | None = None  # Fanuc G66: the program and its arguments (_g66_call)
+        self.block_moves = self.block_nonmodal = False  # the last block's axis words: a move / a G28, G92 .. block
         self.out: list[Expected] = []
 
     def tool(self, number: int):
@@ -1985,7 +1998,16 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         return None
     for key, value in sets:
         params.set(key, value)
+        if m.ctx.dialect.name in ("fanuc", "haas"):
+            _offset_variable(m, key, value)
     g, mc = _codes(words, "g"), _codes(words, "m")
+    m.block_moves = m.block_nonmodal = False
+    if 660 in g and m.ctx.dialect.name == "fanuc":  # Fanuc G66 modal macro call: its words are the arguments
+        if m.ctx.decimal_point_input == "increment":
+            _least_increments(m, g, words, ln.text)
+        return "g66"
+    if 670 in g and m.ctx.dialect.name == "fanuc":
+        m.modal_call = None
     for value in words.pop("$", []):  # LinuxCNC's spindle of S/M3-M5/M19/G33 (m-code.adoc "M3, M4, M5": "M3 $0
         # S1000", $-1 all of them); one spindle here, $0 or $-1 (rs274 takes the integer part: "M3 $0.9" runs)
         if m.ctx.dialect.name != "linuxcnc" or int(value) not in (0, -1):
@@ -2029,6 +2051,7 @@ def _block(m: _Machine, params: _Params, ln: _Line) -> str | None:
         _rigid_tap(m, ln.number, g, mc, words)
     used = _non_modal(m, ln.number, g, words)
     count, start = len(m.out), m.pos.copy()
+    m.block_moves, m.block_nonmodal = axes and not used, axes and used
     if not used:
         _motion(m, ln.number, g, words, axes)
     if m.rigid_at is not None:
@@ -2098,13 +2121,13 @@ def _least_increments(m: _Machine, g: list[int], words: dict, text: str) -> None
     """Fanuc DPI = 0 (0i-MF operator's manual B-64604EN "Decimal point programming", parameter No. 3401#0): a
     distance or angle written without a decimal point counts least input increments of IS-B, 0.001 mm / deg or
     0.0001 in (X Y Z U V W A B C I J K Q R and the corner words ,R ,C; ``G04 X`` 0.001 s; K of a cycle block is
-    its repeat count); in a G51 block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 arguments
-    without a decimal point are not modelled (ReferenceError)."""
+    its repeat count); in a G51 block its centre X Y Z (its factors: :func:`_mirror_scaling`). G65 and G66
+    arguments without a decimal point are not modelled (ReferenceError)."""
     # G51: the centre, its factors have their own rule; ",r" ",c": corner lengths, as r (our reading)
     letters = set("xyz") if 510 in g else {*"xyzuvwabcijkqr", ",r", ",c"}
-    if 650 in g:
+    if 650 in g or 660 in g:
         if re.search(r"(?<![a-z#])[xyzuvwabcijkqr][+-]?\d+(?![\d.])", text):
-            raise ReferenceError("G65 arguments without a decimal point under DPI = 0")
+            raise ReferenceError("G65/G66 arguments without a decimal point under DPI = 0")
         return
     inch = 200 in g or 210 not in g and m.scale != 1.0
     cycle = any(c is not None and c % 10 == 0 and c // 10 in _CYCLES + _MILL_CYCLES for c in [m.motion, *g])
@@ -2464,6 +2487,8 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
     st = _structure(lines)
     m, params = _Machine(context), _Params(vacant=context.dialect.name in ("fanuc", "haas"))
     m.fadal = fadal
+    if context.dialect.name in ("fanuc", "haas"):
+        params.system = lambda key: _modal_information(m, key)
     frames: list[dict] = []
     counters: dict[int, int] = {}
     percent = 0
@@ -2515,8 +2540,21 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             frames.append(_g65_call(ln, pc, st, params))
             pc = frames[-1]["start"]
             continue
+        if res == "g66":
+            if m.modal_call is not None or frames:
+                raise ReferenceError(f"line {ln.number}: G66 nested or within a call (not modelled here)")
+            m.modal_call = _g66_words(ln, params)
+            pc += 1
+            continue
+        if res is None and m.modal_call is not None and (m.block_moves or m.block_nonmodal) \
+                and not any(f["kind"] == "g66" for f in frames):  # the called program's moves call nothing
+            if m.block_nonmodal or frames:
+                raise ReferenceError(f"line {ln.number}: a G28/G92/G10 block, or a move in a call, under G66")
+            frames.append(_g66_call(m.modal_call, pc, st, params))
+            pc = frames[-1]["start"]
+            continue
         if res == "m99":
-            if not frames or frames[-1]["kind"] not in ("m98", "g65"):
+            if not frames or frames[-1]["kind"] not in ("m98", "g65", "g66"):
                 break
             pc = _m99_return(ln, pc, frames, st, params, haas=context.dialect.name == "haas")
             continue
@@ -2532,7 +2570,11 @@ def _m99_return(ln, pc: int, frames: list[dict], st, params, *, haas: bool = Fal
     branch unconditionally to any line in the current subroutine ... It does not return control to the calling
     subroutine")."""
     f = frames[-1]
-    if f["kind"] == "g65":
+    if f["kind"] == "g66" and f["left"] > 0:  # L repeats: the program again, its locals the arguments afresh
+        f["left"] -= 1
+        params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["args"]
+        return f["start"]
+    if f["kind"] in ("g65", "g66"):
         frames.pop()
         params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | f["saved"]
         return f["ret"]
@@ -2581,6 +2623,76 @@ def _g65_call(ln: _Line, pc: int, st: dict, params: _Params) -> dict:
         if letter in words:
             params.numbered[number] = words[letter][-1]
     return {"kind": "g65", "ret": pc + 1, "start": start, "saved": saved}
+
+
+def _modal_information(m: _Machine, key: int) -> float | None:
+    """Fanuc/Haas modal information of the blocks run so far (Fanuc 0i-MD B-64304EN "System variables", "Modal
+    information": ``#4001`` group 01 G00-G03, ``#4002`` 17/18/19, ``#4003`` 90/91, ``#4006`` 20/21, ``#4014`` the
+    work system 54-59 (Fanuc 54.1 for G54.1 P); Haas "Macros", "#4001-#4021 last block group codes"); None for the
+    others (not modelled here)."""
+    if key == 4001 and m.linear in (0, 10, 20, 30):
+        return m.linear / 10.0
+    if key == 4002:
+        return float(m.plane)
+    if key == 4003:
+        return 91.0 if m.incremental else 90.0
+    if key == 4006:
+        return 20.0 if m.scale != 1.0 else 21.0
+    if key == 4014 and m.wcs in list(_WCS.values())[:6]:
+        return float(m.wcs[1:])
+    if key == 4014 and m.wcs.startswith("G54.1") and m.ctx.dialect.name == "fanuc":
+        return 54.1
+    return None
+
+
+def _g66_words(ln: _Line, params: _Params) -> dict:
+    """``G66 P<program> L<repeats> <arguments>`` (Fanuc 0i-MD B-64304EN "Modal call: call after the move command
+    (G66)": "Once G66 is issued to specify a modal call a macro is called after a block specifying movement along
+    axes is executed. This continues until G67 is issued to cancel a modal call"; "Local variables (arguments) can
+    only be set in G66 blocks"; the addresses of "Argument specification I", as G65): what each call runs."""
+    words, _ = _words(ln.text, params)
+    if any(len(words[a]) > 1 for a in "ijk" if a in words):
+        raise ReferenceError("G66 with several I J K sets")
+    args = {number: words[letter][-1] for letter, number in _G65_LOCALS.items() if letter in words}
+    return {"p": words["p"], "count": int(words["l"][-1]) if "l" in words else 1, "args": args}
+
+
+def _g66_call(call: dict, pc: int, st: dict, params: _Params) -> dict:
+    """The frame of one G66 modal call after the move of line ``pc``: as a G65 call (the caller's locals kept
+    aside, the G66 block's arguments the called program's), run L times."""
+    saved = {k: v for k, v in params.numbered.items() if 1 <= k <= 33}
+    params.numbered = {k: v for k, v in params.numbered.items() if not 1 <= k <= 33} | call["args"]
+    return {"kind": "g66", "ret": pc + 1, "start": _m98_start({"p": call["p"]}, st), "saved": saved,
+            "left": call["count"] - 1, "args": call["args"]}
+
+
+def _offset_variable(m: _Machine, key: str | int, value: float) -> None:
+    """A Fanuc/Haas work offset system variable written by the program: the offset changes at once, as a ``G10
+    L2`` under G90 would, in the machine's length unit (Fanuc 0i-MD B-64304EN "System variables": ``#5201``-
+    ``#5206`` the external workpiece zero point offset, ``#5221``-``#5226`` G54 up to ``#5321``-``#5326`` G59,
+    ``#7001``-``#7006`` G54.1 P1, 20 apart, "read/write"; Haas mill operator's manual "Macros": ``#5201``.. G52,
+    ``#5221``.. G54-G59, ``#7001``-``#7006`` G110 (G154 P1), 20 apart). X Y Z only here."""
+    if not isinstance(key, int) or math.isnan(value):
+        return
+    unit = 25.4 if m.ctx.linear_units == "inch" else 1.0
+    if 5201 <= key <= 5203:
+        i = key - 5201
+        m.g92[i] += value * unit - m.external[i]
+        m.external[i] = value * unit
+        return
+    if 5221 <= key < 5341:
+        code, axis = list(_WCS.values())[(key - 5221) // 20], (key - 5221) % 20
+    elif 7001 <= key < 7401:
+        code, axis = f"G54.1 P{(key - 7001) // 20 + 1}", (key - 7001) % 20
+        if code not in m.offsets:
+            m.offsets[code] = np.array(m.ctx.offset(code), float)
+            m.rotation[code] = 0.0
+            m.extra_offsets[code] = np.zeros(6)
+    else:
+        return
+    if axis >= 3:
+        raise ReferenceError(f"#{key}: a work offset beyond X Y Z")
+    m.offsets[code][axis] = value * unit
 
 
 def _m98_start(words: dict, st: dict) -> int:
