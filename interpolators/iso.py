@@ -165,6 +165,7 @@ from interpolators.iso_mcodes import (
     io_words,
     m_codes,
     planner_word,
+    printer_hint,
     smartcool_hint,
     spindle_select,
     user_m_file,
@@ -609,7 +610,8 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
                         else "machine- or firmware-specific M code")
-                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration): not supported",
+                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration){printer_hint(m)}: "
+                           "not supported",
                            column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:

@@ -65,11 +65,21 @@ _HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loade
 _IO_WORDS = ("P", "E", "L", "Q")
 
 
-#: M100-M199 codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104
-#: "Set Hotend Temperature", M106 "Set Fan Speed", ...); a laser on such firmware is often driven as its fan.
+#: Codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104 "Set Hotend
+#: Temperature", M106 "Set Fan Speed", M400 "Finish Moves", M280 "Servo Position", M300 "Play Tone", ...); a
+#: laser on such firmware is often driven as its fan, a pen plotter's pen by its servo, and CNC posts for Marlin
+#: routers (Fusion's Snapmaker post, MPCNC posts) write M400 before the spindle stops.
 _PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures", 106: "M106 set fan speed",
               107: "M107 fan off", 109: "M109 wait for hotend temperature", 114: "M114 get current position",
-              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
+              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature",
+              220: "M220 set feedrate percentage", 221: "M221 set flow percentage", 280: "M280 servo position",
+              300: "M300 play tone", 400: "M400 finish moves"}
+
+
+def printer_hint(m: int) -> str:
+    """What an M code above M199 is on 3D printer firmware (Marlin, :data:`_PRINTER_M`); '' if it is none."""
+    printer = _PRINTER_M.get(m)
+    return f" (Marlin's {printer}: a 3D printer firmware's code, which no dialect of vcnc reads)" if printer else ""
 
 
 #: M100-M199 codes of LinuxCNC's QtPlasmaC configurations, written with a P word (qtplasmac.adoc, "Automatic
@@ -305,6 +315,17 @@ def smartcool_hint(mcodes) -> str:
             "writes it: a PathPilot extension vcnc does not read)")
 
 
+def extruder_hint(seen) -> str:
+    """The hint of an E word in a block that moves X, Y or Z: the extruder axis of 3D printer G-code (Marlin's
+    G-code reference, "G0-G1 Linear Move": "E<pos> An absolute or relative coordinate on the E (extruder) axis";
+    RepRapFirmware likewise), which a slicer (Cura, PrusaSlicer, with or without arc fitting) writes on its
+    moves; '' without an X, Y or Z word."""
+    if not any(letter in seen for letter in "XYZ"):
+        return ""
+    return (" (E on a move: the extruder axis of 3D printer G-code, as a slicer such as Cura or PrusaSlicer "
+            "writes it; a milling control has no E axis: a slicer's output is no milling program)")
+
+
 def io_words(mcodes, seen, st: State, where: Where) -> dict:
     """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
     elsewhere is an error."""
@@ -342,7 +363,8 @@ def io_words(mcodes, seen, st: State, where: Where) -> dict:
         # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
         fadal = " (E1-E48 select a Fadal fixture offset: use --dialect fadal)" if 0 <= w.value <= 48 and \
             w.value == int(w.value) else ""
-        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){smartcool_hint(mcodes) or fadal}",
+        hint = smartcool_hint(mcodes) or fadal + extruder_hint(seen)
+        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){hint}",
                    column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen

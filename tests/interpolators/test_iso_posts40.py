@@ -1,0 +1,54 @@
+"""Constructs of CAM posts and CAM output not read before, read as their controls read them (session 40, posts40).
+
+Each program is hand-written in the output style of the post or program named in its test; the posts were read,
+not run."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators import parse_program
+from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
+
+
+@pytest.mark.parametrize("dialect", ["grbl", "linuxcnc", "fanuc"])
+@pytest.mark.parametrize("move", ["G1 X20. Y10. E1.5 F600", "G2 X20 Y0 I10 J0 E0.53 F1200", "X30.5 E3.25"])
+def test_an_extruder_e_on_a_move_is_named(dialect, move):
+    # A slicer's output (Cura, PrusaSlicer with arc fitting) fed to a CNC router: Marlin's G0-G1 "E<pos> An
+    # absolute or relative coordinate on the E (extruder) axis". Before: 'outside M66-M68 (digital/analog I/O)'
+    # alone, which names LinuxCNC's I/O codes, not what the word is
+    text = f"G21 G90\nG0 X0 Y0 Z1\n{move}\nM2\n"
+    with pytest.raises(GCodeError, match=r":3:\d+: word 'E[\d.]+' outside M66-M68 .*\(E on a move: the extruder "
+                                         r"axis of 3D printer G-code"):
+        parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]))
+    # an E without a move keeps its message (no extruder hint)
+    with pytest.raises(GCodeError, match=r"outside M66-M68 \(digital/analog I/O\); expected") as err:
+        parse_program("G21 G90\nG0 X0 Y0 Z1\nE1.5\nM2\n", context=MachineContext(dialect=DIALECTS[dialect]))
+    assert "extruder" not in str(err.value)
+
+
+@pytest.mark.parametrize("dialect", ["grbl", "linuxcnc"])
+@pytest.mark.parametrize(("code", "title"), [("M400", "M400 finish moves"), ("M300 S440 P200", "M300 play tone"),
+                                             ("M280 P0 S90", "M280 servo position")])
+def test_marlin_codes_above_m199_are_named(dialect, code, title):
+    # Fusion's Snapmaker 2.0 post (nunorvoliveira/snapmaker-2.0, SM2.0 (NrvO).cps onClose: M400, M5, G4 S) and
+    # MPCNC posts write Marlin's M400 "Finish Moves"; pen plotters M280 "Servo Position". Before: 'machine- or
+    # firmware-specific M code' without the firmware's name
+    text = f"G21 G90\nG0 X0 Y0 Z1\nG1 X10 F600\n{code}\nM2\n"
+    with pytest.raises(GCodeError, match=rf":4:1: .*'{code.split()[0]}' \(above M199: defined by a machine "
+                                         rf"configuration\) \(Marlin's {title}: a 3D printer firmware's code"):
+        parse_program(text, context=MachineContext(dialect=DIALECTS[dialect]))
+    # a code of no firmware vcnc knows stays as it was
+    with pytest.raises(GCodeError, match=r"'M428' \(above M199: defined by a machine configuration\): not "):
+        parse_program(text.replace(code, "M428"), context=MachineContext(dialect=DIALECTS[dialect]))
+
+
+@pytest.mark.parametrize("line", ["  Rapid X=10 Y=20 Z=5", "Line X=20.5", "  LoadWcs name=\"1\""])
+def test_a_datron_simpl_program_is_named(line):
+    # Autodesk's "datron next.cps" (DATRON next control, extension "simpl"): writeBlock("Rapid" + " X=" ..),
+    # "Line X=..", wcs format 'LoadWcs name="#"'. Before: "a statement of another control's language, such as
+    # KinetiC-NC's PRINT?"
+    with pytest.raises(GCodeError, match=r":1:\d+: malformed number for word [RL] \(DATRON SimPL, the language of "
+                                         r"the DATRON next control"):
+        parse_program(f"{line}\nLine Y=3\n", context=MachineContext(dialect=DIALECTS["fanuc"]))
