@@ -55,6 +55,13 @@ HAAS_OWN_M = {130: "M130/M131 display media (Haas)", 131: "M130/M131 display med
 _HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
 
 
+#: Haas M codes above M99 that wait for the operator (Haas mill operator's manual, "M109 Interactive User Input":
+#: the program shows its prompt, waits for one key and stores it in the macro variable P, 500-549): what follows
+#: depends on the key, an error naming it (as :data:`_HAAS_JUMP_M`).
+_HAAS_INPUT_M = {109: "M109 interactive user input (Haas: the program waits for the operator's key, stored in the "
+                      "macro variable P)"}
+
+
 #: Haas M codes that branch on a machine input (Haas mill operator's manual "M96 Jump If No Input", "M46 Jump If
 #: Pallet Loaded"): which way the program goes is the machine's, errors naming them.
 _HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loaded (Haas)"}
@@ -103,6 +110,9 @@ def user_m_file(w: Word, m: int, st: State, where: Where, *, with_p: bool = Fals
     refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20). ``with_p``:
     the block has a P word (``M190 P1`` is QtPlasmaC's material change under ``linuxcnc``, :data:`_PLASMAC_M`)."""
     name = f"M{m}"
+    if st.context.dialect.name == "haas" and m in _HAAS_INPUT_M:
+        where.fail(f"{_HAAS_INPUT_M[m]}: not supported (what follows depends on the operator's input)",
+                   column=w.column, text=w.text, expected="a program without interactive input")
     base = Path(where.file).parent if where.file else Path.cwd()
     own = st.context.dialect.name == "linuxcnc" and where.file is not None
     folders = ((".",) if own else ()) + tuple(st.context.dialect.user_m_path)

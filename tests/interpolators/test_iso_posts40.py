@@ -52,3 +52,17 @@ def test_a_datron_simpl_program_is_named(line):
     with pytest.raises(GCodeError, match=r":1:\d+: malformed number for word [RL] \(DATRON SimPL, the language of "
                                          r"the DATRON next control"):
         parse_program(f"{line}\nLine Y=3\n", context=MachineContext(dialect=DIALECTS["fanuc"]))
+
+
+def test_haas_m109_interactive_input_is_named_not_a_printer_code():
+    # Haas mill operator's manual "M109 Interactive User Input": the program waits for the operator's key and
+    # stores it in the macro variable P (M109 P501). Before: named as "Marlin's M109 wait for hotend temperature"
+    # under --dialect haas
+    text = "G21 G90\nG0 X0 Y0 Z1\nM109 P501\nIF [#501 EQ 89] GOTO 10\nG1 X10 F600\nN10 M30\n"
+    with pytest.raises(GCodeError, match=r":3:1: M109 interactive user input \(Haas: the program waits for the "
+                                         r"operator's key, stored in the macro variable P\): not supported") as err:
+        parse_program(text, context=MachineContext(dialect=DIALECTS["haas"]))
+    assert "Marlin" not in str(err.value)
+    # under fanuc, M109 stays a machine tool builder's code (and Marlin's hotend wait, named as before)
+    with pytest.raises(GCodeError, match=r"machine-specific M code 'M109' .*Marlin's M109"):
+        parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"]))
