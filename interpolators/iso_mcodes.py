@@ -55,6 +55,15 @@ HAAS_OWN_M = {130: "M130/M131 display media (Haas)", 131: "M130/M131 display med
 _HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
 
 
+#: M codes below M100 that grbl 1.1 (gcode.c, the ``'M'`` switch: M0-M2, M30, M3-M5, M7-M9, M56) or grblHAL's
+#: core (gcode.c: also M6, M48-M51, M53, M60, M61, M62-M68, M70-M73, M98, M99; the OpenPNP plugin's M42, gcode.h
+#: ``user_mcode_t`` "OpenPNP_SetPinState = 42") accepts; any other, "default: .. RETURN(
+#: Status_GcodeUnsupportedCommand); // [Unsupported M command]" (error 20), is noted as one grbl refuses (Marlin's
+#: M82/M83/M84 in CNC programs written for a Marlin router).
+_GRBL_KNOWN_M = frozenset((0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 30, 42, 48, 49, 50, 51, 53, 56, 60, 61, 62, 63, 64, 65, 66,
+                           67, 68, 70, 71, 72, 73, 98, 99))
+
+
 #: Haas M codes above M99 that wait for the operator (Haas mill operator's manual, "M109 Interactive User Input":
 #: the program shows its prompt, waits for one key and stores it in the macro variable P, 500-549): what follows
 #: depends on the key, an error naming it (as :data:`_HAAS_JUMP_M`).
@@ -174,6 +183,9 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
             notes.add(f"user M code M{m} (an external program of the user M path: no motion)")
         elif st.context.dialect.name == "linuxcnc" and m not in LINUXCNC_M:
             notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
+        elif st.context.dialect.name == "grbl" and m not in _GRBL_KNOWN_M:
+            notes.add(f"M{m} (no motion; grbl refuses it: error 20, '[Unsupported M command]', as grblHAL does "
+                      "without a plugin that claims it)")
         else:
             notes.add(f"M{m} (no motion)")
     return ended

@@ -66,3 +66,18 @@ def test_haas_m109_interactive_input_is_named_not_a_printer_code():
     # under fanuc, M109 stays a machine tool builder's code (and Marlin's hotend wait, named as before)
     with pytest.raises(GCodeError, match=r"machine-specific M code 'M109' .*Marlin's M109"):
         parse_program(text, context=MachineContext(dialect=DIALECTS["fanuc"]))
+
+
+@pytest.mark.parametrize("code", ["M84", "M82", "M10"])
+def test_grbl_notes_the_m_codes_below_100_it_refuses(code):
+    # Marlin router output (MPCNC posts: M84 at the end, M82 before the moves) read with --dialect grbl: grbl 1.1
+    # gcode.c's 'M' switch takes M0-M2, M30, M3-M5, M7-M9, M56, grblHAL's core also M6, M48-M53, M60-M68, M70-M73,
+    # M98, M99; any other is "[Unsupported M command]", error 20. Before: 'M84 (no motion)', as if grbl ran it
+    # (LinuxCNC's such codes were already noted as refused)
+    prog = parse_program(f"G21 G90\nG0 X0 Y0 Z1\nG1 X10 F600\n{code}\nM2\n",
+                         context=MachineContext(dialect=DIALECTS["grbl"]))
+    assert (f"{code} (no motion; grbl refuses it: error 20, '[Unsupported M command]', as grblHAL does without a "
+            "plugin that claims it)") in prog.notes
+    # M56 (parking override) is grbl's own: noted as before
+    prog = parse_program("G21 G90\nG0 X0 Y0 Z1\nM56\nM2\n", context=MachineContext(dialect=DIALECTS["grbl"]))
+    assert "M56 (no motion)" in prog.notes
