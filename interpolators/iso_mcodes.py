@@ -117,7 +117,8 @@ def user_m_file(w: Word, m: int, st: State, where: Where, *, with_p: bool = Fals
     as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's functions
     (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl 1.1
     refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20). ``with_p``:
-    the block has a P word (``M190 P1`` is QtPlasmaC's material change under ``linuxcnc``, :data:`_PLASMAC_M`)."""
+    the block has a P word (``M190 P1`` is QtPlasmaC's material change under ``linuxcnc``, :data:`_PLASMAC_M`).
+    Under ``haas``, M109 (:data:`_HAAS_INPUT_M`, a Haas code that waits for the operator) is refused naming it."""
     name = f"M{m}"
     if st.context.dialect.name == "haas" and m in _HAAS_INPUT_M:
         where.fail(f"{_HAAS_INPUT_M[m]}: not supported (what follows depends on the operator's input)",
