@@ -81,3 +81,25 @@ def test_grbl_notes_the_m_codes_below_100_it_refuses(code):
     # M56 (parking override) is grbl's own: noted as before
     prog = parse_program("G21 G90\nG0 X0 Y0 Z1\nM56\nM2\n", context=MachineContext(dialect=DIALECTS["grbl"]))
     assert "M56 (no motion)" in prog.notes
+
+
+#: The end of a drilling operation and of the program as Fusion's Mach4 / generic posts write it (G80, then G28
+#: G91 Z0. and G28 G91 X0. Y0.), and the axis-word codes that follow G80 elsewhere.
+AFTER_G80 = "G21 G90 G17\nG0 X0 Y0 Z5\nG98 G81 X1 Y1 Z-1 R1 F100\nG80\n{}\nG90\nM2\n"
+
+
+@pytest.mark.parametrize("block", ["G28 G91 Z0.", "G30 G91 Z0", "G92 X0 Y0", "G43.1 Z2", "G10 L20 P1 X0"])
+def test_codes_that_use_the_axis_words_after_g80_are_not_noted_as_refused(block):
+    # interp_internal.cc check_g_codes lets G10/G28/G30/G52/G92 take the axis words and G43.1 reads its Z: rs274
+    # runs "G80" then "G28 G91 Z0." (benchmarks/linuxcnc_diff.py: match). Before: noted "axis words after G80 run
+    # as rapid .. (LinuxCNC refuses them ..)" at the end of every Fusion program with a drilling operation
+    prog = parse_program(AFTER_G80.format(block), context=MachineContext(dialect=DIALECTS["linuxcnc"]))
+    assert not any("after G80" in note for note in prog.notes)
+
+
+@pytest.mark.parametrize("block", ["Z5.", "G53 Z0"])
+def test_bare_axis_words_after_g80_stay_noted(block):
+    # rs274: "Cannot use axis values without a g code that uses them" (G53 only modifies a G0/G1)
+    prog = parse_program(AFTER_G80.format(block), context=MachineContext(dialect=DIALECTS["linuxcnc"]))
+    assert ("axis words after G80 run as rapid, the motion before the cycle (LinuxCNC refuses them: G80 leaves no "
+            "motion mode)") in prog.notes
