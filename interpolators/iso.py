@@ -165,6 +165,7 @@ from interpolators.iso_mcodes import (
     io_words,
     m_codes,
     planner_word,
+    printer_hint,
     smartcool_hint,
     spindle_select,
     user_m_file,
@@ -609,7 +610,8 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
                         else "machine- or firmware-specific M code")
-                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration): not supported",
+                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration){printer_hint(m)}: "
+                           "not supported",
                            column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:
@@ -1210,7 +1212,12 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
 def _linuxcnc_leniencies(seen, gcodes, st: State, moves: bool, notes: Notes) -> None:
     """Notes of what the ``linuxcnc`` dialect runs although LinuxCNC refuses it (``moves``: the block has axis
     words)."""
-    if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None:
+    # G10, G28, G30, G52, G92 and G43.1 use the axis words themselves (interp_internal.cc check_g_codes:
+    # mode_zero_covets_axes; convert_tool_length_offset reads G43.1's), so LinuxCNC runs them after G80 ("G80"
+    # then "G28 G91 Z0.", as Fusion 360's posts end a drilling operation)
+    takes_axes = gcodes.get("nonmodal", (0,))[0] in (100, 280, 300, 520, 920) or \
+        gcodes.get("length compensation", (0,))[0] == 431
+    if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None and not takes_axes:
         # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
         # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
         # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
