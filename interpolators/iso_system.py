@@ -168,11 +168,13 @@ class ReaderState(Protocol):
     plane: int
     incremental: bool
     inverse_time: bool
+    inverse_rate: float | None  # the rate of the last G93 move [units/min] (iso_motion.move_feed)
     inch: bool
     retract_r: bool
     exact_stop: bool
     feed: float | None
     per_rev: bool
+    feed_per_rev_word: float | None
     frame: Frame | None
     length_code: float
     length_number: int
@@ -439,7 +441,7 @@ def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]
         "_tool_offset": float(bool(st.tool_length) or bool(np.any(st.tool_xy))),
         "_retract_r_plane": float(st.retract_r), "_retract_old_z": float(not st.retract_r),
         "_coord_system": float(530 + 10 * wcs if wcs < 7 else 584 + wcs) if wcs else None,
-        "_feed": 0.0 if st.feed is None else st.feed * 60.0 / st.scale, "_rpm": abs(st.spindle_speed),
+        "_feed": _feed_rate(st), "_rpm": abs(st.spindle_speed),
         "_selected_tool": float(st.tool_selected or 0), "_spindle_rpm_mode": 1.0, "_spindle_css_mode": 0.0,
         "_lathe_radius_mode": 1.0, "_lathe_diameter_mode": 0.0, "_remap_level": 0.0,
         "_spindle_on": float(st.spindle_turning), "_spindle_cw": float(st.spindle_turning and not st.spindle_ccw),
@@ -447,6 +449,18 @@ def named_state_parameter(key: str, st: ReaderState) -> tuple[float | None, str]
         "_metric_machine": float(st.context.linear_units == "mm"),
     }
     return values.get(key), ""
+
+
+def _feed_rate(st: ReaderState) -> float:
+    """LinuxCNC's ``#<_feed>``: the interpreter's feed rate (interp_namedparams.cc, ``_setup.feed_rate``) in program
+    units: the F word under G94 and under G95 (per revolution, as written: interp_convert.cc ``convert_feed_rate``),
+    under G93 the last move's length x F (interp_inverse.cc; the G94 F before the first), 0 after a G94 or G95
+    cleared it (``convert_feed_mode``)."""
+    if st.per_rev:
+        return st.feed_per_rev_word or 0.0
+    if st.inverse_time and st.inverse_rate is not None:
+        return st.inverse_rate
+    return 0.0 if st.feed is None else st.feed * 60.0 / st.scale
 
 
 def _offset_variable(n: int, st: ReaderState) -> tuple[str, int] | None:
