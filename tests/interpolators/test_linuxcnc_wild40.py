@@ -9,6 +9,7 @@ import pytest
 
 from interpolators import parse_program
 from interpolators.context import DIALECTS, MachineContext
+from vcnc.errors import GCodeError
 
 LINUXCNC = MachineContext(dialect=DIALECTS["linuxcnc"], extra_axes=("a", "b", "c"))
 
@@ -45,3 +46,34 @@ def test_feed_of_an_inverse_time_move_in_inch_is_in_inch():
     # the length is in program units: from X 10 mm (0.3937 in) to X 1 in at F2, rs274 1.2126 (inch)
     text = "G21 G0 X10 Y0\nG20 G93 G1 X1 F2\nG0 Y#<_feed>\nM2\n"
     assert _y_targets(text)[1:] == pytest.approx([(1 - 10 / 25.4) * 2 * 25.4])
+
+
+def test_an_uncalled_subroutine_after_the_program_end_is_not_read():
+    # rs274 runs "o100 call [4] / M30 / o200 sub / foo )": nothing calls o200, so LinuxCNC never reads it (its
+    # text is no G-code). Before: "8:5: ')' without '('"
+    text = "G21\no100 sub\nG0 X#1\no100 endsub\no100 call [4]\nM30\no200 sub\nfoo )\n"
+    prog = parse_program(text, context=LINUXCNC)
+    assert [float(b.target[0]) for b in prog.blocks] == pytest.approx([4.0])
+    assert "lines after M2/M30 not read (LinuxCNC ends the program there)" in prog.notes
+
+
+def test_a_called_subroutine_after_the_program_end_is_still_read():
+    # the label as LinuxCNC compares it (lower case, without blanks, o0100 is o100): the call before the end
+    # finds it
+    text = "G21\nO0100 CALL [2]\nM2\nfoo )\no100 sub\nG0 X#1\no100 endsub\no< Other > sub\nbar )\no<other> endsub\n"
+    prog = parse_program(text, context=LINUXCNC)
+    assert [float(b.target[0]) for b in prog.blocks] == pytest.approx([2.0])
+
+
+@pytest.mark.parametrize("end", ["m 0 2", "M3 0"])
+def test_an_end_written_with_blanks_in_its_number_ends_the_text(end):
+    # close_and_downcase (interp_read.cc) takes the blanks out: rs274 reads "m 0 2" as M2 and nothing after it.
+    # vcnc reads no number with blanks inside: it refuses that line, naming it (before: the line after it)
+    with pytest.raises(GCodeError, match=r"<input>:2:\d+: number '[02]' without its letter"):
+        parse_program(f"G21 G0 X1\n{end}\nfoo )\n", context=LINUXCNC)
+
+
+def test_an_end_with_blanks_before_its_number_ends_the_text():
+    # "M 30": a blank between the letter and its number, which vcnc reads (rs274: X1, then the end)
+    prog = parse_program("G21 G0 X1\nM 30\nfoo )\n", context=LINUXCNC)
+    assert [float(b.target[0]) for b in prog.blocks] == pytest.approx([1.0])
