@@ -77,3 +77,18 @@ def test_an_end_with_blanks_before_its_number_ends_the_text():
     # "M 30": a blank between the letter and its number, which vcnc reads (rs274: X1, then the end)
     prog = parse_program("G21 G0 X1\nM 30\nfoo )\n", context=LINUXCNC)
     assert [float(b.target[0]) for b in prog.blocks] == pytest.approx([1.0])
+
+
+def test_g92_of_an_axis_the_machine_lacks_at_0_offsets_nothing():
+    # a post's "G92 A0" on a machine without A: the A0 is left out as on a move (noted), as under G52 A0 and
+    # G10 L2 A0, and the G92 sets nothing (rs274, whose standalone machine has A, keeps X Y: moves to X 2 Y 1).
+    # LinuxCNC with an INI without A refuses the A word ("Bad character 'a' used", rs274ngc_pre.cc: no reader for
+    # an axis outside the axis mask). Before: "G92 needs at least one axis word"
+    three = MachineContext(dialect=DIALECTS["linuxcnc"])
+    prog = parse_program("G21 G0 X1 Y1\nG92 A0\nG0 X2\nM2\n", context=three)
+    assert [tuple(b.target[:2]) for b in prog.blocks] == [(1.0, 1.0), (2.0, 1.0)]
+    assert "A0 (rotary axis A stays at 0)" in prog.notes
+    with pytest.raises(GCodeError, match="G92 needs at least one axis word"):
+        parse_program("G21 G0 X1\nG92\nM2\n", context=three)
+    with pytest.raises(GCodeError, match="axis word 'A' is not supported"):
+        parse_program("G21 G0 X1\nG92 A5\nM2\n", context=three)
