@@ -202,10 +202,16 @@ def _program_end(text: str) -> re.Match | None:
 
 def _nest(stack: list[tuple[str, str]], label: str, keyword: str) -> None:
     """Follow an O-word line (its label and keyword) into or out of the sub, if, while, do and repeat blocks:
-    a ``while`` after a ``do`` of its label closes that loop."""
+    a ``while`` after a ``do`` of its label closes that loop. An ``endsub`` closes the subroutine of its label only:
+    one of another label inside a body returns from it when it runs (LinuxCNC checks no label of an endsub or return
+    against the subroutine it leaves, interp_o_word.cc ``execute_return``, and skips a definition up to the endsub of
+    its own name, interp_read.cc ``read_o``; Skyfire's basic-tool-change.ngc returns by ``o<toolchange> endsub``)."""
     if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
         stack.append((label, keyword))
-    elif keyword in ("endsub", "endif", "endwhile", "endrepeat", "while") and stack:
+    elif keyword == "endsub":
+        if (label, "sub") in stack:
+            del stack[stack.index((label, "sub")):]
+    elif keyword in ("endif", "endwhile", "endrepeat", "while") and stack:
         stack.pop()
 
 

@@ -92,3 +92,17 @@ def test_g92_of_an_axis_the_machine_lacks_at_0_offsets_nothing():
         parse_program("G21 G0 X1\nG92\nM2\n", context=three)
     with pytest.raises(GCodeError, match="axis word 'A' is not supported"):
         parse_program("G21 G0 X1\nG92 A5\nM2\n", context=three)
+
+
+def test_an_endsub_of_another_label_returns_and_does_not_close_the_definition():
+    # Skyfire-community/SVM2-LinuxCNC subroutines/atc/basic-tool-change.ngc leaves early by "o<toolchange> endsub
+    # [1]" followed by M2 inside its o<basic-tool-change> sub: LinuxCNC skips the definition up to the endsub of its
+    # own name (interp_read.cc read_o) and returns at the other one when it runs (execute_return checks no label).
+    # rs274 runs the file alone (no motion) and a caller of it. Before: "1:1: o<t> sub: no matching endsub" (the
+    # M2 after the early endsub was read as the end of the main program)
+    text = ("G21\no<t> call [1]\nG0 X#<_value>\nM2\no<t> sub\no1 if [#1 EQ 1]\n o<other> endsub [7]\nM2\n"
+            "o1 endif\nG0 X3\no<t> endsub [2]\n")
+    prog = parse_program(text, context=LINUXCNC)
+    assert [float(b.target[0]) for b in prog.blocks] == pytest.approx([7.0])
+    alone = "o<t> sub\no1 if [#1 EQ 1]\n o<other> endsub [1]\nM2\no1 endif\nG0 X3\no<t> endsub [1]\nG0 X5\nM2\n"
+    assert [float(b.target[0]) for b in parse_program(alone, context=LINUXCNC).blocks] == pytest.approx([5.0])
