@@ -209,8 +209,8 @@ def _nest(stack: list[tuple[str, str]], label: str, keyword: str) -> None:
     if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
         stack.append((label, keyword))
     elif keyword == "endsub":
-        if (label, "sub") in stack:
-            del stack[stack.index((label, "sub")):]
+        if (label, "sub") in stack:  # the blocks an early endsub leaves open stay open: their closers follow
+            stack.remove((label, "sub"))
     elif keyword in ("endif", "endwhile", "endrepeat", "while") and stack:
         stack.pop()
 

@@ -106,3 +106,14 @@ def test_an_endsub_of_another_label_returns_and_does_not_close_the_definition():
     assert [float(b.target[0]) for b in prog.blocks] == pytest.approx([7.0])
     alone = "o<t> sub\no1 if [#1 EQ 1]\n o<other> endsub [1]\nM2\no1 endif\nG0 X3\no<t> endsub [1]\nG0 X5\nM2\n"
     assert [float(b.target[0]) for b in parse_program(alone, context=LINUXCNC).blocks] == pytest.approx([5.0])
+
+
+def test_an_early_endsub_of_its_own_label_inside_an_if_keeps_the_rest_of_the_file():
+    # Skyfire's toolchange.ngc: "O10 if [..] / o<toolchange> endsub [1] / M2 / O10 endif" early in its body, the
+    # last endsub and M2 at the end. LinuxCNC's definition ends at the first endsub of its name, so the M2 after it
+    # ends the program: rs274 runs this with no motion, as vcnc does; the text after that M2 is still read (the
+    # if block the early endsub leaves open closes there: a call runs past it). A guard of the endsub rule above
+    # (closing every block inside the subroutine at its endsub refused this: "o10 if: no matching endif")
+    text = ("o<tc> sub\no10 if [#1 EQ 1]\n o<tc> endsub [1]\n M2\no10 endif\nG0 X3\no<tc> endsub [2]\n"
+            "o<tc> call [0]\nG0 Y#<_value>\nM2\n")
+    assert len(parse_program(text, context=LINUXCNC).blocks) == 0
