@@ -281,6 +281,8 @@ class State:
     extra_offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)  # set by G10 (table: 0)
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
+    inverse_rate: float | None = None  # LinuxCNC's feed rate after a G93 move: its length x F [units/min]
+    zero_words_dropped: bool = False  # the block's words of axes the machine lacks, all at 0, were left out
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
     feed_zero: bool = False  # the last F word was F0 (a zero feed rate: no feed move until the next F)
     per_rev: bool = False  # G95: F is per spindle revolution [mm/rev], the feed F x S
@@ -546,6 +548,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
     seen: dict[str, Word] = {}
     gcodes: dict[str, tuple[int, Word]] = {}
     mcodes: list[tuple[int, Word]] = []
+    st.zero_words_dropped = False
     for w in words:
         if w.letter == "G":
             key = _gkey(w, where)
@@ -621,6 +624,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 # a word that keeps the axis where it starts (0): no motion (CAM posts write "A0" on
                 # 3-axis work); any other value is refused below
                 notes.add(f"{w.letter}0 ({kind} {w.letter} stays at 0)")
+                st.zero_words_dropped = True
                 continue
             if lacks:
                 axes = ", ".join(["X", "Y", "Z", *(a.upper() for a in st.context.extra_axes)])
@@ -910,6 +914,8 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
             st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
             st.feed_reset = True
         st.inverse_time = key == 930
+        if not st.inverse_time:
+            st.inverse_rate = None
         st.per_rev = key == 950
     st.block_f = seen["F"].value if "F" in seen else None
     if "lathe mode" in gcodes:  # LinuxCNC's G8 (interpolators.iso_codes.LINUXCNC_G)
@@ -1505,6 +1511,8 @@ def _g92(seen, axis_words: list[str], st: State, where: Where, w) -> None:
     more on a wrapped rotary axis: :func:`interpolators.iso_axes.refuse_wrapped_offset`)."""
     refuse_wrapped_offset(seen, st, where, "G92")
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
+    if not axis_words and not rot_words and st.zero_words_dropped:
+        return  # "G92 A0" on a machine without A: nothing to offset (noted as A0), as G52 A0 and G10 L2 A0
     if not axis_words and not rot_words:
         lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
         where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,
