@@ -1,0 +1,69 @@
+"""Traces users' controls record, session 40 (traces40): a record that starts with the axis under way.
+
+The inputs are written here: the thesis' PID x axis (``identification.synthetic.FADAL_PID_X``, Table 3.4) answering
+random moves with dwells, cut where the first move runs at over 100 mm/s; and a hand-made capture moving at
+100 mm/s from its first sample beside model records written by hand.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from identification.reduced_model import ReducedAxisModel
+from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
+from vcnc.capture import Capture
+from vcnc.cli import main
+from vcnc.commands.identify import record_start_lines
+
+T = 1e-3
+
+
+def _under_way() -> Capture:
+    """2 s of x: the command at 100 mm/s from its first sample, stopping at 0.5 s; the axis 1 mm behind it."""
+    t = np.arange(2000) * T
+    xr = np.minimum(t, 0.5) * 100.0
+    x = np.minimum(np.maximum(t - 0.01, 0.0), 0.5) * 100.0 + np.where(t < 0.01, t * 100.0 - 1.0, 0.0)
+    return Capture(t=t, axes=("x",), reference=xr[:, None], measured=x[:, None], meta={"source": "test"})
+
+
+def test_a_record_cut_at_its_first_rest_is_named_with_its_speeds():
+    cap = _under_way()
+    model = ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=T,
+                             fit={"rms_um": 1.0, "max_um": 2.0,
+                                  "record_start": {"dropped_samples": 520, "dropped_s": 0.52}})
+    (line,) = record_start_lines(cap, model, "x", 1.0)
+    assert line.startswith("warning: the record starts with the axis under way (the axis moves at 100 mm/s, its "
+                           "command at 100 mm/s at its first sample)")
+    assert "0.52 s in (520 samples left out" in line and "vcnc simulate and vcnc compare" in line
+
+
+def test_a_record_fitted_from_its_start_state_says_what_a_simulation_from_rest_costs():
+    cap = _under_way()
+    fit = {"rms_um": 0.3, "max_um": 2.1, "initial_state": {"state_mm": [0.1, 2.0, 0.09], "first_sample": 101,
+                                                           "start_response_max_um": 381.5}}
+    model = ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=T, fit=fit, delay_s=0.1)
+    (line,) = record_start_lines(cap, model, "x", 567.6)
+    assert "at sample 101, where the fit starts (the recorded reference leads the loop by 0.1 s" in line
+    assert "a free response of up to 381.5 um" in line and "rms 567.6 um against the fit's 0.3 um" in line
+    # a record that starts at rest gets no such line
+    assert record_start_lines(cap, ReducedAxisModel(parameters=dict(FADAL_PID_X), sample_time=T,
+                                                    fit={"rms_um": 1.0, "max_um": 2.0}), "x", 1.0) == []
+
+
+def test_identify_warns_of_a_record_triggered_during_a_move(tmp_path, capsys):
+    """Session 39 cut such a record at its first rest without a word: the summary said nothing of the 89 samples
+    (0.089 s, fadal-pid's model on 20 moves, /tmp/traces40/motion) a simulation from rest gets wrong."""
+    ref = random_moves_reference(moves=6, dwell=0.2, sample_time=T, seed=1)
+    x = synthetic_capture(dict(FADAL_PID_X), ref, sample_time=T, noise=1e-4, seed=1).measured[:, 0]
+    k = int(np.flatnonzero(np.abs(np.diff(ref)) > 0.1)[0]) + 5  # 5 samples after the first move passes 100 mm/s
+    f = tmp_path / "triggered.csv"
+    rows = [f"{i * T:.3f},{r:.6f},{m:.6f}" for i, (r, m) in enumerate(zip(ref[k:], x[k:]))]
+    f.write_text("t,x_ref,x\n" + "\n".join(rows) + "\n")
+    out = tmp_path / "m.json"
+    assert main(["identify", str(f), "--no-diagnose", "--json", str(out)]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    dropped = json.loads(out.read_text())["fit"]["record_start"]["dropped_samples"]
+    assert "warning: the record starts with the axis under way" in text
+    assert f"({dropped} samples left out of the fit and the table)" in text
