@@ -13,7 +13,7 @@ import numpy as np
 
 from identification.reduced_model import ReducedAxisModel
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
-from vcnc.capture import Capture
+from vcnc.capture import Capture, read_capture
 from vcnc.cli import main
 from vcnc.commands.identify import record_start_lines
 
@@ -67,3 +67,32 @@ def test_identify_warns_of_a_record_triggered_during_a_move(tmp_path, capsys):
     dropped = json.loads(out.read_text())["fit"]["record_start"]["dropped_samples"]
     assert "warning: the record starts with the axis under way" in text
     assert f"({dropped} samples left out of the fit and the table)" in text
+
+
+def _tncscope_noml_diff(noml: np.ndarray, diff: np.ndarray, ts: float) -> str:
+    """A TNCscope text export of Y with ``s noml`` and ``s diff`` (no actual position), as issue #17 describes it."""
+    lines = ["%TNCscopeNT data file", "%[GLOBAL]", f"%SAMPLING={ts * 1e6:g}",
+             "%[CURVE1]", "%NAME=s noml/Y", "%CHANNELTYPE=s noml", "%AXISTYPE=Y", "%DIMENSION=mm", "%COLUMN=1",
+             "%[CURVE2]", "%NAME=s diff/Y", "%CHANNELTYPE=s diff", "%AXISTYPE=Y", "%DIMENSION=mm", "%COLUMN=2",
+             "%[DATA]"]
+    lines += [f"{k * ts * 1e6:.0f};{r:.6f};{e:.6f};" for k, (r, e) in enumerate(zip(noml, diff))]
+    return "\n".join(lines) + "\n"
+
+
+def test_a_leading_nominal_with_its_servo_lag_reads_as_the_actual_position_and_keeps_its_lead(tmp_path):
+    """Heidenhain's servo lag is "the difference between nominal and actual positions" (TNC 426/425/415 B/407 user's
+    manual, MOD functions, "Position Display Types"): ``s diff`` against the ``s noml`` of the same sample. So the
+    reader's ``s noml - s diff`` is the actual position however far the nominal leads the loop, and the lead stays
+    in the record for the dead-time scan, as with ``s actl`` (session 39: 0.1003 s on fadal-pid's random moves)."""
+    from identification.dead_time import delay_reference, estimate_delay
+
+    ts = 0.001
+    loop = random_moves_reference(moves=6, sample_time=ts, seed=3)  # the loop's command
+    noml = np.round(delay_reference(loop, -100.0), 6)  # recorded 0.1 s ahead of the loop
+    actual = np.round(synthetic_capture(dict(FADAL_PID_X), loop, sample_time=ts).measured[:, 0], 6)
+    f = tmp_path / "lead.txt"
+    f.write_text(_tncscope_noml_diff(noml, noml - actual, ts), encoding="utf-8")
+    got = read_capture(f)
+    np.testing.assert_allclose(got.measured[:, 0], actual, atol=2e-6)
+    np.testing.assert_allclose(got.reference[:, 0], noml, atol=1e-9)
+    assert abs(estimate_delay(got.reference[:, 0], got.measured[:, 0], ts).delay_s - 0.1) < 2 * ts
