@@ -36,7 +36,7 @@ taken against the loop's own command while ``s noml`` leads it by ``d`` would pu
 (the speed times ``d``) into the measured position; no check on the data tells it apart: the share of the
 command's first step out of rest that the lag takes up is 1 on fadal-pid, emps and ballscrew-ppc, but a median
 0.25 on fadal-smc and -0.25 on ballscrew-zpetc, where such a shifted lag takes up 0 (vcnc's virtual machines,
-dwells between 8 moves; /tmp/traces40/onset.py). A file exported so must be traced with ``s actl``.
+dwells between 8 moves, the first step after each dwell). A file exported so must be traced with ``s actl``.
 
 (The iTNC 530 service manual's "Pos.Diff." between the motor
 encoder and the scale is another signal; it is no following error.)
