@@ -96,3 +96,28 @@ def test_a_leading_nominal_with_its_servo_lag_reads_as_the_actual_position_and_k
     np.testing.assert_allclose(got.measured[:, 0], actual, atol=2e-6)
     np.testing.assert_allclose(got.reference[:, 0], noml, atol=1e-9)
     assert abs(estimate_delay(got.reference[:, 0], got.measured[:, 0], ts).delay_s - 0.1) < 2 * ts
+
+
+def test_plc_symbol_paths_are_read_by_their_last_element(tmp_path):
+    """A TwinCAT Scope View CSV export (its preamble, FILETIME stamps in 100 ns, ``SampleTime`` in ms) whose channels
+    are named by their symbol paths, as anderssandstrom/amci_resolver_issue's real exports name theirs
+    (``MAIN.afbAxes[3].stAxisStruct.stStatus.fActPosition``): ``stStatus`` made the position a status word and
+    ``afbAxes`` (an array of function blocks) an axis A's feedback, so the pair was refused; the last element names
+    the role, the structures before it name none."""
+    set_, act = (f"MAIN.afbAxes[3].stAxisStruct.stStatus.f{w}Position" for w in ("Set", "Act"))
+    t0 = 132900081483250000
+    ref = np.round(np.linspace(0.0, 3.0, 300) ** 2, 6)
+    meas = np.concatenate([[0.0, 0.0], ref[:-2]])
+    rows = [f"{t0 + k * 100000};{r};{m}" for k, (r, m) in enumerate(zip(ref, meas))]
+    text = "\n".join(["Name;Axis 3;", "File;C:\\Scope\\axis3.csv;",
+                      "Starttime of export;132900081483250000;Tuesday, February 22, 2022;13:55:48.325", "", "",
+                      "TriggerGroup;Count;ReleaseTime;Comment;", "", f"Name;{set_};{act}",
+                      "SymbolComment;Set position value;Actual position value", "Data-Type;REAL64;REAL64",
+                      "SampleTime;10;10", f"SymbolName;{set_};{act}", "Unit;(None);(None)", "", "", *rows]) + "\n"
+    f = tmp_path / "scope.csv"
+    f.write_text(text)
+    got = read_capture(f)
+    assert got.axes == ("x",)
+    np.testing.assert_allclose(got.reference[:, 0], ref)
+    np.testing.assert_allclose(got.measured[:, 0], meas)
+    assert abs(got.sample_time - 0.01) < 1e-12
