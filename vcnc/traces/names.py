@@ -72,6 +72,12 @@ measured position in counts (:func:`_other_quantity`); the plurals of other quan
 as ``rostopic echo -p`` names a JointTrajectoryPoint's arrays) are no positions; and an array's element numbers the
 joint in a ``rostopic echo -p`` table (``field.desired.positions2``, :mod:`vcnc.traces.rostopic`).
 
+vcnc addition (traces40): a PLC symbol path whose last element names a role on its own is read by that element
+(``MAIN.afbAxes[3].stAxisStruct.stStatus.fActPosition``, as TwinCAT's Scope View names a channel by its symbol); the
+elements before it add only whole axis letters, a status structure's name (``stStatus``) is no status word, and a
+quantity they name (``Spindle.ActPos``, ``Axis.Velocity.Cmd``) still makes the variable no position
+(:func:`_path_words`).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
