@@ -10,12 +10,14 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pytest
 
 from identification.reduced_model import ReducedAxisModel
 from identification.synthetic import FADAL_PID_X, random_moves_reference, synthetic_capture
 from vcnc.capture import Capture, read_capture
 from vcnc.cli import main
 from vcnc.commands.identify import record_start_lines
+from vcnc.errors import CaptureError
 
 T = 1e-3
 
@@ -121,3 +123,23 @@ def test_plc_symbol_paths_are_read_by_their_last_element(tmp_path):
     np.testing.assert_allclose(got.reference[:, 0], ref)
     np.testing.assert_allclose(got.measured[:, 0], meas)
     assert abs(got.sample_time - 0.01) < 1e-12
+
+
+def test_a_loggers_file_headed_by_t_asks_its_own_question(tmp_path):
+    """``t`` first and a ``#`` line above look like vcnc's capture CSV; a logger's names under them are read (session
+    37), and when that file is refused for another reason, its own question is the one asked: here whether the
+    whole numbers are counts of the stated 0.5 um (trace_fuzz seed 52000248, its layout written by hand). The capture
+    CSV's "unknown column 'X Commanded Position'" was raised, sending the user to map columns the names had mapped."""
+    f = tmp_path / "counts.csv"
+    f.write_text("# Resolution: 0.5 um\nt,X Commanded Position,X Actual Position\n12.500,56918,56918\n"
+                 "12.501,56547,56918\n12.502,56176,56899\n")
+    with pytest.raises(CaptureError, match=r"states the size of one count .*expected --unit 0\.5um \(counts\)") as err:
+        read_capture(f)
+    assert err.value.line == 2
+    got = read_capture(f, unit="0.5um")
+    np.testing.assert_allclose(got.reference[:, 0], np.array([56918, 56547, 56176]) * 0.5e-3)
+    # a header that names nothing a logger would still gets the capture CSV's own message
+    g = tmp_path / "typo.csv"
+    g.write_text("t,x_ref,xx\n0,0,0\n0.001,1,1\n")
+    with pytest.raises(CaptureError, match="unknown column 'xx'"):
+        read_capture(g)
