@@ -272,7 +272,7 @@ class _Layout:
         """(reduced parameters, kernel specification) of ``z``."""
         params, elements, c = self.build(z)
         m = AugmentedAxisModel(parameters=params, sample_time=self.data.T, elements=tuple(elements), viscous_rate=c,
-                               poles={"p_hz": 1.0, "omega_n_hz": 1.0, "zeta": 1.0})
+                               poles={"p_hz": 1.0, "omega_n_hz": 1.0, "zeta": 1.0}, form=self.model.form)
         return params, m.spec(self.data.n)
 
     def simulate(self, z: np.ndarray) -> np.ndarray:
@@ -747,11 +747,14 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
     data = Data(xr=xr, x=x, T=T, train=active & ~last, valid=last, bounds=bounds, active=active, held=held)
     counts = [f.active for f in plan.folds]
     base = _judge(augment(model, []), data, plan, opt)
-    cur = base.model
-    stages = [Stage(effect=None, train_model=cur, full_model=model, validation_rms_um=base.held_out_rms_um,
-                    validation_max_um=base.held_out_max_um, fold_rms_um=base.fold_rms_um,
-                    fold_max_um=base.fold_max_um, in_sample_folds=base.in_sample_folds)]
-    cur_rms = base.rms_um
+    exact = Stage(effect=None, train_model=base.model, full_model=model, validation_rms_um=base.held_out_rms_um,
+                  validation_max_um=base.held_out_max_um, fold_rms_um=base.fold_rms_um,
+                  fold_max_um=base.fold_max_um, in_sample_folds=base.in_sample_folds)
+    # the reduced model's identification-data error, on the active samples
+    exact.identification_rms_um, exact.identification_max_um = _errors(model, data, active)
+    split, form = _base_form(model, exact, base.rms_um, data, plan, opt)
+    stages = [split or exact]
+    cur, cur_rms = (split.full_model, split.identification_rms_um) if split else (base.model, base.rms_um)
     rounds: list[dict] = []
     for _ in range(opt.max_effects):
         ctx = SearchContext(data, cur)
@@ -768,9 +771,7 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
         stages.append(_accepted_stage(chosen, tried, stages[-1], rounds[-1]))
         cur, cur_rms = stages[-1].full_model, stages[-1].identification_rms_um
     stages = _backward_check(stages, data, plan, rounds, opt)
-    # the reduced model's identification-data error, on the active samples
-    stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, active)
-    final = _final_model(model, stages, opt, data, rounds, plan, counts)
+    final = _final_model(model, [exact, *stages] if split else stages, opt, data, rounds, plan, counts, form)
     return DiagnosisReport(model=final, reduced=model, stages=stages, rounds=rounds, data=data,
                            time_s=time.perf_counter() - t_start, plan=plan)
 
@@ -1185,10 +1186,13 @@ def _backward_check(stages: list[Stage], data: Data, plan: FoldPlan, rounds: lis
         rest = [e for e in final.full_model.elements if e.NAME != name]
         if not rest:
             without = None
-        elif without is None or len(without.model.elements) != len(rest):
-            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect):
-            # judged against its null (_without), a dropped element left one where no other element remains
+        elif without is None or (without.model.form != final.full_model.form
+                                 and not any(e.in_loop for e in rest)):
+            # the model that replaces the final one keeps the final one's base form: judged against its null
+            # (_without), a dropped element left the split form where no other element remains
             without = _judged_at_rest(augment(final.full_model, rest), final.full_model, data, plan, opt)
+        elif without.model.form != final.full_model.form:  # the same loop (an element is left): the final's form
+            without = dataclasses.replace(without, model=augment(without.model, rest, form=final.full_model.form))
         log.info("diagnosis: %s dropped: %s", name, why)
         w = without.held_out_rms_um if without is not None else stages[0].validation_rms_um
         rounds[-1].setdefault("dropped", {})[name] = {"reason": why, "validation_rms_with_um": final.validation_rms_um,
@@ -1440,13 +1444,8 @@ def _gain(before: float, after: float) -> float:
 
 
 def _null_of(model: AugmentedAxisModel, name: str) -> AugmentedAxisModel:
-    """``model`` without the effect ``name``, keeping the sampled split form (a 0-sample delay)."""
-    from identification.effects import Delay
-
-    rest = [e for e in model.elements if e.NAME != name]
-    if not any(e.in_loop for e in rest):
-        rest.append(Delay(samples=0, sample_time=model.sample_time))
-    return augment(model, rest)
+    """``model`` without the effect ``name``, keeping the sampled split form (its base ``form`` split)."""
+    return augment(model, [e for e in model.elements if e.NAME != name], form="split")
 
 
 def _poles_on_bounds(model: ReducedAxisModel, data: Data) -> list[str]:
@@ -1522,8 +1521,57 @@ def bound_advice(on_bounds: list[str]) -> str:
     return "; ".join(advice)
 
 
+def _base_form(model: ReducedAxisModel, exact: Stage, exact_rms: float, data: Data, plan: FoldPlan,
+               opt: DiagnosisOptions) -> tuple[Stage | None, dict]:
+    """``(stage, record)``: the reduced model in the split base form (``form`` "split",
+    :class:`identification.augmented.AugmentedAxisModel`), refitted on the active samples and judged on the folds,
+    as the stage the rounds start from when it passes the tests an effect passes against ``exact`` (the reduced
+    model's stage; ``exact_rms`` its refit's error on the active samples [um]), else None; ``record`` says what it
+    gave (the model's ``validation["form"]``).
+
+    The exact loop's Coulomb friction switches on the sampled sign of the velocity and cannot hold a stopped axis;
+    the split form's Coulomb levels hold it while the force on it lies between them (Karnopp), as a machine's
+    friction does at each reversal and stop. It is the null the diagnosis judges an element against
+    (:func:`_null_of`), so its refit and its test are theirs: it adds one fitted parameter (the plant viscous rate),
+    and is kept when it lowers the pooled held-out RMS by ``min_gain`` and ``min_gain_um`` (:func:`_lowers`), lowers
+    the error on the active samples, raises no fold's held-out RMS and not the whole record's by as much, its
+    Coulomb mean where the whole record puts it (:func:`coulomb_mean_at_rest`), as ``FrictionStribeck.stick`` is
+    judged against it. ident_fuzz seed 21 case 30 (ballscrew-ppc/x, Coulomb friction that holds the stopped axis up
+    to 12 ms at reversals): held out 1.20 um in the exact form (identclean38, identstart39), see the model's
+    ``validation.form`` and docs/ARCHITECTURE.md for what it gives (identstick40)."""
+    j = _judge(augment(model, [], form="split"), data, plan, opt)
+    settled = coulomb_mean_at_rest(j.model, model, data)
+    if settled is not j.model:
+        j = _judge(settled, data, plan, opt, fitted=True)
+    record: dict[str, Any] = {
+        "chosen": "exact", "exact_validation_rms_um": exact.validation_rms_um,
+        "split": {"validation_rms_um": j.held_out_rms_um, "identification_rms_um": j.rms_um,
+                  "fold_rms_um": list(j.fold_rms_um), "plant_viscous_rate_1_s": j.model.viscous_rate},
+        "gain_pct": 100.0 * _gain(exact.validation_rms_um, j.held_out_rms_um),
+        "criterion": f"the split form (Coulomb friction that holds a stopped axis) is kept when it lowers the pooled "
+                     f"held-out RMS by >= {opt.min_gain:.0%} and >= {opt.min_gain_um} um, and the error on the "
+                     f"active samples, and raises neither a fold's held-out RMS nor the RMS on the whole record by as "
+                     "much",
+    }
+    ok = _lowers(exact.validation_rms_um, j.held_out_rms_um, opt) and j.rms_um < exact_rms
+    against = _contradicting_folds(exact.fold_rms_um, j.fold_rms_um, opt)
+    if against:
+        record["contradicted_by_folds"] = [i + 1 for i in against]
+    worse = _worse_on_the_record(model, j.model, data, opt) if ok and not against else None
+    if worse is not None:
+        record["worse_on_the_record_um"] = list(worse)
+    if not (ok and not against and worse is None):
+        return None, record
+    record["chosen"] = "split"
+    log.info("diagnosis: the split form, held out %.4g -> %.4g um", exact.validation_rms_um, j.held_out_rms_um)
+    stage = Stage(effect=None, evidence={"form": "split"}, **_judged_fields(j))
+    return stage, record
+
+
 def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOptions, data: Data,
-                 rounds: list[dict], plan: FoldPlan, counts: list[int]) -> ReducedAxisModel:
+                 rounds: list[dict], plan: FoldPlan, counts: list[int], form: dict) -> ReducedAxisModel:
+    """The diagnosed model with its ``validation`` (and ``effects``, ``fit``): ``stages[0]`` is the reduced model's,
+    a stage without an effect after it the split base form's (:func:`_base_form`, whose ``form`` record is kept)."""
     T = data.T
     everywhere = np.ones(data.n, bool)
     fold_rows = []
@@ -1556,6 +1604,7 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
         "record_rms_um": [_errors(model, data, everywhere)[0]] + [_errors(s.full_model, data, everywhere)[0]
                                                                  for s in stages[1:]],
         "rounds": plain(rounds),
+        "form": plain(form),
     }
     validation["naive_active"] = pure_delay_baseline(data.xr, data.x, T, mask=plan.active)
     warnings = list(plan.warnings) + in_sample_warnings(stages[0].in_sample_folds,
@@ -1585,6 +1634,8 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     by_name = {e.NAME: e for e in last.elements}
     base = {r["name"]: r for r in last.effect_records()}
     for prev, s in zip(stages[:-1], stages[1:]):
+        if s.effect is None:  # the split base form: a form, no effect
+            continue
         e = by_name[s.effect]
         rec = base[s.effect]
         rec.update({
