@@ -1545,7 +1545,8 @@ def _base_form(model: ReducedAxisModel, exact: Stage, exact_rms: float, data: Da
         j = _judge(settled, data, plan, opt, fitted=True)
     record: dict[str, Any] = {
         "chosen": "exact", "exact_validation_rms_um": exact.validation_rms_um,
-        "split": {"validation_rms_um": j.held_out_rms_um, "identification_rms_um": j.rms_um,
+        "split": {"validation_rms_um": j.held_out_rms_um, "validation_max_um": j.held_out_max_um,
+                  "identification_rms_um": j.rms_um, "identification_max_um": j.max_um,
                   "fold_rms_um": list(j.fold_rms_um), "plant_viscous_rate_1_s": j.model.viscous_rate},
         "gain_pct": 100.0 * _gain(exact.validation_rms_um, j.held_out_rms_um),
         "criterion": f"the split form (Coulomb friction that holds a stopped axis) is kept when it lowers the pooled "
@@ -1554,7 +1555,7 @@ def _base_form(model: ReducedAxisModel, exact: Stage, exact_rms: float, data: Da
                      "much",
     }
     ok = _lowers(exact.validation_rms_um, j.held_out_rms_um, opt) and j.rms_um < exact_rms
-    against = _contradicting_folds(exact.fold_rms_um, j.fold_rms_um, opt)
+    against = _contradicting_folds(exact.fold_rms_um, j.fold_rms_um, opt) if ok else []
     if against:
         record["contradicted_by_folds"] = [i + 1 for i in against]
     worse = _worse_on_the_record(model, j.model, data, opt) if ok and not against else None
@@ -1761,7 +1762,8 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
     v = model.validation or {}
     effects = list(model.effects or [])
     record = list(v.get("record_rms_um") or [])
-    if effects:
+    split = (v.get("form") or {}).get("chosen") == "split"
+    if effects and not split:
         first = effects[0]
         rows = [{"label": "reduced model", "identification_rms_um": first.get("rms_before_um"),
                  "identification_max_um": first.get("max_before_um"),
@@ -1771,6 +1773,10 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
         rows = [{"label": "reduced model", "identification_rms_um": v.get("identification_rms_before_um"),
                  "identification_max_um": v.get("identification_max_before_um"),
                  "validation_rms_um": v.get("rms_before_um"), "validation_max_um": v.get("max_before_um")}]
+    if split:  # the reduced model in the split base form (_base_form): its errors are the first effect's before
+        f = v["form"]["split"]
+        rows.append({"label": "reduced model, split form", **{k: f.get(k) for k in (
+            "identification_rms_um", "identification_max_um", "validation_rms_um", "validation_max_um")}})
     for e in effects:
         rows.append({"label": f"+ {e['name']} ({e.get('summary', '')})", "name": e["name"], "summary": e.get("summary"),
                      "identification_rms_um": e.get("rms_after_um"), "identification_max_um": e.get("max_after_um"),
@@ -1842,6 +1848,30 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
             if held is not None and was and held < was:
                 lines.append(f"refused: {name} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but {why}")
     return lines
+
+
+def form_lines(validation: dict, unit: str = "um") -> list[str]:
+    """The line on the reduced model's base form from ``validation['form']`` (:func:`_base_form`): ``form: split``
+    when the split form was kept, a ``refused:`` line when it lowered the held-out error by the gain and a fold or
+    the whole record refused it, else none (a model file written before identstick40 has no such record)."""
+    f = validation.get("form") or {}
+    split, was = f.get("split") or {}, f.get("exact_validation_rms_um")
+    held = split.get("validation_rms_um")
+    if held is None or was is None:
+        return []
+    what = (f"the reduced model in the split form (its Coulomb levels hold the stopped axis while the force on it lies "
+            f"between them, Karnopp; plant viscous rate {split.get('plant_viscous_rate_1_s', math.nan):.4g} 1/s)")
+    if f.get("chosen") == "split":
+        return [f"form: split: {what} predicts the held-out folds {was:.4g} -> {held:.4g} {unit}"]
+    if f.get("contradicted_by_folds"):
+        folds_up = ", ".join(str(i) for i in f["contradicted_by_folds"])
+        return [f"refused: {what} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but raises that of fold "
+                f"{folds_up} by as much as a gain must lower it"]
+    if f.get("worse_on_the_record_um"):
+        before, after = f["worse_on_the_record_um"]
+        return [f"refused: {what} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but raises the RMS over "
+                f"all the record's samples {before:.4g} -> {after:.4g} {unit}"]
+    return []
 
 
 def dropped_lines(validation: dict, unit: str = "um") -> list[str]:
@@ -1930,10 +1960,12 @@ def after_table_lines(model: ReducedAxisModel) -> list[str]:
     if v.get("split"):
         lines.append(f"validation: {v['split']}")
     refused = refusal_lines(v, u) + dropped_lines(v, u)
+    form = form_lines(v, u)
+    stands = "the reduced model stands" + (" in the split form" if form and form[0].startswith("form:") else "")
     if not model.effects:
-        lines.append("diagnosis: no effect is kept; the reduced model stands" if refused else
-                     "diagnosis: no effect lowers the held-out error significantly; the reduced model stands")
-    lines.extend(refused)
+        lines.append(f"diagnosis: no effect is kept; {stands}" if refused else
+                     f"diagnosis: no effect lowers the held-out error significantly; {stands}")
+    lines.extend(form + refused)
     lines.extend(unpinned_lines(model))
     for fo in v.get("folds") or []:
         w = fo.get("window_s") or [math.nan, math.nan]
