@@ -53,12 +53,15 @@ the driven mass and the measured position (a loop closed on a linear scale), ``r
 the mass in two (motor share 1 - r, table share r) joined by a spring and damper of free-free
 frequency f and damping zeta, measured at the motor or at the table.
 
-The sampled split form with no element (``delay`` of 0 samples) is *not* Eq. (3.3): its hold adds
+The sampled split form with no element (the model's ``form`` "split") is *not* Eq. (3.3): its hold adds
 about half a sample of lag that the reduced model absorbs in its parameters. The diagnosis
 therefore judges an element against that null form refitted (a nested comparison), never
-against Eq. (3.3) alone. Checked against the project's virtual PID machine: with its true
-parameters the sampled split form reproduces its clean response closely (it is the same sampled
-PID law on the same rigid plant; tests/identification/test_effects.py).
+against Eq. (3.3) alone. It is also a base form of its own: its Coulomb levels d0, d1 hold a stopped
+axis (Karnopp) where Eq. (3.3)'s, switched on the sampled sign of the velocity, hold nothing, and the
+diagnosis keeps it for its final model when it predicts the held-out folds better by the gain an effect
+must bring (:func:`identification.diagnosis.diagnose`; identstick40). Checked against the project's
+virtual PID machine: with its true parameters the sampled split form reproduces its clean response
+closely (it is the same sampled PID law on the same rigid plant; tests/identification/test_effects.py).
 
 **output** (``drift``): added to the predicted measurement (x_meas = x + r t).
 """

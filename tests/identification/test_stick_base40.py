@@ -2,8 +2,8 @@
 
 The exact loop's Coulomb friction switches on the sampled sign of the velocity and holds nothing; the split form
 (plant + sampled controller, :mod:`identification.augmented`) holds a stopped mass while the force on it lies between
-the Coulomb levels (Karnopp). The diagnosis refits the reduced model in both forms and keeps the split one when it
-predicts the held-out folds better by the gain an effect must bring (``diagnosis._base_form``); the model file
+the Coulomb levels (Karnopp). After its rounds the diagnosis refits its final model in the split form and keeps it
+when it predicts the held-out folds better by the gain an effect must bring (``diagnosis._split_form``); the model file
 records it as ``form`` with ``plant_viscous_rate_1_s`` (``vcnc.axis-model/4``).
 """
 
