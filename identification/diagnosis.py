@@ -51,7 +51,12 @@ Procedure (forward selection judged on held-out data)
    model refitted without it, and the last round's record says so under ``dropped`` (:func:`_backward_check`; the
    report's ``dropped:`` lines). These refits too keep the
    Coulomb mean where the whole record puts it (:func:`_judged_at_rest`): the final model's mean is the rests'.
-6. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
+6. **Form.** A final model without an element (whose loop is the exact form of Eq. 3.3, its Coulomb friction
+   switched on the sampled sign of the velocity, which holds nothing) is refitted in the split form (``form``
+   "split", :class:`identification.augmented.AugmentedAxisModel`: its Coulomb levels hold a stopped axis, Karnopp)
+   and judged on the folds; it is kept when it passes the tests of step 4 against the final model
+   (:func:`_split_form`; ``validation.form``, the table's ``in the split form`` row and its ``form:`` line).
+7. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
    the active stretches and the warnings; ``validation.unexplained`` the final residual's
    spectral peaks and its association with position, velocity, direction, acceleration and time
    (:func:`identification.residual.residual_evidence`), so that what no named effect explains is
