@@ -51,12 +51,7 @@ Procedure (forward selection judged on held-out data)
    model refitted without it, and the last round's record says so under ``dropped`` (:func:`_backward_check`; the
    report's ``dropped:`` lines). These refits too keep the
    Coulomb mean where the whole record puts it (:func:`_judged_at_rest`): the final model's mean is the rests'.
-6. **Form.** A final model without an element (whose loop is the exact form of Eq. 3.3, its Coulomb friction
-   switched on the sampled sign of the velocity, which holds nothing) is refitted in the split form (``form``
-   "split", :class:`identification.augmented.AugmentedAxisModel`: its Coulomb levels hold a stopped axis, Karnopp)
-   and judged on the folds; it is kept when it passes the tests of step 4 against the final model
-   (:func:`_split_form`; ``validation.form``, the table's ``in the split form`` row and its ``form:`` line).
-7. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
+6. **Report.** ``validation`` gives the pooled and per-fold held-out errors before and after,
    the active stretches and the warnings; ``validation.unexplained`` the final residual's
    spectral peaks and its association with position, velocity, direction, acceleration and time
    (:func:`identification.residual.residual_evidence`), so that what no named effect explains is
@@ -277,7 +272,7 @@ class _Layout:
         """(reduced parameters, kernel specification) of ``z``."""
         params, elements, c = self.build(z)
         m = AugmentedAxisModel(parameters=params, sample_time=self.data.T, elements=tuple(elements), viscous_rate=c,
-                               poles={"p_hz": 1.0, "omega_n_hz": 1.0, "zeta": 1.0}, form=self.model.form)
+                               poles={"p_hz": 1.0, "omega_n_hz": 1.0, "zeta": 1.0})
         return params, m.spec(self.data.n)
 
     def simulate(self, z: np.ndarray) -> np.ndarray:
@@ -775,8 +770,7 @@ def _diagnose(capture: Capture, model: ReducedAxisModel, axis: str, options: Dia
     stages = _backward_check(stages, data, plan, rounds, opt)
     # the reduced model's identification-data error, on the active samples
     stages[0].identification_rms_um, stages[0].identification_max_um = _errors(model, data, active)
-    split, form = _split_form(stages[-1], data, plan, opt)
-    final = _final_model(model, stages + [split] if split else stages, opt, data, rounds, plan, counts, form)
+    final = _final_model(model, stages, opt, data, rounds, plan, counts)
     return DiagnosisReport(model=final, reduced=model, stages=stages, rounds=rounds, data=data,
                            time_s=time.perf_counter() - t_start, plan=plan)
 
@@ -1191,13 +1185,10 @@ def _backward_check(stages: list[Stage], data: Data, plan: FoldPlan, rounds: lis
         rest = [e for e in final.full_model.elements if e.NAME != name]
         if not rest:
             without = None
-        elif without is None or (without.model.form != final.full_model.form
-                                 and not any(e.in_loop for e in rest)):
-            # the model that replaces the final one keeps the final one's base form: judged against its null
-            # (_without), a dropped element left the split form where no other element remains
+        elif without is None or len(without.model.elements) != len(rest):
+            # the model that replaces the final one keeps no null delay of its own (a 0-sample delay is no effect):
+            # judged against its null (_without), a dropped element left one where no other element remains
             without = _judged_at_rest(augment(final.full_model, rest), final.full_model, data, plan, opt)
-        elif without.model.form != final.full_model.form:  # the same loop (an element is left): the final's form
-            without = dataclasses.replace(without, model=augment(without.model, rest, form=final.full_model.form))
         log.info("diagnosis: %s dropped: %s", name, why)
         w = without.held_out_rms_um if without is not None else stages[0].validation_rms_um
         rounds[-1].setdefault("dropped", {})[name] = {"reason": why, "validation_rms_with_um": final.validation_rms_um,
@@ -1449,8 +1440,13 @@ def _gain(before: float, after: float) -> float:
 
 
 def _null_of(model: AugmentedAxisModel, name: str) -> AugmentedAxisModel:
-    """``model`` without the effect ``name``, keeping the sampled split form (its base ``form`` split)."""
-    return augment(model, [e for e in model.elements if e.NAME != name], form="split")
+    """``model`` without the effect ``name``, keeping the sampled split form (a 0-sample delay)."""
+    from identification.effects import Delay
+
+    rest = [e for e in model.elements if e.NAME != name]
+    if not any(e.in_loop for e in rest):
+        rest.append(Delay(samples=0, sample_time=model.sample_time))
+    return augment(model, rest)
 
 
 def _poles_on_bounds(model: ReducedAxisModel, data: Data) -> list[str]:
@@ -1526,61 +1522,8 @@ def bound_advice(on_bounds: list[str]) -> str:
     return "; ".join(advice)
 
 
-def _split_form(final: Stage, data: Data, plan: FoldPlan, opt: DiagnosisOptions) -> tuple[Stage | None, dict]:
-    """``(stage, record)``: the final model of the forward selection (``final``, its effects kept) in the split base
-    form (``form`` "split", :class:`identification.augmented.AugmentedAxisModel`), refitted on the active samples
-    and judged on the folds, as the stage the diagnosis ends with when it passes the tests an effect passes against
-    ``final``, else None; ``record`` says what it gave (the model's ``validation["form"]``; empty when ``final``
-    has an element, whose loop is the split form already).
-
-    The exact loop's Coulomb friction switches on the sampled sign of the velocity and cannot hold a stopped axis;
-    the split form's Coulomb levels hold it while the force on it lies between them (Karnopp), as a machine's
-    friction does at each reversal and stop. It is the null the diagnosis judges an element against
-    (:func:`_null_of`), so its refit and its test are theirs: it adds one fitted parameter (the plant viscous rate),
-    and is kept when it lowers the pooled held-out RMS by ``min_gain`` and ``min_gain_um`` (:func:`_lowers`), lowers
-    the error on the active samples, raises no fold's held-out RMS and not the whole record's by as much, its
-    Coulomb mean where the whole record puts it (:func:`coulomb_mean_at_rest`), as ``FrictionStribeck.stick`` is
-    judged against it. It is judged after the rounds, so that every effect is found and judged as before (a
-    Stribeck term that holds each start from rest, in its own split form, against this one: stick36's scenario,
-    tests/identification/test_breakaway_at_rest.py). ident_fuzz seed 21 case 30 (ballscrew-ppc/x, Coulomb friction
-    that holds the stopped axis up to 12 ms at reversals, nothing named): held out 1.20 um in the exact form,
-    0.09 um in the split form (identstick40)."""
-    last = final.full_model
-    if getattr(last, "structured", False):
-        return None, {}
-    j = _judge(augment(last, getattr(last, "elements", ()), form="split"), data, plan, opt)
-    settled = coulomb_mean_at_rest(j.model, last, data)
-    if settled is not j.model:
-        j = _judge(settled, data, plan, opt, fitted=True)
-    record: dict[str, Any] = {
-        "chosen": "exact", "exact_validation_rms_um": final.validation_rms_um,
-        "split": {"validation_rms_um": j.held_out_rms_um, "validation_max_um": j.held_out_max_um,
-                  "identification_rms_um": j.rms_um, "identification_max_um": j.max_um,
-                  "fold_rms_um": list(j.fold_rms_um), "plant_viscous_rate_1_s": j.model.viscous_rate},
-        "gain_pct": 100.0 * _gain(final.validation_rms_um, j.held_out_rms_um),
-        "criterion": f"the split form (Coulomb friction that holds a stopped axis) is kept when it lowers the pooled "
-                     f"held-out RMS by >= {opt.min_gain:.0%} and >= {opt.min_gain_um} um, and the error on the "
-                     f"active samples, and raises neither a fold's held-out RMS nor the RMS on the whole record by as "
-                     "much",
-    }
-    ok = _lowers(final.validation_rms_um, j.held_out_rms_um, opt) and j.rms_um < final.identification_rms_um
-    against = _contradicting_folds(final.fold_rms_um, j.fold_rms_um, opt) if ok else []
-    if against:
-        record["contradicted_by_folds"] = [i + 1 for i in against]
-    worse = _worse_on_the_record(last, j.model, data, opt) if ok and not against else None
-    if worse is not None:
-        record["worse_on_the_record_um"] = list(worse)
-    if not (ok and not against and worse is None):
-        return None, record
-    record["chosen"] = "split"
-    log.info("diagnosis: the split form, held out %.4g -> %.4g um", final.validation_rms_um, j.held_out_rms_um)
-    return Stage(effect=None, evidence={"form": "split"}, **_judged_fields(j)), record
-
-
 def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOptions, data: Data,
-                 rounds: list[dict], plan: FoldPlan, counts: list[int], form: dict) -> ReducedAxisModel:
-    """The diagnosed model with its ``validation`` (and ``effects``, ``fit``): ``stages[0]`` is the reduced model's,
-    a last stage without an effect the split base form's (:func:`_split_form`, whose ``form`` record is kept)."""
+                 rounds: list[dict], plan: FoldPlan, counts: list[int]) -> ReducedAxisModel:
     T = data.T
     everywhere = np.ones(data.n, bool)
     fold_rows = []
@@ -1613,7 +1556,6 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
         "record_rms_um": [_errors(model, data, everywhere)[0]] + [_errors(s.full_model, data, everywhere)[0]
                                                                  for s in stages[1:]],
         "rounds": plain(rounds),
-        "form": plain(form),
     }
     validation["naive_active"] = pure_delay_baseline(data.xr, data.x, T, mask=plan.active)
     warnings = list(plan.warnings) + in_sample_warnings(stages[0].in_sample_folds,
@@ -1643,8 +1585,6 @@ def _final_model(model: ReducedAxisModel, stages: list[Stage], opt: DiagnosisOpt
     by_name = {e.NAME: e for e in last.elements}
     base = {r["name"]: r for r in last.effect_records()}
     for prev, s in zip(stages[:-1], stages[1:]):
-        if s.effect is None:  # the split base form: a form, no effect
-            continue
         e = by_name[s.effect]
         rec = base[s.effect]
         rec.update({
@@ -1770,7 +1710,6 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
     v = model.validation or {}
     effects = list(model.effects or [])
     record = list(v.get("record_rms_um") or [])
-    split = (v.get("form") or {}).get("chosen") == "split"
     if effects:
         first = effects[0]
         rows = [{"label": "reduced model", "identification_rms_um": first.get("rms_before_um"),
@@ -1786,10 +1725,6 @@ def before_after_rows(model: ReducedAxisModel) -> list[dict[str, Any]]:
                      "identification_rms_um": e.get("rms_after_um"), "identification_max_um": e.get("max_after_um"),
                      "validation_rms_um": e.get("validation_rms_after_um"),
                      "validation_max_um": e.get("validation_max_after_um")})
-    if split:  # the model in the split base form (_split_form), after its effects
-        f = v["form"]["split"]
-        rows.append({"label": "in the split form", **{k: f.get(k) for k in (
-            "identification_rms_um", "identification_max_um", "validation_rms_um", "validation_max_um")}})
     for row, r in zip(rows, record):
         row["record_rms_um"] = r
     final = {k: v for k, v in rows[-1].items() if k not in ("name", "summary")}  # the model, not its last effect
@@ -1856,30 +1791,6 @@ def refusal_lines(validation: dict, unit: str = "um") -> list[str]:
             if held is not None and was and held < was:
                 lines.append(f"refused: {name} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but {why}")
     return lines
-
-
-def form_lines(validation: dict, unit: str = "um") -> list[str]:
-    """The line on the model's base form from ``validation['form']`` (:func:`_split_form`): ``form: split``
-    when the split form was kept, a ``refused:`` line when it lowered the held-out error by the gain and a fold or
-    the whole record refused it, else none (a model file written before identstick40 has no such record)."""
-    f = validation.get("form") or {}
-    split, was = f.get("split") or {}, f.get("exact_validation_rms_um")
-    held = split.get("validation_rms_um")
-    if held is None or was is None:
-        return []
-    what = (f"the model in the split form (its Coulomb levels hold the stopped axis while the force on it lies "
-            f"between them, Karnopp; plant viscous rate {split.get('plant_viscous_rate_1_s', math.nan):.4g} 1/s)")
-    if f.get("chosen") == "split":
-        return [f"form: split: {what} predicts the held-out folds {was:.4g} -> {held:.4g} {unit}"]
-    if f.get("contradicted_by_folds"):
-        folds_up = ", ".join(str(i) for i in f["contradicted_by_folds"])
-        return [f"refused: {what} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but raises that of fold "
-                f"{folds_up} by as much as a gain must lower it"]
-    if f.get("worse_on_the_record_um"):
-        before, after = f["worse_on_the_record_um"]
-        return [f"refused: {what} lowers the held-out error {was:.4g} -> {held:.4g} {unit}, but raises the RMS over "
-                f"all the record's samples {before:.4g} -> {after:.4g} {unit}"]
-    return []
 
 
 def dropped_lines(validation: dict, unit: str = "um") -> list[str]:
@@ -1968,12 +1879,10 @@ def after_table_lines(model: ReducedAxisModel) -> list[str]:
     if v.get("split"):
         lines.append(f"validation: {v['split']}")
     refused = refusal_lines(v, u) + dropped_lines(v, u)
-    form = form_lines(v, u)
-    stands = "the reduced model stands" + (" in the split form" if form and form[0].startswith("form:") else "")
     if not model.effects:
-        lines.append(f"diagnosis: no effect is kept; {stands}" if refused else
-                     f"diagnosis: no effect lowers the held-out error significantly; {stands}")
-    lines.extend(form + refused)
+        lines.append("diagnosis: no effect is kept; the reduced model stands" if refused else
+                     "diagnosis: no effect lowers the held-out error significantly; the reduced model stands")
+    lines.extend(refused)
     lines.extend(unpinned_lines(model))
     for fo in v.get("folds") or []:
         w = fo.get("window_s") or [math.nan, math.nan]

@@ -2,9 +2,8 @@
 
 The exact loop's Coulomb friction switches on the sampled sign of the velocity and holds nothing; the split form
 (plant + sampled controller, :mod:`identification.augmented`) holds a stopped mass while the force on it lies between
-the Coulomb levels (Karnopp). After its rounds the diagnosis refits its final model in the split form and keeps it
-when it predicts the held-out folds better by the gain an effect must bring (``diagnosis._split_form``); the model file
-records it as ``form`` with ``plant_viscous_rate_1_s`` (``vcnc.axis-model/4``).
+the Coulomb levels (Karnopp). A model carries it as ``form`` "split"; the model file records it as ``form`` with
+``plant_viscous_rate_1_s`` (``vcnc.axis-model/4``), a file without the key is the exact form as before.
 """
 
 from __future__ import annotations
@@ -14,11 +13,10 @@ import json
 import numpy as np
 import pytest
 
-from identification import ReducedAxisModel, identify, load_model
+from identification import ReducedAxisModel, load_model
 from identification.augmented import augment
 from identification.model_file import model_from_dict
 from identification.model_format import FORMAT_FORM, model_to_dict, write_model
-from vcnc.core.capture import Capture
 from vcnc.core.errors import InputError, ModelFileError
 
 T = 0.001
@@ -45,37 +43,12 @@ def _truth(form: str):
                    form=form)
 
 
-def _capture(form: str) -> Capture:
-    """The truth's response to :func:`_reference`, measured by a 0.1 um encoder."""
-    xr = _reference()
-    x = np.round(_truth(form).simulate(xr) / 1e-4) * 1e-4
-    return Capture(t=np.arange(xr.size) * T, axes=("x",), reference=xr[:, None], measured=x[:, None], meta={})
-
-
 def test_the_split_form_holds_the_stopped_axis_at_each_reversal():
     xr = _reference()
     v_split, v_exact = _truth("split").velocity(xr), _truth("exact").velocity(xr)
     # at each of the 20 reversals the split form's axis stands still for a few samples; the exact loop's never does
     assert np.sum(v_split == 0.0) > 100
     assert np.sum(v_exact[100:-100] == 0.0) == 0
-
-
-def test_a_truth_that_holds_at_reversals_is_identified_in_the_split_form():
-    m = identify(_capture("split"), axis="x")
-    form = m.validation["form"]
-    assert m.form == "split" and form["chosen"] == "split" and m.structured
-    # the split form predicts the held-out folds better than the exact one by the gain an effect must bring
-    exact, split = form["exact_validation_rms_um"], form["split"]["validation_rms_um"]
-    assert split <= 0.75 * exact and exact - split >= 0.05
-    assert m.validation["rms_after_um"] <= split and m.validation["rms_before_um"] == exact
-    assert m.viscous_rate == form["split"]["plant_viscous_rate_1_s"] >= 0.0
-
-
-@pytest.mark.slow
-def test_the_same_truth_in_the_exact_form_keeps_the_exact_form():
-    m = identify(_capture("exact"), axis="x")
-    assert getattr(m, "form", "exact") == "exact" and m.validation["form"]["chosen"] == "exact"
-    assert "form" not in model_to_dict(m)
 
 
 def test_the_model_file_records_the_form_and_reads_it_back(tmp_path):
