@@ -435,23 +435,6 @@ def prediction_rows(capture, model, axis: str, rest_um: float) -> list[list]:
     return rows
 
 
-def tracking_figure(t, xr, x, xp, unit: str):
-    """The measured and predicted tracking error ``xr - x``, ``xr - xp`` over ``t`` [s] and the residual ``x - xp``
-    (positions [mm], drawn in ``unit``, um or mdeg): the figure of ``vcnc identify --report`` and of ``--check``."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(10, 6))
-    ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    ax1.plot(t, (xr - x) * 1e3, label="measured tracking error")
-    ax1.plot(t, (xr - xp) * 1e3, "--", label="predicted tracking error")
-    ax1.set_ylabel(f"x_r - x [{unit}]")
-    ax1.legend()
-    ax2.plot(t, (x - xp) * 1e3, color="C3")
-    ax2.set_ylabel(f"residual x - x_pred [{unit}]")
-    ax2.set_xlabel("time [s]")
-    return fig
-
-
 def build_report(capture, model, axis: str, baseline: list[str], rest_um: float):
     """The HTML report of ``vcnc identify --report`` (:class:`vcnc.report.Report`): the model, the fit in the
     summary's words (:func:`fit_lines`, :func:`prediction_rows`), the figures and the diagnosis."""
@@ -501,6 +484,8 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
     for line in fit_lines(model, rest_um) + baseline:
         rep.text(line)
     rep.table(["prediction of the capture", f"RMS [{u}]", f"max [{u}]"], prediction_rows(capture, model, axis, rest_um))
+    from vcnc.commands.tracking_figure import tracking_figure
+
     rep.figure("tracking", tracking_figure(t, xr, x, xp, u),
                caption="Measured vs predicted tracking error (the model simulated from rest, as the table above), "
                        "and the residual")

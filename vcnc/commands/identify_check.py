@@ -20,7 +20,7 @@ estimated again), its setpoint filter and its effects, simulated from rest. The 
 
 It prints the error over all the samples predicted and over the active ones (the reference moving, with the 0.2 s
 margins of :func:`identification.segments.active_mask`), beside the figures the model's file holds for its own
-record, and with ``--report`` the measured and predicted tracking errors (:func:`vcnc.commands.identify.
+record, and with ``--report`` the measured and predicted tracking errors (:func:`vcnc.commands.tracking_figure.
 tracking_figure`).
 """
 
@@ -217,7 +217,7 @@ def check_axis(capture, model, requested: str | None, *, record_path: str, model
 def build_check_report(check: RecordCheck, lines: list[str], *, record_path: str, model_path: str):
     """The HTML report of ``vcnc identify --check`` (:class:`vcnc.report.Report`): the summary's lines and the
     measured and predicted tracking errors."""
-    from vcnc.commands.identify import tracking_figure
+    from vcnc.commands.tracking_figure import tracking_figure
     from vcnc.report import Report
 
     rep = Report(f"vcnc identify --check: axis {check.axis} of {record_path} with {model_path}")
