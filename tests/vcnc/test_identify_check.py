@@ -25,10 +25,10 @@ PARAMETERS = {"a1": 600.0, "a2": 1.5e5, "a3": 1.2e7, "b0": 0.02, "b1": 300.0, "b
 
 
 def record(path, *, seed: int, delay_s: float = 0.0, axis: str = "x", sample_time: float = TS,
-           noise: float = 0.0) -> str:
+           noise: float = 0.0, dwell: float = 0.0) -> str:
     """A record of the machine of PARAMETERS: random moves, the loop receiving the recorded reference ``delay_s``
     later (the recorded reference leads), the measured position simulated."""
-    ref = random_moves_reference(moves=25, span=10.0, seed=seed, sample_time=sample_time)
+    ref = random_moves_reference(moves=25, span=10.0, seed=seed, sample_time=sample_time, dwell=dwell)
     loop = delay_reference(ref, delay_s / sample_time)
     cap = synthetic_capture(PARAMETERS, loop, sample_time=sample_time, noise=noise, seed=seed, axis=axis)
     dataclasses.replace(cap, reference=ref[:, None]).to_csv(path)
@@ -143,3 +143,29 @@ def test_the_report_holds_the_check(tmp_path, capsys):
     assert main(["identify", rec, "--check", model, "--report", str(tmp_path / "rep")]) == 0
     summary = json.loads((tmp_path / "rep" / "summary.json").read_text())["check"]
     assert summary["axis"] == "x" and summary["rms_um"] < 0.01 and (tmp_path / "rep" / "tracking.png").is_file()
+
+
+def test_a_record_cut_in_motion_is_predicted_from_its_first_rest(tmp_path, capsys):
+    # identify's start rule (identification.segments.settled_start): a record triggered during a move is predicted
+    # from where the axis first rests, and the note says how many samples were left out
+    whole = read_capture(record(tmp_path / "whole.csv", seed=9, dwell=0.3))
+    moving = np.flatnonzero(np.abs(np.diff(whole.reference[:, 0])) > 0)
+    cut = int(moving[0]) + 30  # 30 ms into the first move, accelerating
+    rec = str(tmp_path / "cut.csv")
+    whole.slice(cut, len(whole)).to_csv(rec)
+    model = str(tmp_path / "model.json")
+    ReducedAxisModel(parameters=PARAMETERS, sample_time=TS).to_json(model)
+    assert main(["identify", rec, "--check", model]) == 0
+    out = capsys.readouterr().out
+    first = int(re.search(r"samples not predicted: the first (\d+) \(the record starts with the axis moving", out)[1])
+    assert first > 0
+    cap = read_capture(rec)
+    e = ReducedAxisModel(parameters=PARAMETERS, sample_time=TS).simulate(cap.reference[:, 0]) - cap.measured[:, 0]
+    from_first = float(np.sqrt(np.mean(e * e))) * 1e3  # from rest at the first sample, the axis moving there
+    assert table_row(out, "this record")[0] < 0.1 * from_first
+    # without a rest between the moves there is no start but the first sample: said, the transient kept
+    rec = str(tmp_path / "no_rest.csv")
+    read_capture(record(tmp_path / "moves.csv", seed=9)).slice(cut, len(whole)).to_csv(rec)
+    assert main(["identify", rec, "--check", model]) == 0
+    out = capsys.readouterr().out
+    assert "does not rest early enough" in out and "samples not predicted" not in out

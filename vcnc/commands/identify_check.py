@@ -66,6 +66,9 @@ class RecordCheck:
         The recorded reference, the measured and the predicted position of those samples [mm].
     active : ndarray of bool
         Those samples where the reference moves (with margins; :func:`identification.segments.active_mask`).
+    in_motion : bool
+        The samples predicted start with the axis moving (it does not rest early enough in the record to start
+        there, :func:`identification.segments.settled_start`): the prediction from rest carries a start transient.
     """
 
     axis: str
@@ -76,6 +79,7 @@ class RecordCheck:
     measured: np.ndarray
     predicted: np.ndarray
     active: np.ndarray
+    in_motion: bool = False
 
     def errors_um(self, which: str = "all") -> tuple[float, float]:
         """RMS and max of ``measured - predicted`` [um, mdeg on a rotary axis] over ``"all"`` the samples predicted
@@ -100,7 +104,7 @@ def check_record(capture, model, axis: str) -> RecordCheck:
     period with the model's dead time, setpoint filter and effects, from identify's start."""
     from identification.augmented import predict_record
     from identification.loop_frame import loop_frame
-    from identification.segments import active_mask
+    from identification.segments import active_mask, settled_start
     from identification.substeps import substep_reference
 
     i = capture.axis_index(axis)
@@ -120,7 +124,8 @@ def check_record(capture, model, axis: str) -> RecordCheck:
     predicted = predict_record(bare, loop_xr, held=held, sample_time=T)
     return RecordCheck(axis=axis, sample_time=T, first=first, stop=stop, reference=xr[first:stop],
                        measured=x[first:stop], predicted=predicted,
-                       active=active_mask(loop_xr, x[first:stop], T))
+                       active=active_mask(loop_xr, x[first:stop], T),
+                       in_motion=settled_start(loop_xr, x[first:stop]) is None)
 
 
 def own_record_rows(model) -> list[list]:
@@ -163,11 +168,15 @@ def check_lines(check: RecordCheck, model, *, model_path: str, record_path: str,
     if check.first or check.stop < samples:
         why = []
         if check.first:
-            why.append(f"the first {check.first} (the reference shifted by the dead time, and identify's start: "
-                       "the record is predicted from rest where the axis first rests)")
+            shifted = "the model's dead time shifts the reference past them, or " if model.delay_s > 0 else ""
+            why.append(f"the first {check.first} ({shifted}the record starts with the axis moving: predicted from "
+                       "rest where the axis first rests, as identify predicts its record)")
         if check.stop < samples:
             why.append(f"the last {samples - check.stop} (a reference that lags the loop by the dead time)")
         lines.append("note: samples not predicted: " + "; ".join(why))
+    if check.in_motion:
+        lines.append("note: the record starts with the axis moving and it does not rest early enough to start there: "
+                     "predicted from rest at its first sample, a start transient included (as identify predicts it)")
     head = f"{'':36s}{'all RMS':>10s}{'all max':>10s}{'active RMS':>12s}{'active max':>12s}  [{u}]"
     ours = ["this record", *check.errors_um("all"), *check.errors_um("active")]
     rows = [ours, *own_record_rows(model)]
