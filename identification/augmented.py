@@ -398,26 +398,29 @@ def augment(
     return AugmentedAxisModel(**base, elements=tuple(elements), viscous_rate=float(vr), form=fm)
 
 
-def predict_record(model: ReducedAxisModel, reference: np.ndarray, *, held: SubstepReference | None = None
-                   ) -> np.ndarray:
+def predict_record(model: ReducedAxisModel, reference: np.ndarray, *, held: SubstepReference | None = None,
+                   sample_time: float | None = None) -> np.ndarray:
     """``model``'s prediction [mm] of a record of ``reference`` [mm] logged at its sample time, as the fit predicted
     it: a record slower than 1 ms at sub-steps (:mod:`identification.substeps`; the reference delayed and filtered
     on the sub-step grid), a model with an element (the split form) and a faster record by ``model.simulate``.
 
     ``held`` is the record's reference on the sub-step grid when already built (the diagnosis keeps it; its model
     has no dead time or setpoint filter of its own then), of which ``reference`` is the first samples.
+    ``sample_time`` [s] is the record's period when it is not the model's (another record of the same machine,
+    ``vcnc identify --check``): the model's parameters are continuous-time (Eq. 3.3) and its elements are packed
+    for the period given (:meth:`AugmentedAxisModel.spec`), so it is simulated at the record's period.
     """
     xr = np.asarray(reference, dtype=float)
-    T = model.sample_time
+    T = model.sample_time if sample_time is None else float(sample_time)
     m = model if isinstance(model, AugmentedAxisModel) else augment(model, [])
     if substep_count(T) == 1:
-        return model.simulate(xr)
+        return model.simulate(xr, sample_time=T)
     if held is None:
         held = substep_reference(xr, T).delayed(model.delay_s / T).filtered(model.setpoint_filter_s / T)
     elif model.delay_s or model.setpoint_filter_s:
         raise InputError("predict_record: a model with a dead time or setpoint filter takes the recorded reference, "
                          "not a sub-step reference built without them")
-    return simulate_augmented(m.parameters, xr, m.spec(xr.size), held=held)
+    return simulate_augmented(m.parameters, xr, m.spec(xr.size, T), held=held)
 
 
 def from_model(model: ReducedAxisModel) -> ReducedAxisModel:

@@ -797,7 +797,8 @@ def _captured_truth(capture: Capture, toolpath: str | os.PathLike[str] | Program
             f"the capture's commanded positions move {len(moving)} linear axis ({', '.join(moving) or 'none'} of "
             f"{', '.join(capture.axes)}): a contour error needs two or more axes recorded on one time base",
             file=capture.source, expected="a trace of the axes that made the contour (X and Y), or a built-in machine "
-            "or machine file as --truth; the model of one axis is checked against its own record by vcnc identify")
+            "or machine file as --truth; the model of one axis is checked against a record of that axis by vcnc "
+            "identify CAPTURE --check MODEL.json")
     if toolpath is not None and not (isinstance(toolpath, str) and toolpath in SHAPES):
         program, _, tp_name = _program(toolpath, None)
     else:

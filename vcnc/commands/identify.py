@@ -4,6 +4,8 @@ Reads a capture CSV or an EMPS ``.mat`` file, identifies the model of Eq. (3.3) 
 (``--method exact|ga|kkt``, output-error refinement by default), prints a summary, and writes the
 model file (``--json``) and an HTML report (``--report``: measured vs predicted, residual, FRFs,
 parameter table). Everything is computed before anything is written; a failure leaves no file.
+``--check MODEL.json`` fits nothing and predicts the record with a model identified on another
+(:mod:`vcnc.commands.identify_check`).
 """
 
 from __future__ import annotations
@@ -54,6 +56,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "'remove' always, 'keep' never (it is still named)")
     parser.add_argument("--zeta", type=float, nargs=2, metavar=("MIN", "MAX"), default=None,
                         help="bounds of the damping ratio (default 0.2 2.0)")
+    parser.add_argument("--check", metavar="MODEL.json",
+                        help="fit nothing: predict this record with the model of MODEL.json (its dead time, setpoint "
+                             "filter and effects) and print its error beside the model's on its own record")
     add_trace_arguments(parser)
 
 
@@ -533,17 +538,11 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
     for line in fit_lines(model, rest_um) + record_start_lines(capture, model, axis, rest_um) + baseline:
         rep.text(line)
     rep.table(["prediction of the capture", f"RMS [{u}]", f"max [{u}]"], prediction_rows(capture, model, axis, rest_um))
-    fig = Figure(figsize=(10, 6))
-    ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    ax1.plot(t, (xr - x) * 1e3, label="measured tracking error")
-    ax1.plot(t, (xr - xp) * 1e3, "--", label="predicted tracking error")
-    ax1.set_ylabel(f"x_r - x [{u}]")
-    ax1.legend()
-    ax2.plot(t, (x - xp) * 1e3, color="C3")
-    ax2.set_ylabel(f"residual x - x_pred [{u}]")
-    ax2.set_xlabel("time [s]")
-    rep.figure("tracking", fig, caption="Measured vs predicted tracking error (the model simulated from rest, as the "
-                                        "table above), and the residual")
+    from vcnc.commands.tracking_figure import tracking_figure
+
+    rep.figure("tracking", tracking_figure(t, xr, x, xp, u),
+               caption="Measured vs predicted tracking error (the model simulated from rest, as the table above), "
+                       "and the residual")
     fig = Figure(figsize=(10, 6))
     model.plot(fig.subplots(2, 2, sharex=True))
     rep.figure("frf", fig, caption="Tracking and disturbance FRFs of the identified model (cf. Fig. 3.5)")
@@ -583,6 +582,10 @@ def _bounds(args: argparse.Namespace, capture) -> dict | None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.check:
+        from vcnc.commands.identify_check import run_check
+
+        return run_check(args)
     from identification import identify
     from vcnc.core.io import check_distinct_outputs, check_output
 
