@@ -280,6 +280,7 @@ class State:
     extra_offsets: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)  # set by G10 (table: 0)
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
+    inverse_rate: float | None = None  # LinuxCNC's feed rate after a G93 move: its length x F [units/min]
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
     feed_zero: bool = False  # the last F word was F0 (a zero feed rate: no feed move until the next F)
     per_rev: bool = False  # G95: F is per spindle revolution [mm/rev], the feed F x S
@@ -908,6 +909,8 @@ def _modes(seen, gcodes, st: State, where: Where, notes: Notes) -> None:
             st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
             st.feed_reset = True
         st.inverse_time = key == 930
+        if not st.inverse_time:
+            st.inverse_rate = None
         st.per_rev = key == 950
     st.block_f = seen["F"].value if "F" in seen else None
     if "lathe mode" in gcodes:  # LinuxCNC's G8 (interpolators.iso_codes.LINUXCNC_G)

@@ -193,6 +193,8 @@ class PlainMoves:
                 st.feed = st.feed_rotary = st.feed_per_rev = st.feed_per_rev_word = None
                 st.feed_reset = True
             st.inverse_time = mode
+            if not mode:
+                st.inverse_rate = None
         if feed is not None:
             st.feed_zero = False
             if not inverse:

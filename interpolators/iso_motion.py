@@ -503,15 +503,21 @@ def move_feed(st: State, seg: Line | Arc, turn: np.ndarray | None = None) -> flo
     [mm/s], or with U, V, W still too along its rotary distance in deg/s (RS274/NGC 3,
     Sec. 2.1.2.5; :attr:`interpolators.program.Block.extra_length`). No floor: LinuxCNC 2.9.0 and later take
     ``rate = length * F`` however short the move (rs274ngc interp_inverse.cc, commit b244b375dd for issue #2410), where
-    earlier versions, the Debian 12 rs274 among them, raised it to 0.1 units/min."""
+    earlier versions, the Debian 12 rs274 among them, raised it to 0.1 units/min.
+
+    Under G93 it keeps that rate in ``st.inverse_rate`` [program units/min, deg/min for a rotary move]: LinuxCNC's
+    interpreter stores ``length * F`` as its feed rate (interp_inverse.cc ``inverse_time_rate_straight`` and
+    ``_arc``: ``settings->feed_rate = rate``), the value ``#<_feed>`` reads (interp_namedparams.cc)."""
     if seg.length == 0 and turn is not None and np.any(turn != 0):
         linear = bool(np.any(turn[3:] != 0))
         length = float(np.linalg.norm(turn[3:] if linear else turn[:3]))
         if st.inverse_time:
+            st.inverse_rate = (length / st.scale if linear else length) * st.block_f
             return length * st.block_f / 60.0
         return st.feed if linear else st.feed_rotary
     if not st.inverse_time:
         return st.feed * fanuc_feed_share(seg, turn, st.scale) if st.context.dialect.fanuc_feed else st.feed
+    st.inverse_rate = seg.length / st.scale * st.block_f
     if type(seg) is Arc and st.context.dialect.name == "fanuc":
         return seg.length * st.block_f / (60.0 * abs(seg.sweep))
     return seg.length * st.block_f / 60.0  # 0 on a zero-length block (no motion)
