@@ -892,8 +892,6 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
 #: fraction is close enough; P and L are checked by the blocks that read them).
 _WHOLE_ADDRESSES = frozenset("DHMT")
 _LITERAL_WORD = re.compile(r",?\s*[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
-
-
 #: G codes x 10 of blocks whose computed words keep their values: scaling factors (G51), the look-ahead switches
 #: (G05, G05.1, G08), tool axis vectors (G43.4, G43.5), NURBS knots and weights (G06.2), macro calls (G65, G66).
 _UNROUNDED_BLOCKS = frozenset({510, 50, 51, 80, 434, 435, 62, 650, 660, 661})
@@ -926,6 +924,8 @@ def address_values(words: list[Word], *, inch: bool) -> list[Word]:
             out = list(out) if out is words else out
             out[i] = dataclasses.replace(w, value=value)
     return out
+
+
 #: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
 #: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
 #: of the block they are in.
