@@ -695,9 +695,11 @@ def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str,
     codes = {round(v * 10) for v in words.get("g", [])}
     if not codes & {510, 50, 51, 80, 434, 435, 62, 650, 660, 661}:  # scaling factors, vectors, knots, calls keep theirs
         for c, i, step in computed:
-            if step == 0.0001 and 210 in codes:  # G21 in the block: the mm increment
+            if c in _ANGLE_ADDRESSES or c == "r" and 680 in codes:  # G68's R is an angle too [deg]
                 step = 0.001
-            elif step == 0.001 and 200 in codes and c not in _ANGLE_ADDRESSES:
+            elif step == 0.0001 and 210 in codes:  # G21 in the block: the mm increment
+                step = 0.001
+            elif step == 0.001 and 200 in codes:
                 step = 0.0001
             v = words[c][i]
             words[c][i] = math.copysign(math.floor(abs(v) / step + 0.5), v) * step
