@@ -76,6 +76,11 @@ _SINUMERIK = re.compile(r"(?:DEF|A?TRANS|A?ROTS?|A?SCALE|A?MIRROR|CIP|CT|[ABC]SP
 _SINUMERIK_ADDRESS = re.compile(r"(?:[A-Z]|CR|AP|RP|AR|TURN)=", re.I)
 
 
+#: A DATRON SimPL motion or work-offset statement: "Rapid X=10 Y=20", "Line Z=-1", "LoadWcs name=\"1\"" (the
+#: keyword, blanks, then an address with '=').
+_SIMPL = re.compile(r"(?:Rapid|Line|Arc|LoadWcs)[ \t]+[A-Za-z]+[ \t]*=")
+
+
 #: A line that is a Markdown code fence or its language tag ("```gcode", "gcode"): a program copied out of a
 #: README or a chat answer with its fence (CommonMark 0.31, 4.5 "Fenced code blocks": the opening fence's
 #: "info string", whose first word names the language).
@@ -163,6 +168,12 @@ def _number_hint(line: str, w0: int, j: int, raw: str = "") -> str:
     # machining; Okuma user tasks are called "with the word CALL xxxx", as MachinistFTW/OkumaMacros' README says)
     if re.match(r"CALL\s*O\w", line[w0:], re.I):
         return " ('CALL O<name>': Okuma OSP's subprogram call; vcnc reads ISO G-code, not OSP programs)"
+    # "Rapid X=10 Y=20 Z=5", "Line X=20", "LoadWcs name=..": DATRON's SimPL, the language of the DATRON next
+    # control, as Autodesk's "datron next.cps" writes it (its writeBlock("Rapid" ..), xOutput prefix " X=",
+    # extension "simpl"); no ISO G-code
+    if _SIMPL.match(line, w0):
+        return (" (DATRON SimPL, the language of the DATRON next control, as Fusion's 'datron next.cps' writes "
+                "'Rapid X=.. Y=..' and 'Line X=..': vcnc reads ISO G-code, not SimPL programs)")
     # "PRINT", "ASKBOOL": a statement of a control's own language (KinetiC-NC's BASIC-like lines), not a word
     keyword = re.match(r"[A-Za-z]{4,}\b", line[w0:])
     return f" ({keyword.group(0)!r}: a statement of another control's language, such as KinetiC-NC's PRINT?)" \

@@ -165,6 +165,7 @@ from interpolators.iso_mcodes import (
     io_words,
     m_codes,
     planner_word,
+    printer_hint,
     smartcool_hint,
     spindle_select,
     user_m_file,
@@ -281,6 +282,7 @@ class State:
     inverse_time: bool = False  # G93: F is 1/minutes for the block (the block's F, not modal)
     block_f: float | None = None  # the F word of the block being run [1/min under G93]
     inverse_rate: float | None = None  # LinuxCNC's feed rate after a G93 move: its length x F [units/min]
+    zero_words_dropped: bool = False  # the block's words of axes the machine lacks, all at 0, were left out
     feed_reset: bool = False  # G94 after G93 cleared the feed (LinuxCNC convert_feed_mode)
     feed_zero: bool = False  # the last F word was F0 (a zero feed rate: no feed move until the next F)
     per_rev: bool = False  # G95: F is per spindle revolution [mm/rev], the feed F x S
@@ -546,6 +548,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
     seen: dict[str, Word] = {}
     gcodes: dict[str, tuple[int, Word]] = {}
     mcodes: list[tuple[int, Word]] = []
+    st.zero_words_dropped = False
     for w in words:
         if w.letter == "G":
             key = _gkey(w, where)
@@ -610,7 +613,8 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 # code of one machine or firmware (Marlin M300 beep, plotter pen servos) elsewhere
                 what = ("remapped or user M code" if st.context.dialect.name == "linuxcnc"
                         else "machine- or firmware-specific M code")
-                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration): not supported",
+                where.fail(f"{what} {w.text!r} (above M199: defined by a machine configuration){printer_hint(m)}: "
+                           "not supported",
                            column=w.column, text=w.text, expected="M codes below 100")
             mcodes.append((m, w))
         else:
@@ -620,6 +624,7 @@ def _collect(words: list[Word], where: Where, notes: Notes, st: State):
                 # a word that keeps the axis where it starts (0): no motion (CAM posts write "A0" on
                 # 3-axis work); any other value is refused below
                 notes.add(f"{w.letter}0 ({kind} {w.letter} stays at 0)")
+                st.zero_words_dropped = True
                 continue
             if lacks:
                 axes = ", ".join(["X", "Y", "Z", *(a.upper() for a in st.context.extra_axes)])
@@ -1213,7 +1218,12 @@ def _modal_settings(seen, gcodes, st: State, blocks: list[Block], where: Where, 
 def _linuxcnc_leniencies(seen, gcodes, st: State, moves: bool, notes: Notes) -> None:
     """Notes of what the ``linuxcnc`` dialect runs although LinuxCNC refuses it (``moves``: the block has axis
     words)."""
-    if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None:
+    # G10, G28, G30, G52, G92 and G43.1 use the axis words themselves (interp_internal.cc check_g_codes:
+    # mode_zero_covets_axes; convert_tool_length_offset reads G43.1's), so LinuxCNC runs them after G80 ("G80"
+    # then "G28 G91 Z0.", as Fusion 360's posts end a drilling operation)
+    takes_axes = gcodes.get("nonmodal", (0,))[0] in (100, 280, 300, 520, 920) or \
+        gcodes.get("length compensation", (0,))[0] == 431
+    if st.after_g80 and "motion" not in gcodes and moves and st.motion is not None and not takes_axes:
         # LinuxCNC refuses them: G80 sets motion_mode = G_80 (interp_convert.cc convert_motion), and axis
         # words without a motion code then fail (interp_internal.cc: "Cannot use axis values without a g code
         # that uses them"); CAM posts write them after G80 (Fusion 360's "G80" then "Z5.533")
@@ -1501,6 +1511,8 @@ def _g92(seen, axis_words: list[str], st: State, where: Where, w) -> None:
     more on a wrapped rotary axis: :func:`interpolators.iso_axes.refuse_wrapped_offset`)."""
     refuse_wrapped_offset(seen, st, where, "G92")
     rot_words = [a for a in EXTRA_LETTERS if a in seen]
+    if not axis_words and not rot_words and st.zero_words_dropped:
+        return  # "G92 A0" on a machine without A: nothing to offset (noted as A0), as G52 A0 and G10 L2 A0
     if not axis_words and not rot_words:
         lathe = " (G92 S alone is the Fanuc lathe's maximum spindle speed: a lathe program)" if "S" in seen else ""
         where.fail(f"G92 needs at least one axis word{lathe}", column=w.column, text=w.text,

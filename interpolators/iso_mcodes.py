@@ -55,6 +55,22 @@ HAAS_OWN_M = {130: "M130/M131 display media (Haas)", 131: "M130/M131 display med
 _HAAS_P_M = {59: "M59 set output relay", 69: "M69 clear output relay"}
 
 
+#: M codes below M100 that grbl 1.1 (gcode.c, the ``'M'`` switch: M0-M2, M30, M3-M5, M7-M9, M56) or grblHAL's
+#: core (gcode.c: also M6, M48-M51, M53, M60, M61, M62-M68, M70-M73, M98, M99; the OpenPNP plugin's M42, gcode.h
+#: ``user_mcode_t`` "OpenPNP_SetPinState = 42") accepts; any other, "default: .. RETURN(
+#: Status_GcodeUnsupportedCommand); // [Unsupported M command]" (error 20), is noted as one grbl refuses (Marlin's
+#: M82/M83/M84 in CNC programs written for a Marlin router).
+_GRBL_KNOWN_M = frozenset((0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 30, 42, 48, 49, 50, 51, 53, 56, 60, 61, 62, 63, 64, 65, 66,
+                           67, 68, 70, 71, 72, 73, 98, 99))
+
+
+#: Haas M codes above M99 that wait for the operator (Haas mill operator's manual, "M109 Interactive User Input":
+#: the program shows its prompt, waits for one key and stores it in the macro variable P, 500-549): what follows
+#: depends on the key, an error naming it (as :data:`_HAAS_JUMP_M`).
+_HAAS_INPUT_M = {109: "M109 interactive user input (Haas: the program waits for the operator's key, stored in the "
+                      "macro variable P)"}
+
+
 #: Haas M codes that branch on a machine input (Haas mill operator's manual "M96 Jump If No Input", "M46 Jump If
 #: Pallet Loaded"): which way the program goes is the machine's, errors naming them.
 _HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loaded (Haas)"}
@@ -65,11 +81,21 @@ _HAAS_JUMP_M = {96: "M96 jump if no input (Haas)", 46: "M46 jump if pallet loade
 _IO_WORDS = ("P", "E", "L", "Q")
 
 
-#: M100-M199 codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104
-#: "Set Hotend Temperature", M106 "Set Fan Speed", ...); a laser on such firmware is often driven as its fan.
+#: Codes of 3D printer firmware, by Marlin's G-code reference titles (marlinfw.org/docs/gcode: M104 "Set Hotend
+#: Temperature", M106 "Set Fan Speed", M400 "Finish Moves", M280 "Servo Position", M300 "Play Tone", ...); a
+#: laser on such firmware is often driven as its fan, a pen plotter's pen by its servo, and CNC posts for Marlin
+#: routers (Fusion's Snapmaker post, MPCNC posts) write M400 before the spindle stops.
 _PRINTER_M = {104: "M104 set hotend temperature", 105: "M105 report temperatures", 106: "M106 set fan speed",
               107: "M107 fan off", 109: "M109 wait for hotend temperature", 114: "M114 get current position",
-              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature"}
+              117: "M117 set LCD message", 140: "M140 set bed temperature", 190: "M190 wait for bed temperature",
+              220: "M220 set feedrate percentage", 221: "M221 set flow percentage", 280: "M280 servo position",
+              300: "M300 play tone", 400: "M400 finish moves"}
+
+
+def printer_hint(m: int) -> str:
+    """What an M code above M199 is on 3D printer firmware (Marlin, :data:`_PRINTER_M`); '' if it is none."""
+    printer = _PRINTER_M.get(m)
+    return f" (Marlin's {printer}: a 3D printer firmware's code, which no dialect of vcnc reads)" if printer else ""
 
 
 #: M100-M199 codes of LinuxCNC's QtPlasmaC configurations, written with a P word (qtplasmac.adoc, "Automatic
@@ -91,8 +117,12 @@ def user_m_file(w: Word, m: int, st: State, where: Where, *, with_p: bool = Fals
     as its control knows it: on Fanuc and Haas controls M100-M199 are the machine tool builder's functions
     (our reading: their manuals define M codes below 100 and leave the others to the machine), grbl 1.1
     refuses them (gnea/grbl ``gcode.c``, the ``'M'`` switch: M0-M5, M7-M9, M30, M56, else error 20). ``with_p``:
-    the block has a P word (``M190 P1`` is QtPlasmaC's material change under ``linuxcnc``, :data:`_PLASMAC_M`)."""
+    the block has a P word (``M190 P1`` is QtPlasmaC's material change under ``linuxcnc``, :data:`_PLASMAC_M`).
+    Under ``haas``, M109 (:data:`_HAAS_INPUT_M`, a Haas code that waits for the operator) is refused naming it."""
     name = f"M{m}"
+    if st.context.dialect.name == "haas" and m in _HAAS_INPUT_M:
+        where.fail(f"{_HAAS_INPUT_M[m]}: not supported (what follows depends on the operator's input)",
+                   column=w.column, text=w.text, expected="a program without interactive input")
     base = Path(where.file).parent if where.file else Path.cwd()
     own = st.context.dialect.name == "linuxcnc" and where.file is not None
     folders = ((".",) if own else ()) + tuple(st.context.dialect.user_m_path)
@@ -154,6 +184,9 @@ def m_codes(mcodes, seen, st: State, where: Where, notes: Notes) -> bool:
             notes.add(f"user M code M{m} (an external program of the user M path: no motion)")
         elif st.context.dialect.name == "linuxcnc" and m not in LINUXCNC_M:
             notes.add(f"M{m} (no motion; LinuxCNC refuses it: \"Unknown m code used\")")
+        elif st.context.dialect.name == "grbl" and m not in _GRBL_KNOWN_M:
+            notes.add(f"M{m} (no motion; grbl refuses it: error 20, '[Unsupported M command]', as grblHAL does "
+                      "without a plugin that claims it)")
         else:
             notes.add(f"M{m} (no motion)")
     return ended
@@ -305,6 +338,17 @@ def smartcool_hint(mcodes) -> str:
             "writes it: a PathPilot extension vcnc does not read)")
 
 
+def extruder_hint(seen) -> str:
+    """The hint of an E word in a block that moves X, Y or Z: the extruder axis of 3D printer G-code (Marlin's
+    G-code reference, "G0-G1 Linear Move": "E<pos> An absolute or relative coordinate on the E (extruder) axis";
+    RepRapFirmware likewise), which a slicer (Cura, PrusaSlicer, with or without arc fitting) writes on its
+    moves; '' without an X, Y or Z word."""
+    if not any(letter in seen for letter in "XYZ"):
+        return ""
+    return (" (E on a move: the extruder axis of 3D printer G-code, as a slicer such as Cura or PrusaSlicer "
+            "writes it; a milling control has no E axis: a slicer's output is no milling program)")
+
+
 def io_words(mcodes, seen, st: State, where: Where) -> dict:
     """``seen`` without the words its M code reads (M61 Q, M62-M68 P E L Q, M19 R Q P, LinuxCNC M50-M53 P); E
     elsewhere is an error."""
@@ -342,7 +386,8 @@ def io_words(mcodes, seen, st: State, where: Where) -> dict:
         # Fadal User Manual (April 2003) section 1, NC word summary: "E Fixture offset" (E1-E48, E0 none)
         fadal = " (E1-E48 select a Fadal fixture offset: use --dialect fadal)" if 0 <= w.value <= 48 and \
             w.value == int(w.value) else ""
-        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){smartcool_hint(mcodes) or fadal}",
+        hint = smartcool_hint(mcodes) or fadal + extruder_hint(seen)
+        where.fail(f"word {w.text!r} outside M66-M68 (digital/analog I/O){hint}",
                    column=w.column, text=w.text,
                    expected="E only with M66, M67 or M68")
     return seen

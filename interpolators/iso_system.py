@@ -425,9 +425,9 @@ def _feed_word(st: ReaderState) -> float:
     """LinuxCNC ``#<_feed>``: the F number as last written (interp's ``feed_rate``), 0 before one and after the
     G94/G95 that clears it: a change of units since does not convert it (rs274 2.9.0~pre1: ``F600`` then ``G20``
     reads 600, the canon having taken 600 mm/min when F was set), under G95 the feed per revolution (``F0.01``
-    reads 0.01). Under G93 it is the rate the interpreter worked out for the last inverse-time move, its length x F
-    in program units/min (interp_inverse.cc ``inverse_time_rate_straight`` and ``_arc``: ``settings->feed_rate =
-    rate``; :func:`interpolators.iso_motion.move_feed` keeps it in ``st.inverse_rate``), the G94 F before the first
+    reads 0.01). Under G93 it is the rate worked out for the last inverse-time move, its length x F in program units
+    (interp_inverse.cc ``inverse_time_rate_straight``/``_arc``: ``settings->feed_rate = rate``; rs274 2.9.0~pre1;
+    ``iso_motion.move_feed`` keeps it in ``inverse_rate``), the G94 F before the first
     (fuzz40, shopngc40)."""
     if st.per_rev:
         return 0.0 if st.feed_per_rev_word is None else float(st.feed_per_rev_word)

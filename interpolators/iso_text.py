@@ -106,27 +106,30 @@ _NESTED_COMMENT = re.compile(r"^[^;\n]*\([^)\n]*\(", re.M)
 #: could be" for GOTO and END).
 _MACRO_B_STATEMENT = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?(?:IF[ \t]*\[|WHILE[ \t]*\[|GOTO[ \t]*[\d#\[]|"
                                 r"END[ \t]*[123](?![\d.]))", re.M | re.I)
-#: An O-word line: its label and keyword (an if, while, do or repeat opening, a sub or endsub, a break or continue:
-#: the loop notes, :func:`_loop_notes`). An O-word opening an if, while or repeat block: LinuxCNC keeps one line per
+#: An O-word line: its label and keyword. One pattern for both readings of the O-words: the nesting of sub, if,
+#: while, do and repeat blocks (:func:`_until_program_end`, :func:`_nest` passes over break and continue) and the
+#: loop and label notes (:func:`_loop_notes`, :func:`_duplicate_labels` pass over the closing keywords).
+#: An O-word opening an if, while or repeat block: LinuxCNC keeps one line per
 #: label and refuses a second block of the same label when it runs (interp_o_word.cc convert_control_functions,
 #: O_if / O_while / O_repeat: "duplicate O-word label"; rs274 2.9.0~pre1 refuses a second 'o100 while' so, and runs
 #: a second 'o100 do' loop, whose 'o100 while' closes it).
 #: Its offsets are kept per call frame, so the same label in two subroutines is no duplicate (rs274 2.9.0~pre1 runs
 #: that; sub and endsub lines bound a body here).
 _OWORD_LINE = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
-                         r"(IF|WHILE|DO|REPEAT|SUB|ENDSUB|BREAK|CONTINUE)\b", re.M | re.I)
+                         r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT|BREAK|CONTINUE)\b", re.M | re.I)
 #: The keywords of :data:`_OWORD_LINE` that open a block or bound a body (the duplicate-label check).
 _OPENING_KEYWORDS = ("if", "while", "do", "repeat", "sub", "endsub")
 
 
 #: An M2 or M30 word (program end) in a line's code, comments taken out.
-_PROGRAM_END = re.compile(r"[Mm][ \t]*0*(?:2|30)(?![\d.])")
+#: LinuxCNC takes the spaces and tabs out of a line before reading it (interp_read.cc ``close_and_downcase``), so
+#: ``m 0 2`` and ``M3 0`` end the program too, and ``M2 5`` is M25.
+_PROGRAM_END = re.compile(r"[Mm](?:[ \t]*0)*[ \t]*(?:2|3[ \t]*0)(?![ \t]*[\d.])")
 #: What may not stand right before the M of :data:`_PROGRAM_END` (a word of a name, ``#<m2>``), checked after the
 #: search: a look-behind in the pattern makes it three times slower on a long CAM program.
 _BEFORE_NO_END = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_<#")
-#: An O-word line's label and keyword (the nesting of sub, if, while, do and repeat blocks).
-_OWORD_KEYWORD = re.compile(r"^[ \t]*/?[ \t]*(?:N\d+[ \t]*)?O[ \t]*(<[^>\n]*>|\d+)[ \t]*"
-                            r"(SUB|ENDSUB|IF|ENDIF|WHILE|ENDWHILE|DO|REPEAT|ENDREPEAT)\b", re.I | re.M)
+#: An O-word call: its label (a subroutine after the program end that no line calls is not read).
+_OWORD_CALL = re.compile(r"O[ \t]*(<[^>\n]*>|\d+|\[|#)[ \t]*CALL\b", re.I)
 #: A Fanuc-style program number alone on its line (``O1``), which LinuxCNC 2.9's M98 calls.
 _FANUC_PROGRAM_LINE = re.compile(r"^\s*O\s*\d+\s*$", re.I)
 #: An M97 or M98 call of a subprogram, which a Haas or Fanuc program keeps after its M30.
@@ -142,8 +145,9 @@ def _until_program_end(text: str, notes: Notes) -> str:
     'Format of a Program'), so text there that is no G-code (a footer of a post, the rest of a file that was
     written over) is never refused; a subroutine defined after it is still found by a call before it (rs274
     2.9.0~pre1 runs ``o100 call`` / ``M2`` / ``o100 sub`` ... ``o100 endsub``, and skips a line ``foo bar )``
-    between them), and from a Fanuc-style ``O1`` .. ``M99`` subprogram on (M98, tests/interp/m98m99 of LinuxCNC
-    2.9) the text is read as it is. The lines before the first M2/M30 are scanned for O-words only."""
+    between them), one that no line calls is never read (rs274 runs ``M30`` / ``o200 sub`` / ``foo )``), and
+    from a Fanuc-style ``O1`` .. ``M99`` subprogram on (M98, tests/interp/m98m99 of LinuxCNC 2.9) the text is
+    read as it is. The lines before the first M2/M30 are scanned for O-words only."""
     first = _program_end(text)
     if first is None:
         return text
@@ -154,15 +158,23 @@ def _until_program_end(text: str, notes: Notes) -> str:
     if _LOCAL_CALL.search(text, 0, at):
         return text  # M97/M98 subprograms after the end (run as Haas and Fanuc run them, noted): read as before
     stack: list[tuple[str, str]] = []
-    for m in _OWORD_KEYWORD.finditer(text, 0, at):
+    for m in _OWORD_LINE.finditer(text, 0, at):
         _nest(stack, m.group(1).lower(), m.group(2).lower())
+    called = {_label(c.group(1)) for c in _OWORD_CALL.finditer(text)}
     ended = dropped = False
+    uncalled = 0  # the depth of the uncalled subroutine after the end being left out (0: none)
     for i, raw in enumerate(lines):
         code = _LINE_COMMENTS.sub("", raw)
-        m = _OWORD_KEYWORD.match(raw)
+        m = _OWORD_LINE.match(raw)
         if ended and not stack and _FANUC_PROGRAM_LINE.match(code):
             break  # a Fanuc-style O<number> .. M99 subprogram (LinuxCNC 2.9 M98): read on, as before
-        if ended and not stack and not (m and m.group(2).lower() == "sub"):
+        sub = bool(m) and m.group(2).lower() == "sub"
+        if ended and not stack and sub and not called & {_label(m.group(1)), "[", "#"}:
+            uncalled = 1  # no line calls it (by its label or a computed one): LinuxCNC never reads it
+        if uncalled or ended and not stack and not sub:
+            if m:
+                _nest(stack, m.group(1).lower(), m.group(2).lower())
+            uncalled = len(stack) if uncalled and stack else 0
             dropped = dropped or bool(code.strip(" \t\r%"))
             lines[i] = ""
         elif m:
@@ -175,6 +187,13 @@ def _until_program_end(text: str, notes: Notes) -> str:
     return text[:at] + "\n".join(lines)
 
 
+def _label(text: str) -> str:
+    """An O-word label as LinuxCNC compares it: lower case, without spaces (``close_and_downcase``), a number
+    without its leading zeros."""
+    label = re.sub(r"[ \t]", "", text).lower()
+    return str(int(label)) if label.isdigit() else label
+
+
 def _program_end(text: str) -> re.Match | None:
     """The first M2 or M30 word of the text (:data:`_PROGRAM_END`), or None."""
     return next((m for m in _PROGRAM_END.finditer(text) if not m.start() or text[m.start() - 1] not in
@@ -183,10 +202,16 @@ def _program_end(text: str) -> re.Match | None:
 
 def _nest(stack: list[tuple[str, str]], label: str, keyword: str) -> None:
     """Follow an O-word line (its label and keyword) into or out of the sub, if, while, do and repeat blocks:
-    a ``while`` after a ``do`` of its label closes that loop."""
+    a ``while`` after a ``do`` of its label closes that loop. An ``endsub`` closes the subroutine of its label only:
+    one of another label inside a body returns from it when it runs (LinuxCNC checks no label of an endsub or return
+    against the subroutine it leaves, interp_o_word.cc ``execute_return``, and skips a definition up to the endsub of
+    its own name, interp_read.cc ``read_o``; Skyfire's basic-tool-change.ngc returns by ``o<toolchange> endsub``)."""
     if keyword in ("sub", "if", "do", "repeat") or keyword == "while" and stack[-1:] != [(label, "do")]:
         stack.append((label, keyword))
-    elif keyword in ("endsub", "endif", "endwhile", "endrepeat", "while") and stack:
+    elif keyword == "endsub":
+        if (label, "sub") in stack:  # the blocks an early endsub leaves open stay open: their closers follow
+            stack.remove((label, "sub"))
+    elif keyword in ("endif", "endwhile", "endrepeat", "while") and stack:
         stack.pop()
 
 

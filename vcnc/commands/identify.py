@@ -317,6 +317,60 @@ def prediction_line(model, from_rest_um: float) -> str:
             f"{from_rest_um:.4g} {u}")
 
 
+def _speeds_at(capture, axis: str, k: int) -> str:
+    """The commanded and the measured speed of ``axis`` at sample ``k``, over its next few samples, in words."""
+    i = capture.axis_index(axis)
+    n = len(capture)
+    k = min(max(int(k), 0), n - 2)
+    m = min(START_SPEED_SAMPLES, n - 1 - k)
+    T = float(capture.t[1] - capture.t[0])
+    u = axis_unit(axis)
+    cmd, meas = (abs(float(c[k + m, i] - c[k, i])) / (m * T) for c in (capture.reference, capture.measured))
+    return f"the axis moves at {meas:.4g} {u}/s, its command at {cmd:.4g} {u}/s"
+
+
+#: Samples over which :func:`record_start_lines` measures the speeds at the sample where the fit starts.
+START_SPEED_SAMPLES = 3
+
+
+def record_start_lines(capture, model, axis: str, rest_um: float) -> list[str]:
+    """A warning for a record that starts with the axis under way, which the fit handled in one of two ways
+    (:mod:`identification.loop_frame`): its first samples dropped up to the first rest (``fit['record_start']``,
+    :func:`identification.segments.settled_start`), or, with no rest in its first half, the model's state at its
+    first sample fitted (``fit['initial_state']``, :mod:`identification.initial_state`).
+
+    Our reading of what a user tuning a drive needs (traces40; no source states it): the model describes the loop
+    either way, but ``vcnc simulate`` and ``vcnc compare`` start it from rest at the record's first sample, where the
+    axis was moving, and answer with a start transient the loop never had; that was said nowhere when samples were
+    dropped (a CAMBER record's first 1.71 s left out without a word), and only inside the prediction line when the
+    state was fitted. The warning names the speeds at the sample where the fit starts, what was done, what it costs
+    a simulation from rest, and the cure: a trace triggered with the axis at rest."""
+    fit = model.fit
+    u = axis_unit(axis, small=True)
+    cure = "trigger the trace with the axis at rest to keep the whole record"
+    crop = fit.get("record_start")
+    if crop:
+        n = int(crop["dropped_samples"])
+        return [f"warning: the record starts with the axis under way ({_speeds_at(capture, axis, 0)} at its first "
+                f"sample): the fit starts where the axis first rests, {crop['dropped_s']:.4g} s in ({n} samples left "
+                "out of the fit and the table); vcnc simulate and vcnc compare start the model from rest at the "
+                f"record's first sample and predict those samples with a start transient the loop never had; {cure}"]
+    start = fit.get("initial_state")
+    if not start:
+        return []
+    first = int(start.get("first_sample", 0))
+    where = "its first sample" if first == 0 else f"sample {first}, where the fit starts"
+    led = getattr(model, "delay_s", 0.0) or 0.0
+    if first > 0 and led > 0:
+        where += (f" (the recorded reference leads the loop by {led:.4g} s: the loop's reference before it is "
+                  "not in the record)")
+    return [f"warning: the record starts with the axis under way ({_speeds_at(capture, axis, first)} at {where}) "
+            f"and does not rest in its first half: the fit took the model's state there from the record (a free "
+            f"response of up to {start['start_response_max_um']:.4g} {u}); simulated from rest, as the table, the "
+            f"naive comparison, vcnc simulate and vcnc compare predict, the model answers with a start transient "
+            f"the loop never had: rms {rest_um:.4g} {u} against the fit's {fit['rms_um']:.4g} {u}; {cure}"]
+
+
 def baseline_lines(capture, model, axis: str, rest_um: float | None = None) -> list[str]:
     """The model against the two naive predictions of the capture (:func:`identification.dead_time.
     pure_delay_baseline`): the commanded position itself and the commanded position delayed by the best whole
@@ -476,7 +530,7 @@ def build_report(capture, model, axis: str, baseline: list[str], rest_um: float)
         caption="Poles and zeros as in Tables 3.3-3.5",
     )
     rep.heading("Fit")
-    for line in fit_lines(model, rest_um) + baseline:
+    for line in fit_lines(model, rest_um) + record_start_lines(capture, model, axis, rest_um) + baseline:
         rep.text(line)
     rep.table(["prediction of the capture", f"RMS [{u}]", f"max [{u}]"], prediction_rows(capture, model, axis, rest_um))
     fig = Figure(figsize=(10, 6))
@@ -572,7 +626,7 @@ def run(args: argparse.Namespace) -> int:
     lines.append("parameters: " + ", ".join(f"{k} {v:.6g}" for k, v in p.items()))
     if (model.fit or {}).get("friction"):
         lines.append(f"friction: {model.fit['friction']['statement']}")
-    lines += fit_lines(model, rest_um)
+    lines += fit_lines(model, rest_um) + record_start_lines(capture, model, axis, rest_um)
     if model.validation:
         lines.append(format_before_after(model).rstrip("\n"))
     lines += baseline

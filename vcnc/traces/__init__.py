@@ -37,6 +37,7 @@ from vcnc.traces.delimited import (
     read_delimited,
 )
 from vcnc.traces.emps import read_emps_mat
+from vcnc.traces.names import columns_from_names
 from vcnc.traces.sinumerik import read_sinumerik
 from vcnc.traces.tncscope import read_tncscope
 
@@ -112,7 +113,10 @@ def _capture_csv(path: Path, *, axes: Sequence[str] | None, resample: bool) -> C
     """vcnc's capture CSV (ARCHITECTURE.md); a header starting with ``t`` whose names are not the contract's
     (``t,X Commanded Position,...``, ``t,x_cmd,x_fb``) is another logger's, read by its names
     (:func:`vcnc.traces.names.columns_from_names`) when they leave no doubt, else the capture CSV's error at the
-    header (tracefuzz: ``t`` is the commonest name of a time column)."""
+    header (tracefuzz: ``t`` is the commonest name of a time column). When the names are read but the logger's file
+    is refused for another reason, that refusal is the one raised: ``# Resolution: 0.5 um`` above ``t,X Commanded
+    Position,...`` asks whether the positions are counts, where the capture CSV's "unknown column" sent the user to
+    map the columns the names had mapped (traces40, trace_fuzz seed 52000248)."""
     try:
         return read_capture_csv(path)
     except CaptureError as exc:
@@ -123,8 +127,11 @@ def _capture_csv(path: Path, *, axes: Sequence[str] | None, resample: bool) -> C
             raise
         try:
             return read_delimited(path, axes=axes, resample=resample)
-        except CaptureError:
-            raise exc from None
+        except CaptureError as other:
+            names = [c.strip().strip('"') for c in lines[header - 1].lstrip("\ufeff").split(",")]
+            mapped = columns_from_names(names)[0] or {}
+            # a logger's names read (not the contract's own: t,x_ref,x,q keeps the capture CSV's unknown column)
+            raise (other if any(k != v for k, v in mapped.items()) else exc) from None
 
 
 def read_trace(path: str | os.PathLike[str], *, columns: Mapping[str, str] | None = None,

@@ -72,6 +72,12 @@ measured position in counts (:func:`_other_quantity`); the plurals of other quan
 as ``rostopic echo -p`` names a JointTrajectoryPoint's arrays) are no positions; and an array's element numbers the
 joint in a ``rostopic echo -p`` table (``field.desired.positions2``, :mod:`vcnc.traces.rostopic`).
 
+vcnc addition (traces40): a PLC symbol path whose last element names a role on its own is read by that element
+(``MAIN.afbAxes[3].stAxisStruct.stStatus.fActPosition``, as TwinCAT's Scope View names a channel by its symbol); the
+elements before it add only whole axis letters, a status structure's name (``stStatus``) is no status word, and a
+quantity they name (``Spindle.ActPos``, ``Axis.Velocity.Cmd``) still makes the variable no position
+(:func:`_path_words`).
+
 Anything else returns None with the reason, and the reader asks for ``--columns`` as before. The
 words are our reading of the exports seen (TwinCAT's ``SetPos``/``ActPos``, LinuxCNC's
 ``pos-cmd``/``pos-fb``, TNCscope's ``noml``/``actl``/``diff``, Siemens' and German loggers'
@@ -115,6 +121,9 @@ _OTHER = frozenset({"vel", "velocity", "speed", "feed", "feedrate", "rpm", "curr
                     "zeit", "timestamp", "vl", "il", "tor", "kp", "ki", "kd", "kv", "gain", "amp", "amps",
                     "amplitude", "db", "dbm", "velocities", "speeds", "currents", "torques", "forces", "accelerations",
                     "efforts", "voltages"})
+#: Words of a symbol path's structures (``stStatus``, ``AxisState``) that name no quantity of their members
+#: (:func:`_path_words`).
+_STRUCTURES = frozenset({"status", "state"})
 #: Words of a counter, another quantity unless a word of counts says it counts a position's increments (Yaskawa
 #: SigmaWin+'s and Panasonic PANATERM's "Feedback pulse counter", "Command pulse counter"; :func:`_other_quantity`).
 _COUNTERS = frozenset({"counter", "count"})
@@ -279,7 +288,7 @@ def _position(name: str) -> tuple[str, str | None] | None:
         return None
     if _TRAILING_UNIT.search(name) and unit_in_name(name, "length") is None and counted(name) is None:
         return None  # a unit that is neither a length nor counts: mm/min, A, Nm, %
-    words = _split_axis(_words(name))
+    words = _path_words(name) or _split_axis(_words(name))
     role = _role(words)
     if role is None or any(a == "i" and b in _TNC_ROLES for a, b in zip(words, words[1:])):
         return None
@@ -287,6 +296,28 @@ def _position(name: str) -> tuple[str, str | None] | None:
     if len(axes) > 1:
         return None
     return role, (axes.pop() if axes else None)
+
+
+def _path_words(name: str) -> list[str] | None:
+    """The words of a PLC symbol or signal path whose last element names a position's role on its own
+    (``MAIN.afbAxes[3].stAxisStruct.stStatus.fActPosition``, ``GVL.stAxis_X.fSetPosition``): that element's words
+    after the whole axis letters of the elements before it (``Axis_X.SetPos``), else None.
+
+    The elements before the last are the structures and arrays that hold the variable, named in a programmer's
+    notation: their words give the variable no role (``afbAxes``, an array of function blocks, is no axis A's
+    feedback ``a fb``), and a status structure (:data:`_STRUCTURES`: ``stStatus``, Tc2_MC2's ``ST_AxisStatus``) does
+    not make its members status words; a quantity they name still makes the variable no position
+    (``Spindle.ActPos``, ``Axis.Velocity.Cmd``). Our reading of IEC 61131-3 symbol paths as TwinCAT's Scope View
+    exports them (its ``SymbolName`` row; anderssandstrom/amci_resolver_issue's exports, read by traces40); the whole
+    name was read before: ``stStatus`` made a position a status word, ``afbAxes`` gave it two roles."""
+    m = _PATH.fullmatch(name.strip())
+    if m is None:
+        return None
+    leaf = _split_axis(_words(m.group(1)))
+    before = _words(name.strip()[:m.start(1)])
+    if _role(leaf) is None or _other_quantity([w for w in before if w not in _STRUCTURES]):
+        return None
+    return [w for w in before if w in AXIS_NAMES] + leaf
 
 
 def columns_from_names(header: Sequence[str], *, period_known: bool = False) -> tuple[dict[str, str] | None, str]:

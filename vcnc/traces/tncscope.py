@@ -27,7 +27,18 @@ functions, "Position Display Types"); no TNCscope document of the channel's sign
 reading ``s diff`` as nominal - actual is our reading, and the sign is checked on the data
 (:mod:`vcnc.traces.lag`: an ``s diff`` by which the result would lead the command is an error naming
 the curve's column). With both ``s actl`` and ``s diff`` the actual position is used: it is the
-measurement, and needs no convention. (The iTNC 530 service manual's "Pos.Diff." between the motor
+measurement, and needs no convention.
+
+The lag is taken against the nominal position of the same sample, as the manual's definition reads (traces40):
+``s noml - s diff`` is then the actual position however far ``s noml`` leads the position loop, and the lead stays
+in the record for identification's dead-time scan, as with ``s actl`` (``tests/vcnc/test_traces_40.py``). A lag
+taken against the loop's own command while ``s noml`` leads it by ``d`` would put ``s noml(t) - s noml(t - d)``
+(the speed times ``d``) into the measured position; no check on the data tells it apart: the share of the
+command's first step out of rest that the lag takes up is 1 on fadal-pid, emps and ballscrew-ppc, but a median
+0.25 on fadal-smc and -0.25 on ballscrew-zpetc, where such a shifted lag takes up 0 (vcnc's virtual machines,
+dwells between 8 moves, the first step after each dwell). A file exported so must be traced with ``s actl``.
+
+(The iTNC 530 service manual's "Pos.Diff." between the motor
 encoder and the scale is another signal; it is no following error.)
 """
 
