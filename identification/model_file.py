@@ -1,4 +1,4 @@
-"""Reading the model file (``vcnc.axis-model/1``, ``/2`` and ``/3``, :mod:`identification.model_format`):
+"""Reading the model file (``vcnc.axis-model/1`` to ``/4``, :mod:`identification.model_format`):
 validation with errors naming the key at fault, and the rebuilt model — an
 :class:`identification.augmented.AugmentedAxisModel` when the file lists effects, so that the loaded
 model simulates them. Extra keys are kept on reading.
@@ -12,8 +12,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from identification.augmented import from_model
-from identification.model_format import FORMAT_DELAY, FORMAT_FILTER, FORMATS
+from identification.augmented import FORMS, augment, from_model
+from identification.model_format import FORMAT_DELAY, FORMAT_FILTER, FORMAT_FORM, FORMATS
 from identification.parameters import PARAMETER_NAMES
 from identification.reduced_model import ReducedAxisModel
 from vcnc.core.axes import AXIS_NAMES
@@ -32,16 +32,16 @@ def _number(d: dict, key: str, where: str, src: str | None) -> float:
 
 
 def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
-    """Build a model from a ``vcnc.axis-model/1``, ``/2`` or ``/3`` dictionary; ModelFileError naming the key
-    at fault."""
+    """Build a model from a ``vcnc.axis-model/1`` to ``/4`` dictionary; ModelFileError naming the key at fault."""
     if not isinstance(d, dict):
         raise ModelFileError("a model file must hold a JSON object", file=source)
     fmt = d.get("format")
     if fmt not in FORMATS:
         raise ModelFileError(f"key 'format' must be one of {', '.join(map(repr, FORMATS))}", file=source,
                              text=repr(fmt))
-    delay_s = _number(d, "delay_s", "", source) if fmt in (FORMAT_DELAY, FORMAT_FILTER) else 0.0
-    filter_s = _number(d, "setpoint_filter_s", "", source) if fmt == FORMAT_FILTER else 0.0
+    delay_s = _number(d, "delay_s", "", source) if fmt in (FORMAT_DELAY, FORMAT_FILTER, FORMAT_FORM) else 0.0
+    filter_s = _number(d, "setpoint_filter_s", "", source) if fmt in (FORMAT_FILTER, FORMAT_FORM) else 0.0
+    form, viscous_rate = _form(d, source)
     if filter_s < 0.0:
         raise ModelFileError("key 'setpoint_filter_s' [s] must be >= 0", file=source, text=repr(filter_s))
     axis = d.get("axis", "x")
@@ -89,18 +89,35 @@ def model_from_dict(d: Any, *, source: str | None = None) -> ReducedAxisModel:
         )
     except InputError as exc:
         raise ModelFileError(exc.message, file=source) from exc
-    if not model.effects:
+    if model.effects:
+        # Effects found by the residual diagnosis: rebuild their elements so the loaded model
+        # simulates them (identification.augmented).
+        try:
+            model = from_model(model)
+        except InputError as exc:
+            raise ModelFileError(f"key 'effects': {exc.message}", file=source) from exc
+    if form == "exact":
         return model
-    # Effects found by the residual diagnosis: rebuild their elements so the loaded model
-    # simulates them (identification.augmented).
-    try:
-        return from_model(model)
-    except InputError as exc:
-        raise ModelFileError(f"key 'effects': {exc.message}", file=source) from exc
+    return augment(model, getattr(model, "elements", ()), viscous_rate=viscous_rate, form=form)
+
+
+def _form(d: dict, source: str | None) -> tuple[str, float]:
+    """``(form, plant viscous rate [1/s])`` of the model file ``d``: key ``form`` (absent: the exact form, as every
+    file before ``vcnc.axis-model/4`` means), and ``plant_viscous_rate_1_s`` with the split form."""
+    form = d.get("form", "exact")
+    if form not in FORMS:
+        raise ModelFileError(f"key 'form' must be one of {', '.join(map(repr, FORMS))}", file=source,
+                             text=repr(form))
+    if form == "exact":
+        return form, 0.0
+    c = _number(d, "plant_viscous_rate_1_s", "", source)
+    if c < 0.0:
+        raise ModelFileError("key 'plant_viscous_rate_1_s' [1/s] must be >= 0", file=source, text=repr(c))
+    return form, c
 
 
 def load_model(path: str | os.PathLike[str]) -> ReducedAxisModel:
-    """Read a ``vcnc.axis-model/1``, ``/2`` or ``/3`` JSON file.
+    """Read a ``vcnc.axis-model/1`` to ``/4`` JSON file.
 
     Raises
     ------

@@ -204,6 +204,29 @@ def test_stribeck_stick_is_exported_in_the_split_form(built, reference):
     assert np.max(np.abs(build("friction_stribeck_stick").simulate(reference) - exact.simulate(reference))) > 1e-4
 
 
+@pytest.mark.parametrize("fmi_version", [2, 3])
+def test_the_split_base_form_is_exported_exactly(tmp_path, reference, fmi_version):
+    """The reduced model in the split base form (``form`` "split", identstick40: Coulomb friction that holds a
+    stopped axis) is the FMU's split loop with its viscous rate, as an element's split form; read from its model file
+    (``vcnc.axis-model/4``), the binary equals ``model.simulate()`` to 1e-14 mm."""
+    model = augment(ReducedAxisModel(parameters=PARAMETERS, sample_time=TS, axis="y"), [], viscous_rate=VISCOUS_RATE,
+                    form="split")
+    path = tmp_path / "split.json"
+    model.to_json(path)
+    spec = export_spec(path)
+    assert spec.form == "split" and spec.structured and not spec.elements
+    fmu = export_fmu(path, tmp_path / "split.fmu", fmi_version=fmi_version)
+    assert validate_fmu(str(fmu)) == []
+    assert "plant_viscous_rate" in {v.name for v in read_model_description(str(fmu)).modelVariables}
+    expected = model.simulate(reference)
+    with FmuAxis(fmu) as axis:
+        got = axis.simulate_reference(reference, TS)
+    assert np.all(np.isfinite(expected)) and np.max(np.abs(got - expected)) <= 1e-14
+    # a real test: the split form's friction holds where the exact loop's does not
+    plain = ReducedAxisModel(parameters=PARAMETERS, sample_time=TS).simulate(reference)
+    assert np.max(np.abs(expected - plain)) > 1e-4
+
+
 def test_model_file_with_diagnosed_effects_round_trips(tmp_path):
     """The records a diagnosis writes (``plant_viscous_rate_1_s`` with the elements) export as loaded."""
     model = build("delay_backlash_and_disturbances")

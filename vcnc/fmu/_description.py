@@ -77,8 +77,8 @@ def model_description(spec: ExportSpec, *, fmi_version: int, sources: list[str],
     description = (
         f"vcnc reduced closed-loop model of axis {spec.axis} (Eq. 3.3 of Wong's thesis), "
         f"discrete-time at {spec.sample_time!r} s"
-        + (f", with effects {', '.join(e.NAME for e in spec.elements)}"
-           + (" (sampled controller + plant form)" if spec.structured else "") if spec.elements else "")
+        + (f", with effects {', '.join(e.NAME for e in spec.elements)}" if spec.elements else "")
+        + (" (sampled controller + plant form)" if spec.structured else "")
     )
     variables = spec.variables
     outputs, x_ref = _outputs_and_inputs(variables)

@@ -41,7 +41,10 @@ class ExportSpec:
     elements : tuple
         The effects (``identification.effects`` instances) of the model, all representable.
     viscous_rate : float
-        Plant viscous rate c [1/s] of the split form (used when an element is present).
+        Plant viscous rate c [1/s] of the split form (used when an element is present or ``form`` is split).
+    form : str
+        The model's base form (:data:`identification.augmented.FORMS`): ``"split"`` exports the split loop even
+        without an element (its Coulomb friction holds a stopped axis), as an element's split form is exported.
     delay_s : float
         Reference dead time [s] (>= 0, the model's ``delay_s``): the loop runs on ``x_ref`` delayed
         by it; the FMU's parameter ``reference_delay_s`` (present only when it is not zero).
@@ -58,6 +61,7 @@ class ExportSpec:
     viscous_rate: float = 0.0
     delay_s: float = 0.0
     setpoint_filter_s: float = 0.0
+    form: str = "exact"
 
     @property
     def model_identifier(self) -> str:
@@ -65,8 +69,9 @@ class ExportSpec:
 
     @property
     def structured(self) -> bool:
-        """True when an element needs the split (plant + sampled controller) form."""
-        return any(e.in_loop for e in self.elements)
+        """True when the FMU runs the split (plant + sampled controller) form: the model's base form is split, or
+        an element needs it (the rule of :attr:`identification.augmented.AugmentedAxisModel.structured`)."""
+        return self.model().structured if self.elements or self.form != "exact" else False
 
     def effect(self, name: str) -> Any:
         """The element called ``name``, or None."""
@@ -96,9 +101,9 @@ class ExportSpec:
 
         base = ReducedAxisModel(parameters=dict(self.parameters), sample_time=self.sample_time, axis=self.axis,
                                 delay_s=self.delay_s, setpoint_filter_s=self.setpoint_filter_s)
-        if not self.elements:
+        if not self.elements and self.form == "exact":
             return base
-        return augment(base, list(self.elements), viscous_rate=self.viscous_rate)
+        return augment(base, list(self.elements), viscous_rate=self.viscous_rate, form=self.form)
 
     def start(self) -> dict[str, float | int]:
         """Start value of every variable of the FMU with one (name -> value)."""
@@ -248,4 +253,5 @@ def export_spec(model: Any) -> ExportSpec:
         viscous_rate=float(getattr(m, "viscous_rate", 0.0)),
         delay_s=delay_s,
         setpoint_filter_s=filter_s,
+        form=str(getattr(m, "form", "exact")),
     )
