@@ -39,6 +39,7 @@ if TYPE_CHECKING:
 
 __all__ = ["cycle_block", "pattern_or_pocket"]
 
+
 def _cycle_plane_refused(st: State, name: str, where: Where, mw: Word) -> None:
     """A canned cycle in a plane other than the G68 rotation's, under ``fanuc``: refused. Fanuc says the plane is not
     to change under a rotation (Series 15i/150i-MA operator's manual B-63324EN/03 and 16i-LA B-63194EN/02,
@@ -53,7 +54,6 @@ def _cycle_plane_refused(st: State, name: str, where: Where, mw: Word) -> None:
                "does not define it (FANUC 15i-MA B-63324EN/03 'Coordinate system rotation': G17, G18 or G19 must not "
                "be designated in the mode of coordinate system rotation)", column=mw.column, text=mw.text,
                expected=f"{planes[st.frame.rotation.plane]} for canned cycles under this G68, or G69 first")
-
 
 
 def cycle_block(seen, gcodes, st: State, blocks, used, where: Where, number, notes: Notes, moves: bool,

@@ -892,8 +892,6 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
 #: fraction is close enough; P and L are checked by the blocks that read them).
 _WHOLE_ADDRESSES = frozenset("DHMT")
 _LITERAL_WORD = re.compile(r",?\s*[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
-
-
 #: G codes x 10 of blocks whose computed words keep their values: scaling factors (G51), the look-ahead switches
 #: (G05, G05.1, G08), tool axis vectors (G43.4, G43.5), NURBS knots and weights (G06.2), macro calls (G65, G66).
 _UNROUNDED_BLOCKS = frozenset({510, 50, 51, 80, 434, 435, 62, 650, 660, 661})
@@ -908,7 +906,8 @@ def address_values(words: list[Word], *, inch: bool) -> list[Word]:
     moved to .123"; Fanuc's "ROUND function" example (30i/0i-F "Custom macro"): with #1 = 1.2345 and #2 = 2.3456,
     ``G00 X[#1+#2]`` travels 3.580 (3.5801 rounded), not the 1.235 + 2.346 that ``G91 X-#1`` and ``X-#2`` moved.
     The distances and angles (:func:`interpolators.iso_decimal.address_increment`) go to 0.001 mm, 0.0001 in or
-    0.001 deg; D, H, M and T to whole numbers (:data:`_WHOLE_ADDRESSES`); a number written out (``X1.23456``,
+    0.001 deg (G68's R too: Haas 96-8000 "Round", "For metric and angle dimensions, three-place precision"); D, H,
+    M and T to whole numbers (:data:`_WHOLE_ADDRESSES`); a number written out (``X1.23456``,
     ``H1.5``) stays as written, for the block's own checks, and so do the words of :data:`_UNROUNDED_BLOCKS`."""
     codes = {round(w.value * 10) for w in words if w.letter == "G"}
     if codes & _UNROUNDED_BLOCKS:
@@ -916,8 +915,9 @@ def address_values(words: list[Word], *, inch: bool) -> list[Word]:
     inch = 200 in codes or inch and 210 not in codes
     out = words
     for i, w in enumerate(words):
-        step = 1.0 if w.letter in _WHOLE_ADDRESSES else address_increment(w.letter, inch=inch) \
-            if w.letter not in "DFGHLMNOPSTE" else None
+        letter = "A" if w.letter == "R" and 680 in codes else w.letter  # G68's R is an angle: 0.001 deg in inch too
+        step = 1.0 if letter in _WHOLE_ADDRESSES else address_increment(letter, inch=inch) \
+            if letter not in "DFGHLMNOPSTE" else None
         if step is None or _LITERAL_WORD.fullmatch(w.text):
             continue
         units = _apply("ROUND", w.value / step)
@@ -926,6 +926,8 @@ def address_values(words: list[Word], *, inch: bool) -> list[Word]:
             out = list(out) if out is words else out
             out[i] = dataclasses.replace(w, value=value)
     return out
+
+
 #: G codes x 10 whose blocks a ROUND in an address is refused in: the macro calls, whose argument addresses the
 #: manuals give no increment for a ROUND (G65, G66, G66.1), and the unit changes (G20, G21), which set the increment
 #: of the block they are in.

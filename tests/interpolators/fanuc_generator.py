@@ -721,14 +721,18 @@ class _Gen:
         the centre is given in the current workpiece system; Haas "G52", "G68"), then G69 and G52 X0 Y0."""
         self.emit(f"G52 X{self.v(self.r.randint(-4, 4) * 5)} Y{self.v(self.r.randint(-4, 4) * 5)}")
         self.start()
-        self.emit(f"G68 X{self.v(self.pos[0] + self.r.randint(-2, 2) * 5)} Y{self.v(self.pos[1])} "
-                  f"R{self.r.choice((15, 30, 45, 90, -30))}.")
+        self.rotated_cut(self.v(self.pos[0] + self.r.randint(-2, 2) * 5), self.v(self.pos[1]))
+        self.emit("G52 X0. Y0.")
+
+    def rotated_cut(self, cx: str, cy: str) -> None:
+        """G68 about (cx, cy) (as written) by a drawn angle, a line down, a line, an arc and the way up under it, then
+        G69."""
+        self.emit(f"G68 X{cx} Y{cy} R{self.r.choice((15, 30, 45, 90, -30))}.")
         self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
         self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
         self.emit(self.arc(self.r.choice(("G2", "G3"))))
         self.emit(f"G0 {self.xyz(z=10)}")
         self.emit("G69")
-        self.emit("G52 X0. Y0.")
 
     def frames_section(self) -> None:
         """A G92 shift with a mirror and a rotation inside it (Fanuc 0i-MF "Programmable mirror image", "Coordinate
@@ -739,13 +743,7 @@ class _Gen:
         self.emit("G92 X0. Y0.")
         self.pos[0] = self.pos[1] = 0.0
         self.emit(f"G51.1 X{self.v(self.r.randint(-2, 2) * 5)}" if self.fanuc else "G101 X0.")
-        self.emit(f"G68 X{self.v(self.r.randint(-2, 2) * 5)} Y{self.v(self.r.randint(-2, 2) * 5)} "
-                  f"R{self.r.choice((15, 30, 45, 90, -30))}.")
-        self.emit(f"G1 {self.xyz(z=-1)} {self.feed()}")
-        self.emit(f"G1 {self.xyz(self.pos[0] + 10, self.pos[1] + 5)}")
-        self.emit(self.arc(self.r.choice(("G2", "G3"))))
-        self.emit(f"G0 {self.xyz(z=10)}")
-        self.emit("G69")
+        self.rotated_cut(self.v(self.r.randint(-2, 2) * 5), self.v(self.r.randint(-2, 2) * 5))
         self.emit("G50.1 X0." if self.fanuc else "G100 X0.")
         self.emit(f"G92 X{self.v(self.pos[0] + px)} Y{self.v(self.pos[1] + py)}")
 

@@ -695,9 +695,11 @@ def _words(line: str, params: _Params, *, inch: bool = False) -> tuple[dict[str,
     codes = {round(v * 10) for v in words.get("g", [])}
     if not codes & {510, 50, 51, 80, 434, 435, 62, 650, 660, 661}:  # scaling factors, vectors, knots, calls keep theirs
         for c, i, step in computed:
-            if step == 0.0001 and 210 in codes:  # G21 in the block: the mm increment
+            if c in _ANGLE_ADDRESSES or c == "r" and 680 in codes:  # G68's R is an angle too [deg]
                 step = 0.001
-            elif step == 0.001 and 200 in codes and c not in _ANGLE_ADDRESSES:
+            elif step == 0.0001 and 210 in codes:  # G21 in the block: the mm increment
+                step = 0.001
+            elif step == 0.001 and 200 in codes:
                 step = 0.0001
             v = words[c][i]
             words[c][i] = math.copysign(math.floor(abs(v) / step + 0.5), v) * step
@@ -2528,30 +2530,9 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
         res = _block(m, params, ln)
         if res == "end":
             break
-        if res in ("m98", "m97"):
-            frame = _subprogram_call(res, ln, pc, st, params, fanuc=fanuc)
-            if frame["left"] < 0:  # L0: no call (LinuxCNC tests/interp/m98m99/05-M98-loops, "Test with 0 loops")
-                pc += 1
-                continue
-            frames.append(frame)
-            pc = frame["start"]
-            continue
-        if res == "g65":
-            frames.append(_g65_call(ln, pc, st, params))
-            pc = frames[-1]["start"]
-            continue
-        if res == "g66":
-            if m.modal_call is not None or frames:
-                raise ReferenceError(f"line {ln.number}: G66 nested or within a call (not modelled here)")
-            m.modal_call = _g66_words(ln, params)
-            pc += 1
-            continue
-        if res is None and m.modal_call is not None and (m.block_moves or m.block_nonmodal) \
-                and not any(f["kind"] == "g66" for f in frames):  # the called program's moves call nothing
-            if m.block_nonmodal or frames:
-                raise ReferenceError(f"line {ln.number}: a G28/G92/G10 block, or a move in a call, under G66")
-            frames.append(_g66_call(m.modal_call, pc, st, params))
-            pc = frames[-1]["start"]
+        called = _call(res, m, ln, pc, st, params, frames, fanuc=fanuc)
+        if called is not None:
+            pc = called
             continue
         if res == "m99":
             if not frames or frames[-1]["kind"] not in ("m98", "g65", "g66"):
@@ -2560,6 +2541,32 @@ def iso_reference(text: str, context, *, resolve=None) -> list[Expected]:
             continue
         pc += 1
     return m.out
+
+
+def _call(res, m: _Machine, ln, pc: int, st, params, frames: list[dict], *, fanuc: bool) -> int | None:  # noqa: ANN001
+    """The line to run next after a block that calls: M98/M97, G65, G66 (the modal call set) and a move under G66
+    (the call made); None for a block that calls nothing."""
+    if res in ("m98", "m97"):
+        frame = _subprogram_call(res, ln, pc, st, params, fanuc=fanuc)
+        if frame["left"] < 0:  # L0: no call (LinuxCNC tests/interp/m98m99/05-M98-loops, "Test with 0 loops")
+            return pc + 1
+        frames.append(frame)
+        return frame["start"]
+    if res == "g65":
+        frames.append(_g65_call(ln, pc, st, params))
+        return frames[-1]["start"]
+    if res == "g66":
+        if m.modal_call is not None or frames:
+            raise ReferenceError(f"line {ln.number}: G66 nested or within a call (not modelled here)")
+        m.modal_call = _g66_words(ln, params)
+        return pc + 1
+    if res is None and m.modal_call is not None and (m.block_moves or m.block_nonmodal) \
+            and not any(f["kind"] == "g66" for f in frames):  # the called program's moves call nothing
+        if m.block_nonmodal or frames:
+            raise ReferenceError(f"line {ln.number}: a G28/G92/G10 block, or a move in a call, under G66")
+        frames.append(_g66_call(m.modal_call, pc, st, params))
+        return frames[-1]["start"]
+    return None
 
 
 def _m99_return(ln, pc: int, frames: list[dict], st, params, *, haas: bool = False) -> int:  # noqa: ANN001

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 
+import numpy as np
 import pytest
 
 from interpolators import parse_program
@@ -192,3 +193,15 @@ def test_haas_address_substitution_rounds_to_the_least_significant_digit(units, 
     end = [float(v) for v in checked_iso(text, _ctx("haas")).blocks[-1].target]
     assert end[0] == pytest.approx(x, abs=1e-9)
     assert end[1] == pytest.approx(0.123456 * (25.4 if units == "G20" else 1.0), abs=1e-9)
+
+
+# --- 10. G68's R is an angle: a computed R rounds to 0.001 deg in an inch program too (review40) ------------------
+
+@pytest.mark.parametrize("dialect", ["fanuc", "haas"])
+def test_a_computed_g68_angle_rounds_to_the_angle_increment_in_inch(dialect):
+    # Haas 96-8000 "Round": "For metric and angle dimensions, three-place precision is the default. For inch,
+    # four-place": #1 = 10.00049 in G68's R is 10.000 deg, not 10.0005 (the reader and the reference rounded it as an
+    # inch length: X10 turned 0.0022 mm further)
+    text = "O1\nG20 G90 G17 G0 X0 Y0 Z0\n#1=10.00049\nG68 X0 Y0 R#1\nG1 X10 Y0 F10\nG69\nM30\n"
+    a = np.radians(10.0)
+    assert np.allclose(_ends(text, dialect)[1], [254.0 * np.cos(a), 254.0 * np.sin(a), 0.0], atol=2e-6)
