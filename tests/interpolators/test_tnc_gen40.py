@@ -1,0 +1,78 @@
+"""The TNC fuzzer of session 40: the reference checks what the reader (and the TNC) checks.
+
+The seeded generator (:mod:`tests.interpolators.tnc_generator`) drew, in seeds 1100000-1101499 (session 39), 60
+programs the reader refused and the independent reference (:mod:`tests.interpolators.reference_heidenhain`) ran:
+RL/RR contours whose inside corners the tool cannot reach and RND roundings between an arc and a line too short
+for them. The reference now refuses them from the manuals' rules (iTNC 530 user's manual 60642x-04, "Radius
+compensation: Machining corners": the tool centre runs to the intersection of the tool centre paths at an inside
+corner, "The permissible tool radius, therefore, is limited by the geometry of the programmed contour"; TNC 426/430
+manual, "Rounding corners RND": "The rounding arc is tangential to the preceding and following contour elements").
+Each program is hand-written after the seed that showed it.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from interpolators.context import MachineContext
+from interpolators.heidenhain import parse_heidenhain
+from tests.interpolators.reference_heidenhain import checked_program, heidenhain_reference
+from tests.interpolators.reference_iso import ReferenceError
+from vcnc.errors import GCodeError
+
+CTX = MachineContext()
+
+
+def _program(tool_radius: float, body: str) -> str:
+    lines = [f"TOOL DEF 1 L+0 R+{tool_radius}", "TOOL CALL 1 Z S2000 F500", "L X-20 Y-20 Z+10 R0 FMAX",
+             "L Z-2 R0 F200", *body.splitlines(), "L Z+50 R0 FMAX M30"]
+    return "0 BEGIN PGM G40 MM\n" + "".join(f"{k + 1} {b}\n" for k, b in enumerate(lines)) + \
+        f"{len(lines) + 1} END PGM G40 MM\n"
+
+
+def _both_refuse(text: str, reader_match: str, reference_match: str) -> None:
+    with pytest.raises(GCodeError, match=reader_match):
+        parse_heidenhain(text, source="t.h", context=CTX)
+    with pytest.raises(ReferenceError, match=reference_match):
+        heidenhain_reference(text, CTX)
+
+
+# -- inside corners the compensated tool cannot reach (seeds 1100058 'CHF 1' beside a tool of radius 2.5, 1100025
+#    a CR after a short line) ------------------------------------------------------------------------------------
+
+def test_a_chamfer_between_two_inside_corners_shorter_than_the_tool_needs_is_refused():
+    # a square pocket wall run RL counter-clockwise inside: every corner an inside one; CHF 1 at 90 degrees is a
+    # chamfer line of 1.41 mm with two inside corners of 45 degrees, which take 2 x 2.5 tan(22.5) = 2.07 mm of it
+    body = "L X+0 Y+0 RL\nL X+40\nCHF 1\nL Y+40\nL X+0\nL Y+0\nL X-20 Y-20 R0"
+    _both_refuse(_program(2.5, body), "cannot be reached by the tool without gouging",
+                 "shorter than the inside corners at its ends take")
+    prog = checked_program(_program(0.5, body), CTX, exact=False)  # radius 0.5: 0.41 mm of it
+    assert len(prog.blocks) > 6
+
+
+def test_an_element_shorter_than_the_next_inside_corner_takes_is_refused():
+    # a line of 1 mm between two inside corners of 90 degrees: a tool of radius 2 takes 2 mm of it at each end
+    body = "L X+0 Y+0 RL\nL X+40\nL Y+1\nL X+0\nL Y+0\nL X-20 Y-20 R0"
+    _both_refuse(_program(2, body), "gouging", "radius compensation: ")
+    checked_program(_program(0.4, body), CTX, exact=False)
+
+
+def test_an_arc_curving_toward_the_tool_tighter_than_the_tool_is_refused():
+    # RL round the outside of nothing: the half circle of radius 2 turns left, toward the tool on the left of the
+    # path; a tool of radius 3 cannot follow it inside
+    body = "L X+0 Y+0 RL\nL X+20\nCC X+20 Y+2\nC X+20 Y+4 DR+\nL X+0\nL X-20 Y-20 R0"
+    with pytest.raises(ReferenceError, match="curving toward the tool"):
+        heidenhain_reference(_program(3, body), CTX)
+    with pytest.raises(GCodeError):
+        parse_heidenhain(_program(3, body), source="t.h", context=CTX)
+    checked_program(_program(1, body), CTX, exact=False)
+
+
+# -- RND between an arc and a line too short for it (seed 1100085: 'C .. DR+', 'RND R3', a line) -------------------
+
+def test_a_rounding_whose_touch_point_falls_beyond_the_line_is_refused():
+    # an arc of radius 10 about (10, 10) from (0, 10) to (10, 20), then a line of 1 mm straight down: RND R3 would
+    # touch the line 3 mm below the corner
+    body = "L X+0 Y+0 R0\nL Y+10\nCC X+10 Y+10\nC X+10 Y+20 DR-\nRND R3\nL Y+19\nL X+30"
+    _both_refuse(_program(1, body), "does not fit between the elements", "RND radius does not fit")
+    checked_program(_program(1, body.replace("L Y+19", "L Y+12")), CTX, exact=False)  # 8 mm of line: it fits
