@@ -76,3 +76,19 @@ def test_a_rounding_whose_touch_point_falls_beyond_the_line_is_refused():
     body = "L X+0 Y+0 R0\nL Y+10\nCC X+10 Y+10\nC X+10 Y+20 DR-\nRND R3\nL Y+19\nL X+30"
     _both_refuse(_program(1, body), "does not fit between the elements", "RND radius does not fit")
     checked_program(_program(1, body.replace("L Y+19", "L Y+12")), CTX, exact=False)  # 8 mm of line: it fits
+
+
+# -- cycle 22's Q8 on a ring with an element of no length in the plane (seed 1102051: the 40 x 35 pocket of a
+#    CYCL DEF 14 label, tool radius 1, Q8 = 1). The innermost ring of the rectangle has a side of length 0; the
+#    rounding asked that side for its direction and the program stopped with an error naming no block --------------
+
+def test_rough_out_rounds_a_ring_with_a_side_of_no_length():
+    body = ("CYCL DEF 14.0 CONTOUR\nCYCL DEF 14.1 CONTOUR LABEL 3\n"
+            "CYCL DEF 20 CONTOUR DATA Q1=-5 Q2=+1 Q3=+0 Q4=+0.5 Q5=+1 Q6=+2 Q7=+50 Q8=+1 Q9=+1\n"
+            "CYCL DEF 22 ROUGH-OUT Q10=+2 Q11=+100 Q12=+350 Q18=+0 Q19=+0\nCYCL CALL\nL Z+50 R0 FMAX M30\n"
+            "LBL 3\nL X+0 Y+35 RL\nL X+40 Y+35\nL X+40 Y+0\nL X+0 Y+0\nL X+0 Y+35\nLBL 0")
+    text = "0 BEGIN PGM Q8 MM\n" + "".join(f"{k + 1} {b}\n" for k, b in enumerate(
+        ["TOOL DEF 1 L+0 R+1", "TOOL CALL 1 Z S1000", "L Z+50 R0 FMAX", *body.splitlines()])) + "99 END PGM Q8 MM\n"
+    prog = parse_heidenhain(text, source="t.h", context=CTX)  # PathGeometryError: '.. has no direction ..'
+    cut = [b for b in prog.blocks if b.line > 8 and b.target[2] < 1]
+    assert cut and all(1 - 1e-9 <= b.target[0] <= 39 + 1e-9 and 1 - 1e-9 <= b.target[1] <= 34 + 1e-9 for b in cut)
