@@ -92,3 +92,18 @@ def test_rough_out_rounds_a_ring_with_a_side_of_no_length():
     prog = parse_heidenhain(text, source="t.h", context=CTX)  # PathGeometryError: '.. has no direction ..'
     cut = [b for b in prog.blocks if b.line > 8 and b.target[2] < 1]
     assert cut and all(1 - 1e-9 <= b.target[0] <= 39 + 1e-9 and 1 - 1e-9 <= b.target[1] <= 34 + 1e-9 for b in cut)
+
+
+# -- the last element before R0, shorter than the inside corner at its start takes (seed 1100217: 'L IX+6.4653
+#    IY-7.0337' after a line, a turn of 153 degrees under RR, tool radius 3, then 'L Z+20 R0'). The reader ran it
+#    as LinuxCNC does (only a line whose end moved is checked: the tool ran backwards from the corner's intersection
+#    to the element's end, into the line before); the TNC's tool radius is limited by the contour (iTNC 530 manual,
+#    "Radius compensation: Machining corners") ------------------------------------------------------------------
+
+def test_the_last_element_shorter_than_its_inside_corner_takes_is_refused():
+    # RL along +X, then back left by 153.4 degrees on a line of 8.94 mm: a tool of radius 3 needs 3 tan(76.7) =
+    # 12.7 mm of it, a tool of radius 1 4.2 mm
+    body = "L X+0 Y+0 RL\nL X+20 Y+0\nL X+12 Y+4\nL Z+20 R0 FMAX"
+    _both_refuse(_program(3, body), "Straight feed in concave corner cannot be reached",
+                 "the next element is shorter than the inside corner takes")
+    checked_program(_program(1, body), CTX, exact=False)
