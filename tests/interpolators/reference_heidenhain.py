@@ -1731,12 +1731,16 @@ def _contour_train(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", p["Q7"])
 
 
-def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndarray]] | None:
+def _ring(corners: list[np.ndarray], r: float, wall: float | None = None) -> tuple[np.ndarray, list[np.ndarray]] | None:
     """The ring ``r`` [mm] inside the counter-clockwise polygon ``corners`` (2-D), from the middle of its
     first edge: that start and, per edge (the first edge's second half first, its first half last, back at
     the start), where its offset ends (a convex corner: where the two offsets meet; a reflex corner: the
     offset's end, the arc about the corner belonging to the next edge). None when a point of it lies
-    outside the polygon or nearer than r to an edge (edges and arcs sampled)."""
+    outside the polygon or nearer than r to an edge (edges and arcs sampled), or a point of the legs from and
+    back to the start nearer than ``wall`` (default r): on the innermost ring of a pocket narrowing to a corner
+    the middle of the first edge lies beyond the ring's own first edge, the legs run out to it along that
+    edge's offset, still clear of the walls (seed 1102049: a triangle of inradius 12.3 mm, rings 2 mm apart, the
+    ring at 12 clears its middle)."""
     n = len(corners)
     units = [(corners[(i + 1) % n] - corners[i]) / np.linalg.norm(corners[(i + 1) % n] - corners[i])
              for i in range(n)]
@@ -1759,9 +1763,11 @@ def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndar
         dense += [np.linspace(here, end, 40), arc]
         ends.append(end)
         here = arc[-1] if len(arc) else end
-    dense.append(np.linspace(here, start, 40))  # the first edge's first half, back to the start
+    legs = np.concatenate([dense[1], np.linspace(here, start, 40)])  # out from and back to the start
+    dense = dense[2:]
     ends.append(start)
-    return (start, ends) if _far_inside(np.concatenate(dense), corners, r) else None
+    return (start, ends) if _far_inside(np.concatenate(dense), corners, r) and _far_inside(
+        legs, corners, r if wall is None else wall) else None
 
 
 def _rounded(start: np.ndarray, ends: list[np.ndarray], r: float) -> list[np.ndarray]:
@@ -1805,7 +1811,7 @@ def _pocket_rings(corners: list[np.ndarray], r0: float, step: float) -> list[tup
     """The rings of :func:`_ring` from ``r0`` in steps of ``step`` [mm] while one fits and the straight step
     from its start out to the previous ring's start keeps the previous ring's distance."""
     rings: list[tuple] = []
-    while len(rings) < 10_000 and (ring := _ring(corners, r0 + len(rings) * step)) is not None:
+    while len(rings) < 10_000 and (ring := _ring(corners, r0 + len(rings) * step, r0)) is not None:
         if rings and not _far_inside(np.linspace(ring[0], rings[-1][0], 40), corners, r0 + (len(rings) - 1) * step):
             break
         rings.append(ring)

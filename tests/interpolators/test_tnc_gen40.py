@@ -107,3 +107,25 @@ def test_the_last_element_shorter_than_its_inside_corner_takes_is_refused():
     _both_refuse(_program(3, body), "Straight feed in concave corner cannot be reached",
                  "the next element is shorter than the inside corner takes")
     checked_program(_program(1, body), CTX, exact=False)
+
+
+# -- cycle 22 in a triangle whose innermost ring is smaller than its start leg (seed 1102049: a triangle of
+#    inradius 12.3 mm, tool radius 2, rings 2 mm apart). The reference asked the legs from the middle of the first
+#    edge to be as far from the walls as the ring, stopped at the ring 10 and left the middle uncut; the reader
+#    runs the ring 12. The reference now asks the legs to keep the wall allowance R + Q3 only ---------------------
+
+def test_rough_out_of_a_triangle_clears_its_middle():
+    lines = ["TOOL DEF 1 L+0 R+2", "TOOL CALL 1 Z S3000 F400", "L Z+50 R0 FMAX", "CONTOUR DEF P1 = LBL 1",
+             "CYCL DEF 20 CONTOUR DATA Q1=-4 Q2=+1 Q3=+0 Q4=+0 Q5=+1 Q6=+2 Q7=+50 Q8=+0 Q9=-1",
+             "CYCL DEF 22 ROUGH-OUT Q10=+5 Q11=+100 Q12=+350 Q18=+0 Q19=+0", "CYCL CALL", "L Z+50 R0 FMAX M30",
+             "LBL 1", "L X+15 Y+40 RL", "L X+40 Y+0", "L X+0 Y+0", "L X+15 Y+40", "LBL 0"]
+    text = "0 BEGIN PGM TRI MM\n" + "".join(f"{k + 1} {b}\n" for k, b in enumerate(lines)) + "15 END PGM TRI MM\n"
+    prog = checked_program(text, CTX)  # mismatch: the reference's last ring was the one at 10 mm
+    sides = [((15, 40), (40, 0)), ((40, 0), (0, 0)), ((0, 0), (15, 40))]
+
+    def wall(x: float, y: float) -> float:
+        return min(abs((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / ((bx - ax) ** 2 + (by - ay) ** 2) ** 0.5
+                   for (ax, ay), (bx, by) in sides)
+
+    cut = [b for b in prog.blocks if b.target[2] < 0]
+    assert max(wall(*b.target[:2]) for b in cut) > 12 - 1e-6  # the inradius is 12.3: the tool reaches the middle
