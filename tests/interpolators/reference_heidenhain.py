@@ -878,6 +878,9 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
     if t.run is not None:  # the compensated run's last element now ends where the RND/CHF begins
         (start, _, c, ccw), begun = t.run
         t.run = ((start, t1[:2].copy(), c, ccw), begun)
+        if begun > _along(t.run[0], t1[:2])[0] + 1e-7:  # the inside corner at its start took more than is left
+            raise ReferenceError("radius compensation: an element shorter than the inside corner and the "
+                                 "RND/CHF at its ends take")
     now, t.comp = t.comp, comp
     if kind == "CHF":
         t.emit(line, "feed", t2)

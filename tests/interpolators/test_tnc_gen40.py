@@ -129,3 +129,16 @@ def test_rough_out_of_a_triangle_clears_its_middle():
 
     cut = [b for b in prog.blocks if b.target[2] < 0]
     assert max(wall(*b.target[:2]) for b in cut) > 12 - 1e-6  # the inradius is 12.3: the tool reaches the middle
+
+
+# -- an element trimmed at its start by an inside corner and at its end by an RND (seed 1102204: 'L IX-10.743
+#    IY+16.5485', 'L X+9.3682 Y+41.1753', 'RND R3' under RL, tool radius 2.5). The reference checked the corner
+#    against the whole line, before the RND took its end --------------------------------------------------------
+
+def test_an_element_the_corner_and_the_rounding_after_it_consume_is_refused():
+    # the line of 8.94 mm back up-left: the inside corner at its start takes 1 x tan(76.7) = 4.24 mm of it with a
+    # tool of radius 1, the outside RND R8 at its end 8 tan(31.7) = 4.94 mm, RND R3 1.85 mm
+    body = "L X+0 Y+0 RL\nL X+20 Y+0\nL X+12 Y+4\nRND R8\nL X+12 Y+20\nL X+0 Y+30 R0"
+    _both_refuse(_program(1, body), "Straight feed in concave corner cannot be reached",
+                 "shorter than the inside corner and the RND/CHF at its ends take")
+    checked_program(_program(1, body.replace("RND R8", "RND R3")), CTX, exact=False)
