@@ -10,7 +10,10 @@ incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/
 pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``; on a B/C table (:func:`context`, a quarter
 of the seeds) ``PLANE SPATIAL`` (also with ``TABLE ROT``/``COORD ROT``), ``PROJECTED``, ``EULER``, ``VECTOR``,
 ``POINTS`` and ``AXIAL`` (:meth:`_Gen.plane_definition`; ``TURN`` or ``MOVE``; also followed by ``PLANE RELATIV``)/
-``PLANE RESET`` and ``M128`` with B C or ``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`).
+``PLANE RESET`` and ``M128`` with B C or ``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`); from a
+stream of their own (:class:`_Extras`, session 40) the milling cycles 208/240/253/256/257/262-265/267, the SL cycles
+(14 or ``CONTOUR DEF``, 20, 22/23/24, 25) with a tool of their own, the old cycles 1/2/17 on patterns 220/221,
+``FN 9``, ``FN 18 SYSREAD ID270`` and ``QS`` strings.
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
 Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
