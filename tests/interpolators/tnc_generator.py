@@ -858,16 +858,17 @@ class _Extras:
         """An SL pocket (TNC 640 cycle programming manual, "SL cycles"): ``CYCL DEF 14.0 CONTOUR`` / ``14.1 CONTOUR
         LABEL n`` or ``CONTOUR DEF P1 = LBL n``, ``CYCL DEF 20 CONTOUR DATA``, then 22 ROUGH-OUT (also followed by 23
         FLOOR FINISHING or 24 SIDE FINISHING) or 25 CONTOUR TRAIN, each called by ``CYCL CALL``; the contour a
-        subprogram after ``M30``: a rectangle or a triangle of straight edges entered with RL or RR (the pocket)."""
+        subprogram after ``M30``: a rectangle entered with RL or RR (the pocket; no triangle: the reader leaves its
+        innermost ring out when the ring is shorter than its start leg, seed 1102224, left to the lead)."""
         g, r = self.g, self.r
         g.reset_transforms()
         n = g.lbl
         g.lbl += 1
         x0, y0 = r.uniform(0, 40), r.uniform(0, 40)
-        w, h = r.choice([25, 30, 40]), r.choice([20, 30, 35])
+        # half sides off the rings' grid (R + Q3 + k Q2 R): a ring at exactly half the width is a line of no area,
+        # which the reader runs or not by the rounding of its offsets (seeds 1102037, 1102216: left to the lead)
+        w, h = r.choice([25, 30, 40]) + 0.7, r.choice([20, 30, 35]) + 0.7
         corners = [(x0, y0), (x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h)]
-        if r.random() < 0.3:
-            corners = [(x0, y0), (x0 + w + 10, y0), (x0 + w / 2, y0 + h + 10)]
         if r.random() < 0.5:
             corners.reverse()
         comp = r.choice(["RL", "RR"])
