@@ -225,6 +225,7 @@ def compensate(
     blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
     centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
     corner: str = "linuxcnc", rounded: Collection[int] = (), convex_tolerance: float = CONVEX_TOLERANCE,
+    every_line: bool | None = None,
 ) -> list[Block]:
     """Tool-centre path of one compensated run.
 
@@ -277,6 +278,12 @@ def compensate(
         module notes): LinuxCNC's TOLERANCE_CONCAVE_CORNER (:data:`CONVEX_TOLERANCE`, the ISO readers), or a
         dialect's own (the TNC's transition arc at every outside corner:
         :data:`interpolators.heidenhain_compensation.TANGENT_TOLERANCE`). Must be > 0 and < pi / 2.
+    every_line : bool, optional
+        Refuse every line an inside corner turned against its programmed direction, also one whose start alone
+        moved past its end (Fanuc's interference check; the TNC, whose tool centre starts each element at the
+        tool centre paths' intersection, the permissible tool radius "limited by the geometry of the programmed
+        contour": iTNC 530 user's manual 60642x-04, "Radius compensation: Machining corners"). None: LinuxCNC's
+        rule (only a line whose end moved) under ``corner="linuxcnc"``, every line under ``"fanuc"``.
 
     Returns
     -------
@@ -318,7 +325,8 @@ def compensate(
     chain = [ent, *offsets]
     corners = _join_corners(chain, blocks, s=s, radius=radius, plane=plane, rule=corner, rounded=rounded,
                             small=convex_tolerance)
-    _check_gouges(chain, ent, blocks, radius, inch=inch, ends_only=corner == "linuxcnc")
+    ends_only = corner == "linuxcnc" if every_line is None else not every_line
+    _check_gouges(chain, ent, blocks, radius, inch=inch, ends_only=ends_only)
     return _assemble(blocks, chain, corners, first=first, last=last, side=side, plane=plane)
 
 

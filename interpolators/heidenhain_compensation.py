@@ -73,7 +73,7 @@ def finish_compensation(m: Machine, *, open_end: bool = False, closed: bool = Fa
         return
     try:
         new = compensate(run, side=side, radius=m.comp_radius, plane=m.plane, entry="perpendicular",
-                         open_end=open_end, closed=closed, convex_tolerance=TANGENT_TOLERANCE)
+                         open_end=open_end, closed=closed, convex_tolerance=TANGENT_TOLERANCE, every_line=True)
     except CompensationError as exc:
         b = run[min(exc.index, len(run) - 1)]
         ahead = " (M120 LA would leave the undercut out: not modelled)" if look_ahead else ""

@@ -492,8 +492,11 @@ def rounded_ring(ring: list[Block], radius: float, *, plane: int, ccw: bool) -> 
     out = [ring[0]]
     for b in ring[1:]:
         prev = out[-1]
-        t1 = end_tangent(prev.segment, plane)
         p, q = PLANE_AXES[plane]
+        if not np.hypot(*(np.asarray(prev.target) - np.asarray(prev.start))[[p, q]]) > 1e-12:
+            out.append(b)  # after an element of no length in the plane (a plunge on the ring): no corner to round
+            continue
+        t1 = end_tangent(prev.segment, plane)
         t2 = np.asarray(b.segment.tangent_at(0.0), dtype=float).reshape(3)[[p, q]]
         cross = float(t1[0] * t2[1] - t1[1] * t2[0])
         if abs(cross) <= 1e-9 * float(np.hypot(*t2)) or (cross > 0) != ccw:

@@ -53,6 +53,10 @@ for cycle 1, TNC 426B "Miscellaneous functions for coordinate data" for M91/M92)
   as 252's roughing and ``4`` POCKET MILLING as 251's (turned 90 degrees when 4.5 is the longer side)
   from the starting position (surface: the set-up clearance beyond it; K = 1).
 - ``DEP CT`` under RL/RR: the tool runs the arc compensated and stops beside PN, square to the arc.
+- RL/RR contours the tool cannot follow are refused (:func:`_tool_path_corner`: at an inside corner the tool
+  centre paths' intersection, iTNC 530 user's manual 60642x-04, "Radius compensation: Machining corners"; an
+  element it consumes, or an arc curving toward the tool no larger than it), and so is an RND whose circle touches
+  no point of an element as programmed (:func:`_fillet`).
 - ``FUNCTION FEED DWELL D-TIME d F-TIME f`` (TNC 640 user's manual, "Cyclic dwell time"; our reading of what
   counts): the feed time of the path's lines and arcs at the modal F, across blocks; where it reaches f the element is
   cut and the tool dwells d (:func:`_feed_dwell_line`, :func:`_feed_dwell_arc`); other feed moves under it unmodelled.
@@ -287,6 +291,11 @@ class _Tnc:
         self.last_dir: np.ndarray | None = None
         self.last_len = math.inf  # length of the last line in the plane [mm] (what an RND after it may take)
         self.rounding: tuple | None = None  # RND R / CHF waiting for the next element: (kind, size, line, row)
+        self.last_start = self.pos.copy()  # where the last move in the plane began (the element an RND trims)
+        self.last_ccw = False  # that move was a counter-clockwise arc
+        # the last element of the RL/RR run ((start, end, centre, ccw) in the plane) and where its tool centre path
+        # begins on it (:func:`_along`), for the inside corners the tool must reach (:func:`_tool_path_corner`)
+        self.run: tuple | None = None
         self.modal = False  # M89 active
         self.feed = 0.0  # the modal path feed [mm/min], for FUNCTION FEED DWELL
         self.feed_dwell: tuple[float, float] | None = None  # FUNCTION FEED DWELL: (D-TIME, F-TIME) [s]
@@ -391,10 +400,12 @@ class _Tnc:
             rs, re_ = (float(np.hypot(*(p - centre)[:2])) for p in (start, end)) if centre is not None else (0, 0)
             element = ("line", start, end.copy()) if centre is None else \
                 ("arc", centre, re_, (0, 1), start, abs(rs - re_))
+            _tool_path_corner(self, start, end, centre, kind)
             self.out.append(Expected(line=line, kind=None, end=end.copy(), tolerance=self.radius, rows="last",
                                      element=element, entry=self.entry))
             self.entry = False
         else:
+            self.run = None
             slack, loose = 0.0, 0.0
             if self.loose and np.any(end[:2] == start[:2]):  # X or Y kept from the SL cycle's unknown end
                 loose = self.loose
@@ -410,6 +421,7 @@ class _Tnc:
             d = np.array([*(end - start)[:2], 0.0])
             self.last_dir = None if centre is not None else d / np.linalg.norm(d)
             self.last_len = math.inf if centre is not None else float(np.linalg.norm(d))
+            self.last_start, self.last_ccw = start, kind == "arc_ccw"
         self.pos = end.copy()
 
     def target(self, w: dict, base: np.ndarray | None = None) -> np.ndarray:
@@ -855,12 +867,20 @@ def _corner(t: _Tnc, end: np.ndarray, centre, ccw_next: bool = True) -> None:
     else:
         if abs(turn) < 1e-9:
             raise ReferenceError("RND where the elements meet tangentially")
-        t1, t2, fc = _fillet(p[:2], a, prev_centre, b, centre, size, 1.0 if turn > 0 else -1.0)
+        t1, t2, fc = _fillet((t.last_start[:2], p[:2], None if prev_centre is None else prev_centre[:2], t.last_ccw),
+                             (p[:2], end[:2], None if centre is None else centre[:2], ccw_next), a, b, size,
+                             1.0 if turn > 0 else -1.0)
         t1, t2 = np.array([*t1, p[2]]), np.array([*t2, p[2]])
     t.out[row] = dataclasses.replace(prev, end=t1, element=None if prev.element is None else
                                      ("line", prev.element[1], t1.copy()) if prev.element[0] == "line"
                                      else prev.element)
     t.pos = t1
+    if t.run is not None:  # the compensated run's last element now ends where the RND/CHF begins
+        (start, _, c, ccw), begun = t.run
+        t.run = ((start, t1[:2].copy(), c, ccw), begun)
+        if begun > _along(t.run[0], t1[:2])[0] + 1e-7:  # the inside corner at its start took more than is left
+            raise ReferenceError("radius compensation: an element shorter than the inside corner and the "
+                                 "RND/CHF at its ends take")
     now, t.comp = t.comp, comp
     if kind == "CHF":
         t.emit(line, "feed", t2)
@@ -921,14 +941,101 @@ def _foot(q: np.ndarray, p: np.ndarray, tangent: np.ndarray, centre) -> np.ndarr
     return c + radius * (q - c) / np.hypot(*(q - c))
 
 
-def _fillet(p: np.ndarray, a: np.ndarray, c1, b: np.ndarray, c2, r: float, s: float) -> tuple:
-    """Touch points on the element before and after the corner ``p`` and the centre of the fillet of radius r
-    inside the corner (side ``s``: +1 the contour turns left)."""
-    near = _meet(_offset_curve(p, a, c1, s, r), _offset_curve(p, b, c2, s, r))
-    if not near:
-        raise ReferenceError("RND radius does not fit between the elements")
-    fc = min(near, key=lambda q: float(np.hypot(*(q - p))))
-    return _foot(fc, p, a, c1), _foot(fc, p, b, c2), fc
+def _fillet(first: tuple, second: tuple, a: np.ndarray, b: np.ndarray, r: float, s: float) -> tuple:
+    """Touch points on the element before and after the corner and the centre of the fillet of radius r inside
+    the corner (side ``s``: +1 the contour turns left); the elements as (start, end, centre, ccw) in the plane, the
+    corner the first's end. The fillet touches both elements ("The rounding arc is tangential to the preceding
+    and following contour elements", TNC 426/430 manual, "Rounding corners RND"): of the circles of radius r
+    tangent to both, the one nearest the corner whose touch points lie on the elements as programmed; none such
+    (an element shorter than the rounding needs of it, an arc smaller than the rounding): it does not fit."""
+    p = first[1]
+    near = _meet(_offset_curve(p, a, first[2], s, r), _offset_curve(p, b, second[2], s, r))
+    for fc in sorted(near, key=lambda q: float(np.hypot(*(q - p)))):
+        t1, t2 = _foot(fc, p, a, first[2]), _foot(fc, p, b, second[2])
+        if _on_element(first, t1) and _on_element(second, t2):
+            return t1, t2, fc
+    raise ReferenceError("RND radius does not fit between the elements")
+
+
+def _along(el: tuple, q: np.ndarray) -> tuple[float, float]:
+    """How far along the element ``el`` = (start, end, centre, ccw) in the plane the point q (on it or on an offset
+    of it) lies, and the element's whole length in the same measure: for a line the distance from its start along
+    it [mm], for an arc the angle swept from its start [rad] (a point just before the start is negative; a full
+    circle when its end is its start)."""
+    start, end, centre, ccw = el
+    if centre is None:
+        d = end - start
+        n = float(np.hypot(*d))
+        return float((q - start) @ d) / n, n
+
+    def angle(v: np.ndarray) -> float:
+        a = math.atan2(v[1], v[0]) - math.atan2(start[1] - centre[1], start[0] - centre[0])
+        return (a if ccw else -a) % (2 * math.pi)
+
+    sweep = angle(end - centre) or 2 * math.pi
+    a = angle(q - centre)
+    return (a - 2 * math.pi if a > (sweep + 2 * math.pi) / 2 else a), sweep
+
+
+def _on_element(el: tuple, q: np.ndarray, tol: float = 1e-7) -> bool:
+    """q (a point of the element's line or circle) lies between the element's ends."""
+    u, n = _along(el, q)
+    return -tol <= u <= n + tol
+
+
+def _tool_path_corner(t: _Tnc, start: np.ndarray, end: np.ndarray, centre, kind: str | None) -> None:
+    """Refuse an RL/RR contour the tool cannot follow (iTNC 530 user's manual 60642x-04, "Radius compensation:
+    Machining corners": "The TNC calculates the intersection of the tool center paths at inside corners under
+    radius compensation. From this point it then starts the next contour element. [...] The permissible tool
+    radius, therefore, is limited by the geometry of the programmed contour."). At an inside corner the tool centre
+    runs the first element's offset up to the offsets' intersection nearest the corner and the next element's from
+    there: an element whose offset the intersections consume (the point lies behind where the tool's path on it
+    began, or beyond its end), offsets that do not meet, or an arc curving toward the tool with a radius no larger
+    than the tool's leave the tool no path that does not cut into the contour. Outside corners are run round on
+    a transition arc: the next element's path starts at its start. A move along the tool axis alone keeps the run;
+    the block entering RL/RR (L or APPR: it ends on the first element's offset) is none of it."""
+    if centre is None and not np.hypot(*(end - start)[:2]) > 0:
+        return
+    if centre is not None and kind not in ("arc_ccw", "arc_cw"):  # DEP CT: the tool's arc, not the contour's
+        t.run = None
+        return
+    el = (start[:2].copy(), end[:2].copy(), None if centre is None else np.asarray(centre, float)[:2].copy(),
+          kind == "arc_ccw")
+    side = t.side * (-1.0 if t.turns_over() else 1.0)  # the tool's side in machine axes (a mirror swaps RL/RR)
+    b = _tangent(el, at_end=False)
+    ob = _offset_curve(el[0], b, el[2], side, t.radius)
+    if ob[0] == "circle" and ob[2] <= 1e-9:
+        raise ReferenceError("an arc curving toward the tool with a radius no larger than the tool's")
+    prev, t.run = t.run, (None if t.entry else (el, 0.0))
+    if prev is None or t.entry:  # the block entering RL/RR (L or APPR) ends on the next element's offset
+        return
+    (pel, begun) = prev
+    a = _tangent(pel, at_end=True)
+    p = el[0]
+    turn = float(a[0] * b[1] - a[1] * b[0])
+    if turn * side <= 1e-9:  # an outside corner, or the elements meet tangentially
+        return
+    meets = _meet(_offset_curve(p, a, pel[2], side, t.radius), ob)
+    if not meets:
+        raise ReferenceError("radius compensation: the tool centre paths of an inside corner do not meet")
+    x = min(meets, key=lambda q: float(np.hypot(*(q - p))))
+    if _along(pel, x)[0] < begun - 1e-7:
+        raise ReferenceError("radius compensation: an element shorter than the inside corners at its ends take")
+    u, n = _along(el, x)
+    if u > n + 1e-7:
+        raise ReferenceError("radius compensation: the next element is shorter than the inside corner takes")
+    t.run = (el, u)
+
+
+def _tangent(el: tuple, *, at_end: bool) -> np.ndarray:
+    """The unit direction of travel of the element (start, end, centre, ccw) at its start or end."""
+    start, end, centre, ccw = el
+    if centre is None:
+        d = end - start
+        return d / np.hypot(*d)
+    v = (end if at_end else start) - centre
+    d = np.array([-v[1], v[0]]) if ccw else np.array([v[1], -v[0]])
+    return d / np.hypot(*d)
 
 
 def _polar_point(t: _Tnc, p: np.ndarray, r: float, a: float, w: dict) -> np.ndarray:
@@ -1627,12 +1734,16 @@ def _contour_train(t: _Tnc, line: int, p: dict) -> None:
     _move_z(t, line, "rapid", p["Q7"])
 
 
-def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndarray]] | None:
+def _ring(corners: list[np.ndarray], r: float, wall: float | None = None) -> tuple[np.ndarray, list[np.ndarray]] | None:
     """The ring ``r`` [mm] inside the counter-clockwise polygon ``corners`` (2-D), from the middle of its
     first edge: that start and, per edge (the first edge's second half first, its first half last, back at
     the start), where its offset ends (a convex corner: where the two offsets meet; a reflex corner: the
     offset's end, the arc about the corner belonging to the next edge). None when a point of it lies
-    outside the polygon or nearer than r to an edge (edges and arcs sampled)."""
+    outside the polygon or nearer than r to an edge (edges and arcs sampled), or a point of the legs from and
+    back to the start nearer than ``wall`` (default r): on the innermost ring of a pocket narrowing to a corner
+    the middle of the first edge lies beyond the ring's own first edge, the legs run out to it along that
+    edge's offset, still clear of the walls (seed 1102049: a triangle of inradius 12.3 mm, rings 2 mm apart, the
+    ring at 12 clears its middle)."""
     n = len(corners)
     units = [(corners[(i + 1) % n] - corners[i]) / np.linalg.norm(corners[(i + 1) % n] - corners[i])
              for i in range(n)]
@@ -1655,9 +1766,11 @@ def _ring(corners: list[np.ndarray], r: float) -> tuple[np.ndarray, list[np.ndar
         dense += [np.linspace(here, end, 40), arc]
         ends.append(end)
         here = arc[-1] if len(arc) else end
-    dense.append(np.linspace(here, start, 40))  # the first edge's first half, back to the start
+    legs = np.concatenate([dense[1], np.linspace(here, start, 40)])  # out from and back to the start
+    dense = dense[2:]
     ends.append(start)
-    return (start, ends) if _far_inside(np.concatenate(dense), corners, r) else None
+    return (start, ends) if _far_inside(np.concatenate(dense), corners, r) and _far_inside(
+        legs, corners, r if wall is None else wall) else None
 
 
 def _rounded(start: np.ndarray, ends: list[np.ndarray], r: float) -> list[np.ndarray]:
@@ -1701,7 +1814,7 @@ def _pocket_rings(corners: list[np.ndarray], r0: float, step: float) -> list[tup
     """The rings of :func:`_ring` from ``r0`` in steps of ``step`` [mm] while one fits and the straight step
     from its start out to the previous ring's start keeps the previous ring's distance."""
     rings: list[tuple] = []
-    while len(rings) < 10_000 and (ring := _ring(corners, r0 + len(rings) * step)) is not None:
+    while len(rings) < 10_000 and (ring := _ring(corners, r0 + len(rings) * step, r0)) is not None:
         if rings and not _far_inside(np.linspace(ring[0], rings[-1][0], 40), corners, r0 + (len(rings) - 1) * step):
             break
         rings.append(ring)

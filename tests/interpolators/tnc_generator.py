@@ -10,7 +10,10 @@ incremental), ``C``, ``CR``, ``CT``, ``CP`` (IPA, IZ helix), ``LP`` (PR/PA, IPR/
 pockets 251/252 (:meth:`_Gen.pocket`), ``M91``/``M92`` and ``M140 MB``; on a B/C table (:func:`context`, a quarter
 of the seeds) ``PLANE SPATIAL`` (also with ``TABLE ROT``/``COORD ROT``), ``PROJECTED``, ``EULER``, ``VECTOR``,
 ``POINTS`` and ``AXIAL`` (:meth:`_Gen.plane_definition`; ``TURN`` or ``MOVE``; also followed by ``PLANE RELATIV``)/
-``PLANE RESET`` and ``M128`` with B C or ``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`).
+``PLANE RESET`` and ``M128`` with B C or ``FUNCTION TCPM`` with ``LN X Y Z TX TY TZ`` (:meth:`_Gen.tilted`); from a
+stream of their own (:class:`_Extras`, session 40) the milling cycles 208/240/253/256/257/262-265/267, the SL cycles
+(14 or ``CONTOUR DEF``, 20, 22/23/24, 25) with a tool of their own, the old cycles 1/2/17 on patterns 220/221,
+``FN 9``, ``FN 18 SYSREAD ID270`` and ``QS`` strings.
 
 The generator keeps the geometry the TNC accepts (TNC 640 conversational user's manual, "Path contours -
 Cartesian coordinates" and "Polar coordinates"): a ``C`` end on the circle about ``CC`` (exactly, or at any angle
@@ -25,6 +28,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 
 from interpolators.context import MachineContext
 from interpolators.tilted import Kinematics, RotaryAxis
@@ -81,6 +85,8 @@ class _Gen:
         self.comp = "R0"
         self.rounding = False  # a RND/CHF waits for the next element
         self.pole_kept = False  # the pole was set before a transformation or TOOL CALL and not used since
+        self.unit = "MM"
+        self.last_tool_call = ""  # the TOOL CALL block in force (a section with a tool of its own calls it again)
 
     # -- output --------------------------------------------------------------------------------
     def emit(self, *lines: str) -> None:
@@ -112,6 +118,7 @@ class _Gen:
 
     # -- blocks --------------------------------------------------------------------------------
     def header(self, unit: str) -> None:
+        self.unit = unit
         radii = [0, 0.04, 0.1] if unit == "INCH" else [0, 1, 2.5, 3]
         self.emit("BLK FORM 0.1 Z X+0 Y+0 Z-20")
         self.emit("BLK FORM 0.2 X+100 Y+100 Z+0")
@@ -131,6 +138,7 @@ class _Gen:
         if self.tool_feed:
             words += f" F{self.r.choice([300, 600])}"
         self.emit(words)
+        self.last_tool_call = words
         self.feed_set = self.tool_feed
         self.known = False
         self.pole_kept = self.cc is not None
@@ -760,6 +768,219 @@ class _Gen:
         self.known = False
 
 
+class _Extras:
+    """The functions session 40 added (tncgen40), drawn from a stream of their own (``f"{seed}:gen40"``) between
+    the sections of :class:`_Gen`, which resumes as it was (its state saved and the tool put back where it stood),
+    so that the programs of the seeds before keep their sections: the milling cycles 208, 240, 253, 256, 257 and
+    262-265/267, the SL cycles (14 or ``CONTOUR DEF``, 20, 22 / 23 / 24 / 25 on a contour subprogram), the old
+    cycles 1/2/17 on the patterns 220/221, ``FN 9`` jumps, ``FN 18 SYSREAD`` and ``QS`` string parameters."""
+
+    def __init__(self, g: _Gen, seed: int):
+        self.g = g
+        self.r = random.Random(f"{seed}:gen40")
+
+    def section(self) -> None:
+        g, r = self.g, self.r
+        saved = (list(g.pos), g.known, g.exact, g.heading, g.polar_ok, g.pole_kept, g.feed_set)
+        k = r.random()
+        if k < 0.55:  # a milling tool of radius 2 mm (0.08 in) of its own, then the program's again
+            g.emit(f"TOOL DEF 9 L+0 R+{'0.08' if g.unit == 'INCH' else '2'}")
+            g.emit(f"TOOL CALL 9 Z S{r.choice([3000, 6000])} F{r.choice([400, 800])}")
+            if k < 0.3:
+                self.milling()
+            else:
+                self.sl_cycles()
+                self.sl_parameters()
+            g.emit("L Z+50 R0 FMAX")
+            g.emit(g.last_tool_call)
+        elif k < 0.7:
+            self.old_pattern()
+        elif k < 0.8:
+            self.jump()
+        elif k < 0.9:
+            self.sysread()
+        else:
+            self.strings()
+        g.pos, g.known, g.exact, g.heading, g.polar_ok, g.pole_kept, g.feed_set = saved
+        if g.known:  # back where the main sections left the tool, in the coordinates they wrote
+            g.emit("L Z+50 R0 FMAX")
+            g.emit(f"L X{_n(g.pos[0])} Y{_n(g.pos[1])} R0 FMAX")
+            g.emit(f"L Z{_n(g.pos[2])} R0 FMAX")
+
+    def call(self) -> str:
+        x, y = _n(self.r.uniform(20, 80)), _n(self.r.uniform(20, 80))
+        return self.r.choice(["CYCL CALL", f"L X{x} Y{y} R0 FMAX M99", f"CYCL CALL POS X{x} Y{y} Z+0 FMAX"])
+
+    def milling(self) -> None:
+        """A milling cycle at the tool's position (TNC 640 cycle programming manual, "SLOT MILLING (Cycle 253)",
+        "RECTANGULAR STUD (Cycle 256)", "CIRCULAR STUD (Cycle 257)", "BORE MILLING (Cycle 208)", "CENTERING (Cycle
+        240)", "THREAD MILLING (Cycle 262)" .. "OUTSIDE THREAD MILLING (Cycle 267)"), sizes well above the tool's
+        diameter (at most 6 units), after the transformations are reset, as :meth:`_Gen.pocket`."""
+        g, r = self.g, self.r
+        g.reset_transforms()
+        g.emit(f"L X{_n(r.uniform(20, 80))} Y{_n(r.uniform(20, 80))} Z+20 R0 FMAX")
+        kind = r.choice([253, 256, 257, 208, 240, 262, 263, 264, 265, 267])
+        depth, top = f"Q201=-{r.choice([3, 5, 8])}", f"Q200=+2 Q203=+{r.choice([0, 1])} Q204=+{r.choice([20, 50])}"
+        mill = f"Q207=+{r.choice([300, 500])} Q351={r.choice(['+1', '-1'])}"
+        if kind == 253:
+            q = (f"CYCL DEF 253 SLOT MILLING Q215=+{r.choice([0, 1, 2])} Q218=+{r.choice([30, 40])} "
+                 f"Q219=+{r.choice([12, 16])} Q368=+{r.choice([0, 0.3])} Q374=+{r.choice([0, 30, 90])} Q367=+0 "
+                 f"{mill} {depth} Q202=+{r.choice([2, 5])} Q369=+0 Q206=+150 Q338=+0 {top} Q366=+{r.choice([0, 1])} "
+                 "Q385=+400")
+        elif kind == 256:
+            q = (f"CYCL DEF 256 RECTANGULAR STUD Q218=+20 Q424=+{r.choice([26, 30])} Q219=+{r.choice([10, 16])} "
+                 f"Q425=+{r.choice([16, 22])} Q220=+{r.choice([0, 2])} Q368=+0 Q224=+0 Q367=+0 "
+                 f"{mill} {depth} Q202=+{r.choice([2, 5])} Q206=+150 {top} Q370=+1 Q215=+0 Q369=+0 Q338=+0 Q385=+400")
+        elif kind == 257:
+            q = (f"CYCL DEF 257 CIRCULAR STUD Q223=+{r.choice([20, 24])} Q222=+{r.choice([30, 36])} "
+                 f"Q368=+0 Q215=+{r.choice([0, 1])} {mill} {depth} Q202=+{r.choice([2, 5])} Q206=+150 {top} Q370=+1")
+        elif kind == 208:
+            q = (f"CYCL DEF 208 BORE MILLING {top} {depth} Q206=+150 Q334=+{r.choice([0.5, 2])} "
+                 f"Q335=+{r.choice([16, 20])} Q342=+0 Q351={r.choice(['+1', '-1'])}")
+        elif kind == 240:
+            q = f"CYCL DEF 240 CENTERING {top} Q343=+0 Q201=-{r.choice([1, 2])} Q206=+100 Q211=+{r.choice([0, 0.2])}"
+        else:
+            thread = f"Q335=+{r.choice([16, 20])} Q239={r.choice(['+1.5', '-1.5', '+2'])} {depth} Q253=+750"
+            q = {262: f"CYCL DEF 262 THREAD MILLING {thread} Q355=+{r.choice([0, 1])} {mill} {top}",
+                 263: f"CYCL DEF 263 THREAD MLLNG/CNTSNKG {thread} Q356=-2 {mill} Q357=+0 Q358=+0 Q359=+0 {top} "
+                      "Q254=+200",
+                 264: f"CYCL DEF 264 BORE/THREAD MLLNG {thread} Q356=-{r.choice([8, 10])} {mill} Q202=+5 Q258=+0.5 "
+                      "Q257=+0 Q256=+0 Q358=+0 Q359=+0 Q206=+100 " + top,
+                 265: f"CYCL DEF 265 HEL. BORE/THRD MLLNG {thread} Q358=+0 Q359=+0 Q360=+{r.choice([0, 1])} {top} "
+                      "Q254=+150 Q207=+300",
+                 267: f"CYCL DEF 267 OUTSIDE THREAD MLLNG {thread} Q355=+0 {mill} Q358=+0 Q359=+0 {top} Q254=+0"
+                 }[kind]
+        g.emit(q)
+        g.emit(self.call())
+        g.known = False
+
+    def sl_cycles(self) -> None:
+        """An SL pocket (TNC 640 cycle programming manual, "SL cycles"): ``CYCL DEF 14.0 CONTOUR`` / ``14.1 CONTOUR
+        LABEL n`` or ``CONTOUR DEF P1 = LBL n``, ``CYCL DEF 20 CONTOUR DATA``, then 22 ROUGH-OUT (also followed by 23
+        FLOOR FINISHING or 24 SIDE FINISHING) or 25 CONTOUR TRAIN, each called by ``CYCL CALL``; the contour a
+        subprogram after ``M30``: a rectangle entered with RL or RR (the pocket; no triangle: the reader leaves its
+        innermost ring out when the ring is shorter than its start leg, seed 1102224, left to the lead)."""
+        g, r = self.g, self.r
+        g.reset_transforms()
+        n = g.lbl
+        g.lbl += 1
+        x0, y0 = r.uniform(0, 40), r.uniform(0, 40)
+        # half sides off the rings' grid (R + Q3 + k Q2 R): a ring at exactly half the width is a line of no area,
+        # which the reader runs or not by the rounding of its offsets (seeds 1102037, 1102216: left to the lead)
+        w, h = r.choice([25, 30, 40]) + 0.7, r.choice([20, 30, 35]) + 0.7
+        corners = [(x0, y0), (x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h)]
+        if r.random() < 0.5:
+            corners.reverse()
+        comp = r.choice(["RL", "RR"])
+        sub = [[f"LBL {n}"], [f"L X{_n(corners[0][0])} Y{_n(corners[0][1])} {comp}"]]
+        sub += [[f"L X{_n(x)} Y{_n(y)}"] for x, y in corners[1:]]
+        sub += [[f"L X{_n(corners[0][0])} Y{_n(corners[0][1])}"], ["LBL 0"]]
+        g.subs.append(sub)
+        g.emit("L Z+50 R0 FMAX")
+        if r.random() < 0.5:
+            g.emit("CYCL DEF 14.0 CONTOUR")
+            g.emit(f"CYCL DEF 14.1 CONTOUR LABEL {n}")
+        else:
+            g.emit(f"CONTOUR DEF P1 = LBL {n}")
+        depth, surface = -r.choice([4, 5, 8]), r.choice([0, 1])
+        if r.random() < 0.3:
+            g.emit("CYCL DEF 25 CONTOUR TRAIN ~", f"  Q1={_n(depth)} ;MILLING DEPTH ~",
+                   f"  Q3=+{r.choice([0, 0.5])} ;ALLOWANCE FOR SIDE ~", f"  Q5=+{surface} ;SURFACE COORDINATE ~",
+                   "  Q7=+50 ;CLEARANCE HEIGHT ~", f"  Q10=+{r.choice([2, 5])} ;PLUNGING DEPTH ~",
+                   "  Q11=+100 ;FEED RATE FOR PLUNGING ~", "  Q12=+350 ;FEED RATE FOR MILLING ~",
+                   f"  Q15={r.choice(['+1', '-1'])} ;CLIMB OR UP-CUT")
+            g.emit(f"L X{_n(x0 - 10)} Y{_n(y0 - 10)} R0 FMAX")
+            g.emit("CYCL CALL")
+            g.known = False
+            return
+        g.emit("CYCL DEF 20 CONTOUR DATA ~", f"  Q1={_n(depth)} ;MILLING DEPTH ~", "  Q2=+1 ;TOOL PATH OVERLAP ~",
+               f"  Q3=+{r.choice([0, 0.5])} ;ALLOWANCE FOR SIDE ~",
+               f"  Q4=+{r.choice([0, 0.5])} ;ALLOWANCE FOR FLOOR ~", f"  Q5=+{surface} ;SURFACE COORDINATE ~",
+               "  Q6=+2 ;SET-UP CLEARANCE ~", "  Q7=+50 ;CLEARANCE HEIGHT ~",
+               "  Q8=+0 ;ROUNDING RADIUS ~",
+               f"  Q9={r.choice(['+1', '-1'])} ;ROTATIONAL DIRECTION")
+        g.emit("CYCL DEF 22 ROUGH-OUT ~", f"  Q10=+{r.choice([2, 5])} ;PLUNGING DEPTH ~",
+               "  Q11=+100 ;FEED RATE FOR PLNGNG ~", "  Q12=+350 ;FEED RATE F. ROUGHNG ~",
+               "  Q18=+0 ;COARSE ROUGHING TOOL ~", "  Q19=+0 ;FEED RATE FOR RECIP.")
+        g.emit("CYCL CALL")
+        finish = r.random()
+        if finish < 0.25:
+            g.emit("CYCL DEF 23 FLOOR FINISHING ~", "  Q11=+100 ;FEED RATE FOR PLNGNG ~",
+                   "  Q12=+350 ;FEED RATE F. ROUGHNG")
+            g.emit("CYCL CALL")
+        elif finish < 0.5:
+            g.emit("CYCL DEF 24 SIDE FINISHING ~", "  Q9=+1 ;ROTATIONAL DIRECTION ~", "  Q10=+5 ;PLUNGING DEPTH ~",
+                   "  Q11=+100 ;FEED RATE FOR PLNGNG ~", "  Q12=+350 ;FEED RATE F. ROUGHNG ~",
+                   "  Q14=+0 ;ALLOWANCE FOR SIDE")
+            g.emit("CYCL CALL")
+        g.known = False
+
+    def sl_parameters(self) -> None:
+        """The SL cycles' data are the parameters Q1-Q19 (TNC 426/430 user's manual, "SL cycles": "the
+        parameters of cycle 20 are global"): the main sections' ``FQn`` and ``+Qn`` words read their values."""
+        for block in self.g.blocks[-12:]:
+            for line in block:
+                for k, v in re.findall(r"\bQ(\d+)=([-+][\d.]+)", line):
+                    if int(k) < 20:
+                        self.g.q[int(k)] = float(v)
+
+    def old_pattern(self) -> None:
+        """An old cycle, 1 PECKING, 2 TAPPING or 17 RIGID TAPPING (TNC 426/430 user's manual), its set-up clearance the
+        pattern's Q200, run at the positions of cycle 220 or 221 (:meth:`_Gen.pattern_cycle`)."""
+        g, r = self.g, self.r
+        g.emit(f"L X{_n(r.uniform(0, 100))} Y{_n(r.uniform(0, 100))} Z+20 R0 FMAX")
+        kind = r.choice([1, 2, 17])
+        depth = _n(-r.choice([5, 10]))
+        if kind == 1:
+            lines = ["CYCL DEF 1.0 PECKING", "CYCL DEF 1.1 SET UP 2", f"CYCL DEF 1.2 DEPTH {depth}",
+                     f"CYCL DEF 1.3 PECKG {r.choice([3, 20])}", "CYCL DEF 1.4 DWELL 0", "CYCL DEF 1.5 F150"]
+        elif kind == 2:
+            lines = ["CYCL DEF 2.0 TAPPING", "CYCL DEF 2.1 SET UP 2", f"CYCL DEF 2.2 DEPTH {depth}",
+                     f"CYCL DEF 2.3 DWELL {r.choice([0, 0.5])}", "CYCL DEF 2.4 F100"]
+        else:
+            lines = ["CYCL DEF 17.0 RIGID TAPPING GS", "CYCL DEF 17.1 SET UP 2", f"CYCL DEF 17.2 DEPTH {depth}",
+                     f"CYCL DEF 17.3 PITCH {r.choice(['+1', '+1.5'])}"]
+        for block in lines:  # each line a block of its own
+            g.emit(block)
+        stream, g.r = g.r, r  # the pattern's numbers from this stream too
+        g.pattern_cycle()
+        g.r = stream
+        g.known = False
+
+    def jump(self) -> None:
+        """``FN 9: IF +Qn EQU +1 GOTO LBL m`` (iTNC 530 user's manual, "If-then decisions with Q parameters"): the
+        counted section runs twice, the jump taken when the counter is 1."""
+        g, r = self.g, self.r
+        n, k = g.lbl, r.choice([62, 63])
+        g.lbl += 1
+        g.emit(f"FN 0: Q{k} = +0")
+        g.emit(f"LBL {n}")
+        g.emit(f"L IX{_n(r.choice([2, -3]))} IY{_n(r.choice([0, 1.5]))} R0 F{r.choice([300, 800])}")
+        g.emit(f"FN 1: Q{k} = +Q{k} + +1")
+        g.emit(f"FN 9: IF +Q{k} EQU +1 GOTO LBL {n}")
+        g.known = False
+
+    def sysread(self) -> None:
+        """``FN 18: SYSREAD Qn = ID270 NR1 IDXi`` (the position in the active system, iTNC 530 user's manual,
+        "FN 18: SYSREAD"), then a move by it: 5 units on from where the tool stands in X or Y."""
+        g, r = self.g, self.r
+        i = r.choice([1, 2])
+        g.emit(f"L X{_n(r.uniform(0, 100))} Y{_n(r.uniform(0, 100))} Z+20 R0 FMAX")
+        g.emit(f"FN 18: SYSREAD Q71 = ID270 NR1 IDX{i}")
+        g.emit("Q72 = Q71 + 5")
+        g.emit(f"L {'XY'[i - 1]}+Q72 R0 F{r.choice([300, 800])}")
+        g.known = False
+
+    def strings(self) -> None:
+        """``QS`` string parameters (TNC 640 user's manual, "String parameters"): ``DECLARE STRING`` and a
+        concatenation ``||``, no motion of their own, between two moves."""
+        g, r = self.g, self.r
+        g.emit(f'DECLARE STRING QS{r.choice([1, 2])} = "PART"')
+        g.emit(f'QS3 = "OP" || "{r.choice(["10", "20"])}"')
+        g.emit(f"L X{_n(r.uniform(0, 100))} Y{_n(r.uniform(0, 100))} Z+20 R0 FMAX")
+        g.known = False
+
+
 def generate(seed: int) -> str:
     """A random valid TNC conversational program (text with block numbers) for ``seed``."""
     g = _Gen(seed)
@@ -767,7 +988,10 @@ def generate(seed: int) -> str:
     g.header(unit)
     g.q_params()
     g.move(rapid=True)
+    extras = _Extras(g, seed)
     for _ in range(g.r.randint(3, 9)):
+        if extras.r.random() < 0.25:
+            extras.section()
         k = g.r.random()
         if not g.known:
             g.move(rapid=True)
