@@ -221,6 +221,20 @@ def _intersections(e1: _Offset, e2: _Offset) -> list[np.ndarray]:
     return [base + h * n, base - h * n]
 
 
+def _run_parts(blocks: Sequence[Block], movers: list[int], *, closed: bool,
+               open_end: bool) -> tuple[int, int | None, list[int]]:
+    """The entry move, the exit move (None: the run has none) and the contour between of one compensated run
+    (:func:`compensate`'s ``closed`` and ``open_end``); an exit move that is an arc is refused."""
+    first = movers[0]
+    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 and not open_end else None
+    end = len(blocks) - 1
+    if closed and last is None and end > first and blocks[end].segment is not None and blocks[end].kind != "arc":
+        last = end
+    if last is not None and blocks[last].kind == "arc":  # LinuxCNC: "... must be straight, not an arc"
+        raise CompensationError("cutter compensation exit move must be a straight line, not an arc", last)
+    return first, last, [i for i in movers[1:] if i != last]
+
+
 def compensate(
     blocks: Sequence[Block], *, side: str, radius: float, plane: int, entry: str = "linuxcnc", closed: bool = False,
     centers: Mapping[int, np.ndarray] | None = None, inch: bool = False, open_end: bool = False,
@@ -307,14 +321,7 @@ def compensate(
     movers = [i for i, b in enumerate(blocks) if _moves_in_plane(b, plane)]
     if not movers:
         return blocks
-    first = movers[0]
-    last = movers[-1] if len(movers) > 1 and movers[-1] == len(blocks) - 1 and not open_end else None
-    end = len(blocks) - 1
-    if closed and last is None and end > first and blocks[end].segment is not None and blocks[end].kind != "arc":
-        last = end
-    contour = [i for i in movers[1:] if i != last]
-    if last is not None and blocks[last].kind == "arc":  # LinuxCNC: "... must be straight, not an arc"
-        raise CompensationError("cutter compensation exit move must be a straight line, not an arc", last)
+    first, last, contour = _run_parts(blocks, movers, closed=closed, open_end=open_end)
     if entry == "perpendicular" and blocks[first].kind == "arc":
         raise CompensationError("cutter compensation entry move must be a straight line, not an arc", first)
     offsets = _offset_elements(blocks, contour, s=s, radius=radius, plane=plane, centers=centers or {})
