@@ -891,6 +891,9 @@ def evaluate_condition(code: str, pos: int, where: Where, params: Parameters) ->
 #: stays illegal, and so for all addresses but the G codes. S, P and L keep their values (a spindle speed with a
 #: fraction is close enough; P and L are checked by the blocks that read them).
 _WHOLE_ADDRESSES = frozenset("DHMT")
+#: Addresses whose computed value is kept as it is: the feed and E (no increment modelled), the G code, N and O, and
+#: S, P and L as above.
+_KEPT_ADDRESSES = frozenset("EFGLNOPS")
 _LITERAL_WORD = re.compile(r",?\s*[A-Za-z]\s*[+-]?\s*(?:\d+\.?\d*|\.\d+)")
 #: G codes x 10 of blocks whose computed words keep their values: scaling factors (G51), the look-ahead switches
 #: (G05, G05.1, G08), tool axis vectors (G43.4, G43.5), NURBS knots and weights (G06.2), macro calls (G65, G66).
@@ -916,8 +919,8 @@ def address_values(words: list[Word], *, inch: bool) -> list[Word]:
     out = words
     for i, w in enumerate(words):
         letter = "A" if w.letter == "R" and 680 in codes else w.letter  # G68's R is an angle: 0.001 deg in inch too
-        step = 1.0 if letter in _WHOLE_ADDRESSES else address_increment(letter, inch=inch) \
-            if letter not in "DFGHLMNOPSTE" else None
+        step = (1.0 if letter in _WHOLE_ADDRESSES else None if letter in _KEPT_ADDRESSES
+                else address_increment(letter, inch=inch))
         if step is None or _LITERAL_WORD.fullmatch(w.text):
             continue
         units = _apply("ROUND", w.value / step)
